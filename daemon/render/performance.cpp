@@ -1,0 +1,215 @@
+#include "daemon/render/performance.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+namespace vibscore::render {
+
+namespace {
+
+// A note or rest in playing order, with its place in the score and in time.
+struct Slot {
+    const Note* note = nullptr;  // nullptr for a rest
+    const Clef* clef = nullptr;
+    std::size_t bar = 0, symbol = 0;
+    double onset = 0.0, length = 0.0;
+};
+
+bool tied(const Note& a, const Note& b) {
+    return (a.legato != 0 && a.legato == b.legato) ||
+           (a.portamento != 0 && a.portamento == b.portamento);
+}
+
+bool portamento(const Note& a, const Note& b) {
+    return a.portamento != 0 && a.portamento == b.portamento;
+}
+
+double number_amplitude(const Slot& slot) {
+    return slot.clef->numbers.at(static_cast<std::size_t>(slot.note->number - 1));
+}
+
+double frequency(const Slot& slot) {
+    return slot.clef->strings.at(static_cast<std::size_t>(slot.note->string - 1)).frequency;
+}
+
+double fraction(double x) { return x - std::floor(x); }
+
+}  // namespace
+
+Performance::Performance(const ScoreBundle& bundle, const RenderOptions& options) {
+    std::vector<Slot> slots;
+    double time = 0.0;
+    for (std::size_t b = options.start_bar; b < bundle.score.bars.size(); ++b) {
+        const Bar& bar = bundle.score.bars[b];
+        const Clef& clef = bundle.clef_of(bar);
+        for (std::size_t s = 0; s < bar.symbols.size(); ++s) {
+            const auto& symbol = bar.symbols[s];
+            Slot slot{std::get_if<Note>(&symbol), &clef, b, s, time, 0.0};
+            if (slot.note != nullptr) {
+                slot.length = beats(slot.note->length) * clef.tempo;
+            } else if (const auto* rest = std::get_if<Rest>(&symbol)) {
+                slot.length = beats(rest->length) * clef.tempo;
+            } else {
+                continue;  // a Blank takes no time
+            }
+            timeline_.push_back({b, s, time, slot.length, slot.note != nullptr});
+            slots.push_back(slot);
+            time += slot.length;
+        }
+    }
+    duration_ = time;
+
+    std::map<std::pair<const Clef*, int>, int> shape_of_string;
+    const auto shape_index = [&](const Slot& slot) {
+        const auto key = std::make_pair(slot.clef, slot.note->string);
+        const auto found = shape_of_string.find(key);
+        if (found != shape_of_string.end()) {
+            return found->second;
+        }
+        const auto& points = slot.clef->strings.at(static_cast<std::size_t>(key.second - 1)).points;
+        waveforms_.emplace_back(slot.clef->type, points);
+        const int index = static_cast<int>(waveforms_.size() - 1);
+        shape_of_string.emplace(key, index);
+        return index;
+    };
+
+    for (std::size_t i = 0; i < slots.size(); ++i) {
+        const Slot& slot = slots[i];
+        if (slot.note == nullptr) {
+            continue;
+        }
+        const Note& note = *slot.note;
+        const Slot* previous = i > 0 && slots[i - 1].note != nullptr ? &slots[i - 1] : nullptr;
+        const Slot* next = i + 1 < slots.size() && slots[i + 1].note != nullptr ? &slots[i + 1]
+                                                                                 : nullptr;
+        const bool tied_to_next = next != nullptr && tied(note, *next->note);
+        const bool tied_from_previous = previous != nullptr && tied(*previous->note, note);
+        const bool glide = next != nullptr && portamento(note, *next->note);
+
+        Tone tone;
+        tone.bar = slot.bar;
+        tone.symbol = slot.symbol;
+        tone.onset = slot.onset;
+        const double gap =
+            next != nullptr && !tied_to_next
+                ? std::min(options.separation_s, options.separation_max_fraction * slot.length)
+                : 0.0;
+        tone.duration = slot.length - gap;
+
+        const double strength = number_amplitude(slot);
+        tone.amplitude_start = tone.amplitude_end = strength;
+        if (note.dynamics == Dynamics::crescendo) {
+            const bool continues = previous != nullptr && previous->note->dynamics == note.dynamics;
+            tone.amplitude_start = continues ? number_amplitude(*previous) : 0.0;
+        } else if (note.dynamics == Dynamics::decrescendo) {
+            const bool continues = next != nullptr && next->note->dynamics == note.dynamics;
+            tone.amplitude_end = continues ? number_amplitude(*next) : 0.0;
+        } else if (glide) {
+            tone.amplitude_end = number_amplitude(*next);
+        }
+
+        tone.tempo = slot.clef->tempo;
+        const bool next_same_kind =
+            next != nullptr && (next->clef->type == ClefType::sine) == (slot.clef->type == ClefType::sine);
+        if (slot.clef->type == ClefType::sine) {
+            tone.kind = Tone::Kind::sine;
+            tone.frequency_start = tone.frequency_end = frequency(slot);
+            if (glide && next_same_kind) {
+                tone.frequency_end = frequency(*next);
+            }
+            if (tied_from_previous && !tones_.empty() && tones_.back().kind == Tone::Kind::sine) {
+                const Tone& before = tones_.back();
+                tone.phase_cycles =
+                    fraction(before.phase_cycles + sine_cycles(before, before.duration));
+            }
+        } else {
+            tone.kind = Tone::Kind::shape;
+            tone.shape = shape_index(slot);
+            if (glide && next_same_kind) {
+                tone.shape_to = shape_index(*next);
+            }
+        }
+        tones_.push_back(tone);
+    }
+
+    for (const Tone& tone : tones_) {
+        double level = 1.0;
+        if (tone.kind == Tone::Kind::shape) {
+            // A Catmull-Rom spline can overshoot its points; find the true peak by sampling.
+            level = 0.0;
+            for (int k = 0; k <= 1024; ++k) {
+                level = std::max(level, std::abs(waveform(tone.shape).level(k / 1024.0)));
+                if (tone.shape_to >= 0) {
+                    level = std::max(level, std::abs(waveform(tone.shape_to).level(k / 1024.0)));
+                }
+            }
+        }
+        peak_ = std::max(
+            peak_, level * std::max(std::abs(tone.amplitude_start), std::abs(tone.amplitude_end)));
+    }
+}
+
+double Performance::sine_cycles(const Tone& tone, double dt) {
+    if (tone.frequency_end == tone.frequency_start) {
+        return tone.frequency_start * dt;
+    }
+    // Geometric glide f(t) = f0 * r^(t/T); its integral gives the phase.
+    const double ratio = tone.frequency_end / tone.frequency_start;
+    const double u = dt / tone.duration;
+    return tone.frequency_start * tone.duration * (std::pow(ratio, u) - 1.0) / std::log(ratio);
+}
+
+double Performance::amplitude(const Tone& tone, double dt) {
+    if (tone.amplitude_end == tone.amplitude_start) {
+        return tone.amplitude_start;
+    }
+    return tone.amplitude_start + (tone.amplitude_end - tone.amplitude_start) * (dt / tone.duration);
+}
+
+double Performance::shape_level(const Tone& tone, double dt, ShapeCursor& cursor) const {
+    const double tau = fraction(dt / tone.tempo);
+    const double level = waveform(tone.shape).level(tau, cursor.from);
+    if (tone.shape_to < 0) {
+        return level;
+    }
+    const double u = dt / tone.duration;
+    return level + (waveform(tone.shape_to).level(tau, cursor.to) - level) * u;
+}
+
+std::ptrdiff_t Performance::tone_index_at(double t) const {
+    const auto after = std::upper_bound(tones_.begin(), tones_.end(), t,
+                                        [](double time, const Tone& tone) { return time < tone.onset; });
+    return (after - tones_.begin()) - 1;
+}
+
+double Performance::value_at(double t) const {
+    const auto index = tone_index_at(t);
+    if (index < 0 || t >= tones_[static_cast<std::size_t>(index)].end()) {
+        return 0.0;
+    }
+    const Tone& tone = tones_[static_cast<std::size_t>(index)];
+    const double dt = t - tone.onset;
+    if (tone.kind == Tone::Kind::sine) {
+        const double cycles = fraction(tone.phase_cycles + sine_cycles(tone, dt));
+        return amplitude(tone, dt) * std::sin(2.0 * M_PI * cycles);
+    }
+    ShapeCursor cursor;
+    return amplitude(tone, dt) * shape_level(tone, dt, cursor);
+}
+
+double Performance::envelope_at(double t) const {
+    const auto index = tone_index_at(t);
+    if (index < 0 || t >= tones_[static_cast<std::size_t>(index)].end()) {
+        return 0.0;
+    }
+    const Tone& tone = tones_[static_cast<std::size_t>(index)];
+    const double dt = t - tone.onset;
+    if (tone.kind == Tone::Kind::sine) {
+        return std::abs(amplitude(tone, dt));
+    }
+    ShapeCursor cursor;
+    return std::abs(amplitude(tone, dt) * shape_level(tone, dt, cursor));
+}
+
+}  // namespace vibscore::render

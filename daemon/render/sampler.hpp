@@ -1,0 +1,19 @@
+#pragma once
+
+#include <cstdint>
+#include <span>
+
+#include "daemon/render/performance.hpp"
+
+namespace vibscore::render {
+
+// Fills out[i] with the performance's signal at t = (first + i) / rate: the same values as
+// Performance::value_at, computed fast enough to stream in real time on a small CPU.
+void render_signal(const Performance& performance, double rate, std::uint64_t first,
+                   std::span<double> out);
+
+// As render_signal, for Performance::envelope_at.
+void render_envelope(const Performance& performance, double rate, std::uint64_t first,
+                     std::span<double> out);
+
+}  // namespace vibscore::render

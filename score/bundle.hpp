@@ -1,0 +1,44 @@
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <map>
+#include <string>
+
+#include "score/clef.hpp"
+#include "score/score.hpp"
+#include "score/score_xml.hpp"
+
+namespace vibscore {
+
+// A score together with the clefs it declares, checked against each other: every note's string
+// and number exist in its bar's clef and the whole piece stays within limits. Ready to render.
+struct ScoreBundle {
+    std::string file;
+    Score score;
+    ScoreSourceMap where;
+    std::map<std::string, Clef, std::less<>> clefs;  // by declaration id
+
+    const Clef& clef_of(const Bar& bar) const { return clefs.at(bar.clef); }
+};
+
+// Finds the clef a declaration names. Throws DocumentError when it cannot.
+using ClefResolver = std::function<Clef(const ClefDeclaration&, const SourceLocation& declared_at)>;
+
+// Resolves every declared clef and checks the score against them; reports all problems at once.
+ScoreBundle bind_clefs(ParsedScore parsed, std::string file, const ClefResolver& resolve);
+
+// Reads a whole document file, refusing files over limits::document_bytes.
+std::string read_document_file(const std::filesystem::path& path);
+
+enum class DocumentKind { score, clef };
+
+// Tells a VibScore from a VibClef by its root element; throws DocumentError for anything else.
+DocumentKind document_kind(std::string_view text, const std::string& file);
+
+Clef load_clef_file(const std::filesystem::path& path);
+
+// Loads a score file and the clefs its hrefs name, relative to the score's directory.
+ScoreBundle load_score_file(const std::filesystem::path& path);
+
+}  // namespace vibscore
