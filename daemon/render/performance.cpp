@@ -39,26 +39,38 @@ double fraction(double x) { return x - std::floor(x); }
 
 Performance::Performance(const ScoreBundle& bundle, const RenderOptions& options) {
     std::vector<Slot> slots;
-    double time = 0.0;
+    // Beats are multiples of 1/8, exact in binary; counting them and multiplying by the tempo
+    // once keeps a long piece's onsets free of accumulated rounding.
+    double run_start = 0.0;  // seconds where the current tempo began
+    double run_beats = 0.0;  // beats since then
+    double run_tempo = 0.0;
+    const auto now = [&] { return run_start + run_beats * run_tempo; };
     for (std::size_t b = options.start_bar; b < bundle.score.bars.size(); ++b) {
         const Bar& bar = bundle.score.bars[b];
         const Clef& clef = bundle.clef_of(bar);
+        if (clef.tempo != run_tempo) {
+            run_start = now();
+            run_beats = 0.0;
+            run_tempo = clef.tempo;
+        }
         for (std::size_t s = 0; s < bar.symbols.size(); ++s) {
             const auto& symbol = bar.symbols[s];
-            Slot slot{std::get_if<Note>(&symbol), &clef, b, s, time, 0.0};
-            if (slot.note != nullptr) {
-                slot.length = beats(slot.note->length) * clef.tempo;
+            double symbol_beats = 0.0;
+            if (const auto* note = std::get_if<Note>(&symbol)) {
+                symbol_beats = beats(note->length);
             } else if (const auto* rest = std::get_if<Rest>(&symbol)) {
-                slot.length = beats(rest->length) * clef.tempo;
+                symbol_beats = beats(rest->length);
             } else {
                 continue;  // a Blank takes no time
             }
-            timeline_.push_back({b, s, time, slot.length, slot.note != nullptr});
+            const double onset = now();
+            run_beats += symbol_beats;
+            Slot slot{std::get_if<Note>(&symbol), &clef, b, s, onset, now() - onset};
+            timeline_.push_back({b, s, onset, slot.length, slot.note != nullptr});
             slots.push_back(slot);
-            time += slot.length;
         }
     }
-    duration_ = time;
+    duration_ = now();
 
     std::map<std::pair<const Clef*, int>, int> shape_of_string;
     const auto shape_index = [&](const Slot& slot) {

@@ -14,8 +14,9 @@ constexpr std::uint64_t kReseedInterval = 256;
 
 enum class View { signal, envelope };
 
-// First sample index whose time k / rate is at or after t.
-std::uint64_t first_sample_at(double t, double rate) {
+}  // namespace
+
+std::uint64_t sample_index_at(double t, double rate) {
     const double k = std::ceil(t * rate);
     auto index = k <= 0.0 ? std::uint64_t{0} : static_cast<std::uint64_t>(k);
     // Rounding in t * rate may put k one off; settle it on the definition.
@@ -27,6 +28,8 @@ std::uint64_t first_sample_at(double t, double rate) {
     }
     return index;
 }
+
+namespace {
 
 void steady_sine(const Tone& tone, double rate, std::uint64_t begin, std::uint64_t end,
                  double* out) {
@@ -55,8 +58,8 @@ void render(const Performance& performance, double rate, std::uint64_t first,
     for (auto i = static_cast<std::size_t>(std::max<std::ptrdiff_t>(index, 0)); i < tones.size();
          ++i) {
         const Tone& tone = tones[i];
-        const std::uint64_t begin = std::max(first, first_sample_at(tone.onset, rate));
-        const std::uint64_t end = std::min(last, first_sample_at(tone.end(), rate));
+        const std::uint64_t begin = std::max(first, sample_index_at(tone.onset, rate));
+        const std::uint64_t end = std::min(last, sample_index_at(tone.end(), rate));
         if (begin >= last) {
             break;
         }

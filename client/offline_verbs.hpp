@@ -1,0 +1,30 @@
+#pragma once
+
+#include <cstdint>
+#include <ostream>
+#include <string>
+#include <vector>
+
+namespace vibscore::client {
+
+// Exit codes shared by every verb.
+enum ExitCode : int { exit_ok = 0, exit_failed = 1, exit_usage = 2 };
+
+// vibscore check FILE...: validates scores (with their clefs) and clefs.
+int check_documents(const std::vector<std::string>& files, std::ostream& out, std::ostream& err);
+
+struct RenderRequest {
+    std::string file;
+    std::uint32_t rate = 8000;
+    std::string out;  // .csv or .wav; empty for none
+    bool plot = false;
+    int plot_width = 72;
+};
+
+// vibscore render FILE --rate HZ --out OUT.csv|OUT.wav [--plot]
+int render_document(const RenderRequest& request, std::ostream& out, std::ostream& err);
+
+// vibscore info FILE: what a score or clef holds.
+int describe_document(const std::string& file, std::ostream& out, std::ostream& err);
+
+}  // namespace vibscore::client
