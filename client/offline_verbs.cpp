@@ -48,8 +48,8 @@ void describe_score(const ScoreBundle& bundle, std::ostream& out) {
     }
     out << "title:    " << (bundle.score.title.empty() ? "(untitled)" : bundle.score.title) << "\n"
         << "file:     " << bundle.file << "\n"
-        << "duration: " << fixed(performance.duration()) << " s (" << count(bundle.score.bars.size(), "bar")
-        << ", " << count(notes, "note") << ", "
+        << "duration: " << fixed(performance.duration()) << " s ("
+        << count(bundle.score.bars.size(), "bar") << ", " << count(notes, "note") << ", "
         << count(performance.timeline().size() - notes, "rest") << ")\n"
         << "clefs:\n";
     std::map<std::string, bool> used;
@@ -68,8 +68,10 @@ void describe_score(const ScoreBundle& bundle, std::ostream& out) {
         const double beats = Score::beat_count(bar);
         const double seconds = beats * bundle.clef_of(bar).tempo;
         out << "  " << b + 1 << "  clef " << bar.clef << "  " << number(beats) << " beats"
-            << (beats < 4 ? " (short)" : beats > 4 ? " (long)" : "") << "  at " << fixed(start)
-            << " s, " << fixed(seconds) << " s\n";
+            << (beats < 4   ? " (short)"
+                : beats > 4 ? " (long)"
+                            : "")
+            << "  at " << fixed(start) << " s, " << fixed(seconds) << " s\n";
         start += seconds;
     }
 }
@@ -143,8 +145,8 @@ int render_document(const RenderRequest& request, std::ostream& out, std::ostrea
         const render::Performance performance(bundle);
         if (request.plot) {
             out << (bundle.score.title.empty() ? request.file : bundle.score.title) << "  ("
-                << fixed(performance.duration()) << " s, peak " << number(performance.peak_amplitude())
-                << ")\n";
+                << fixed(performance.duration()) << " s, peak "
+                << number(performance.peak_amplitude()) << ")\n";
             plot_envelope(out, performance, request.plot_width, 8);
         }
         if (!request.out.empty()) {

@@ -22,8 +22,8 @@ namespace {
 constexpr std::size_t kChunk = 8192;
 
 template <typename Consume>
-void for_each_chunk(const render::Performance& performance, std::uint32_t rate,
-                    std::uint64_t total, Consume&& consume) {
+void for_each_chunk(const render::Performance& performance, std::uint32_t rate, std::uint64_t total,
+                    Consume&& consume) {
     std::vector<double> chunk(kChunk);
     for (std::uint64_t first = 0; first < total; first += kChunk) {
         const auto n = static_cast<std::size_t>(std::min<std::uint64_t>(kChunk, total - first));
@@ -124,8 +124,8 @@ std::uint64_t write_signal(const render::Performance& performance, std::uint32_t
     {
         std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
         if (!out) {
-            throw std::runtime_error(temporary.string() + ": cannot create: " +
-                                     std::strerror(errno));
+            throw std::runtime_error(temporary.string() +
+                                     ": cannot create: " + std::strerror(errno));
         }
         try {
             format == SignalFormat::csv ? write_csv(out, performance, rate, total)

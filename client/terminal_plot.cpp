@@ -56,9 +56,10 @@ void plot_envelope(std::ostream& out, const render::Performance& performance, in
         out << "─";
     }
     const auto end = seconds(duration);
-    out << "\n      0" << std::string(static_cast<std::size_t>(std::max<int>(
-                                          1, width - 1 - static_cast<int>(end.size()))),
-                                      ' ')
+    out << "\n      0"
+        << std::string(
+               static_cast<std::size_t>(std::max<int>(1, width - 1 - static_cast<int>(end.size()))),
+               ' ')
         << end << "\n";
 }
 

@@ -84,8 +84,7 @@ std::string read_document_file(const std::filesystem::path& path) {
     while (in.read(buffer, sizeof buffer) || in.gcount() > 0) {
         text.append(buffer, static_cast<size_t>(in.gcount()));
         if (text.size() > limits::document_bytes) {
-            throw DocumentError(where, "larger than the " +
-                                           std::to_string(limits::document_bytes) +
+            throw DocumentError(where, "larger than the " + std::to_string(limits::document_bytes) +
                                            "-byte limit for a document");
         }
     }
@@ -117,24 +116,23 @@ ScoreBundle load_score_file(const std::filesystem::path& path) {
     const auto file = path.string();
     auto parsed = read_score(read_document_file(path), file);
     const auto directory = path.parent_path();
-    return bind_clefs(std::move(parsed), file,
-                      [&](const ClefDeclaration& declaration, const SourceLocation& declared_at) {
-                          const auto clef_path = directory / declaration.href;
-                          try {
-                              return load_clef_file(clef_path);
-                          } catch (const DocumentError& error) {
-                              // A missing or unreadable clef file is the score's fault too:
-                              // name both places.
-                              if (error.diagnostics().size() == 1 &&
-                                  error.diagnostics()[0].where.line == 0) {
-                                  throw DocumentError(declared_at,
-                                                      "clef \"" + declaration.id + "\": " +
-                                                          clef_path.string() + ": " +
-                                                          error.diagnostics()[0].message);
-                              }
-                              throw;
-                          }
-                      });
+    return bind_clefs(
+        std::move(parsed), file,
+        [&](const ClefDeclaration& declaration, const SourceLocation& declared_at) {
+            const auto clef_path = directory / declaration.href;
+            try {
+                return load_clef_file(clef_path);
+            } catch (const DocumentError& error) {
+                // A missing or unreadable clef file is the score's fault too:
+                // name both places.
+                if (error.diagnostics().size() == 1 && error.diagnostics()[0].where.line == 0) {
+                    throw DocumentError(declared_at, "clef \"" + declaration.id +
+                                                         "\": " + clef_path.string() + ": " +
+                                                         error.diagnostics()[0].message);
+                }
+                throw;
+            }
+        });
 }
 
 }  // namespace vibscore

@@ -24,8 +24,8 @@ struct ClefString {
 struct Clef {
     ClefType type = ClefType::sine;
     std::string version = "1.0";
-    double tempo = 1.0;            // seconds per quarter note
-    std::vector<double> numbers;   // amplitude of number 1, 2, ...
+    double tempo = 1.0;               // seconds per quarter note
+    std::vector<double> numbers;      // amplitude of number 1, 2, ...
     std::vector<ClefString> strings;  // string 1 (lowest pitch), 2, ...
 
     bool operator==(const Clef&) const = default;

@@ -9,7 +9,7 @@ namespace vibscore {
 namespace {
 
 class ClefReader {
-public:
+  public:
     ClefReader(std::string_view text, const std::string& file) : source_(text, file) {}
 
     Clef read() {
@@ -63,7 +63,8 @@ public:
             }
         }
         if (!seen_tempo) {
-            sink_.report(source_.where(root), "<VibClef> has no <Tempo> (seconds per quarter note)");
+            sink_.report(source_.where(root),
+                         "<VibClef> has no <Tempo> (seconds per quarter note)");
         }
         if (clef_.numbers.empty()) {
             sink_.report(source_.where(root),
@@ -76,7 +77,7 @@ public:
         return std::move(clef_);
     }
 
-private:
+  private:
     void unknown(pugi::xml_node node, std::string_view parent, std::string_view expected) {
         sink_.report(source_.where(node), "unknown element <" + std::string(node.name()) +
                                               "> in <" + std::string(parent) + "> (expected " +
@@ -178,9 +179,9 @@ private:
                 continue;
             }
             if (string.points.size() == limits::points_per_string) {
-                sink_.report(source_.where(child),
-                             "string " + string_number + " has more than " +
-                                 std::to_string(limits::points_per_string) + " points");
+                sink_.report(source_.where(child), "string " + string_number + " has more than " +
+                                                       std::to_string(limits::points_per_string) +
+                                                       " points");
                 break;
             }
             xml::check_attributes(source_, child, {"time", "level"}, sink_);

@@ -23,25 +23,25 @@ std::string format(const Diagnostic& diagnostic);
 
 // A document could not be read, or is not a valid score or clef. Carries every problem found.
 class DocumentError : public std::runtime_error {
-public:
+  public:
     explicit DocumentError(std::vector<Diagnostic> diagnostics);
     DocumentError(SourceLocation where, std::string message);
 
     const std::vector<Diagnostic>& diagnostics() const { return diagnostics_; }
 
-private:
+  private:
     std::vector<Diagnostic> diagnostics_;
 };
 
 // Gathers problems so one run reports all of them, up to limits::diagnostics.
 class DiagnosticSink {
-public:
+  public:
     void report(SourceLocation where, std::string message);
     bool empty() const { return diagnostics_.empty(); }
     // Throws DocumentError when anything was reported.
     void throw_if_any() const;
 
-private:
+  private:
     std::vector<Diagnostic> diagnostics_;
     bool truncated_ = false;
 };

@@ -26,7 +26,9 @@ constexpr std::array<LengthInfo, length_count> kLengths{{
 
 }  // namespace
 
-double beats(Length length) { return kLengths.at(static_cast<size_t>(length)).beats; }
+double beats(Length length) {
+    return kLengths.at(static_cast<size_t>(length)).beats;
+}
 
 std::string_view to_string(Length length) {
     return kLengths.at(static_cast<size_t>(length)).name;

@@ -14,8 +14,8 @@ bool valid_clef_id(std::string_view id) {
         return false;
     }
     for (const char c : id) {
-        const bool ok = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
-                        c == '-' || c == '_' || c == '.';
+        const bool ok = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') ||
+                        (c >= '0' && c <= '9') || c == '-' || c == '_' || c == '.';
         if (!ok) {
             return false;
         }
@@ -24,7 +24,7 @@ bool valid_clef_id(std::string_view id) {
 }
 
 class ScoreReader {
-public:
+  public:
     ScoreReader(std::string_view text, const std::string& file) : source_(text, file) {}
 
     ParsedScore read() {
@@ -66,21 +66,20 @@ public:
         return std::move(parsed_);
     }
 
-private:
+  private:
     void read_title(pugi::xml_node node) {
         xml::check_attributes(source_, node, {}, sink_);
         for (const auto child : node.children()) {
             if (child.type() == pugi::node_element) {
-                sink_.report(source_.where(child), "unexpected element <" +
-                                                       std::string(child.name()) + "> in <Title>");
+                sink_.report(source_.where(child),
+                             "unexpected element <" + std::string(child.name()) + "> in <Title>");
             }
         }
         parsed_.score.title = std::string(xml::trim(node.child_value()));
         if (parsed_.score.title.size() > limits::title_chars) {
-            sink_.report(source_.where(node), "title is " +
-                                                  std::to_string(parsed_.score.title.size()) +
-                                                  " bytes long; the limit is " +
-                                                  std::to_string(limits::title_chars));
+            sink_.report(source_.where(node),
+                         "title is " + std::to_string(parsed_.score.title.size()) +
+                             " bytes long; the limit is " + std::to_string(limits::title_chars));
         }
     }
 
@@ -102,9 +101,9 @@ private:
                                                   " characters naming its VibClef document");
         }
         if (parsed_.score.clefs.size() == limits::clefs_per_score) {
-            sink_.report(source_.where(node), "more than " +
-                                                  std::to_string(limits::clefs_per_score) +
-                                                  " clefs declared");
+            sink_.report(
+                source_.where(node),
+                "more than " + std::to_string(limits::clefs_per_score) + " clefs declared");
         }
         parsed_.score.clefs.push_back(std::move(clef));
         parsed_.where.clefs.push_back(source_.where(node));
@@ -160,8 +159,8 @@ private:
         }
         const auto length = parse_length(attribute.value());
         if (!length) {
-            sink_.report(source_.where(node), std::string("unknown length \"") +
-                                                  attribute.value() + "\" (expected one of " +
+            sink_.report(source_.where(node), std::string("unknown length \"") + attribute.value() +
+                                                  "\" (expected one of " +
                                                   std::string(length_spellings()) + ")");
             return Length::quarter;
         }
@@ -219,8 +218,8 @@ private:
         if (!attribute) {
             return 0;
         }
-        return xml::read_integer(source_, node, std::string(name) + " serial", attribute.value(),
-                                 0, limits::max_serial, sink_)
+        return xml::read_integer(source_, node, std::string(name) + " serial", attribute.value(), 0,
+                                 limits::max_serial, sink_)
             .value_or(0);
     }
 
@@ -231,9 +230,9 @@ private:
                 sink_.report(parsed_.where.bars[i],
                              "<Bar> has no clef attribute (name one of the declared <Clef> ids)");
             } else if (!declared_.contains(bars[i].clef)) {
-                sink_.report(parsed_.where.bars[i],
-                             "bar " + std::to_string(i + 1) + " uses clef \"" + bars[i].clef +
-                                 "\", which no <Clef> declares");
+                sink_.report(parsed_.where.bars[i], "bar " + std::to_string(i + 1) +
+                                                        " uses clef \"" + bars[i].clef +
+                                                        "\", which no <Clef> declares");
             }
         }
     }

@@ -16,7 +16,7 @@ namespace vibscore::xml {
 // A parsed XML text that can say where each of its nodes came from, and the strict value readers
 // both document kinds share. Malformed XML throws DocumentError naming the line and column.
 class Source {
-public:
+  public:
     Source(std::string_view text, std::string file);
 
     pugi::xml_node root() const { return document_.document_element(); }
@@ -24,7 +24,7 @@ public:
     SourceLocation where(pugi::xml_node node) const;
     SourceLocation where_offset(std::ptrdiff_t offset) const;
 
-private:
+  private:
     std::string file_;
     pugi::xml_document document_;
     std::vector<std::ptrdiff_t> line_starts_;

@@ -18,10 +18,10 @@ const std::string kClef = sine_clef(1.0, {100, 150, 200}, {1, 2});
 TEST(Bundle, LoadsClefsRelativeToTheScoreFile) {
     TempDir dir;
     dir.write("clefs/c.xml", kClef);
-    const auto path = dir.write(
-        "scores/s.xml",
-        "<VibScore><Clef id=\"c\" href=\"../clefs/c.xml\"/><Bar clef=\"c\"><Note length=\"quarter\" "
-        "number=\"2\" string=\"3\"/></Bar></VibScore>");
+    const auto path = dir.write("scores/s.xml",
+                                "<VibScore><Clef id=\"c\" href=\"../clefs/c.xml\"/><Bar "
+                                "clef=\"c\"><Note length=\"quarter\" "
+                                "number=\"2\" string=\"3\"/></Bar></VibScore>");
     const auto bundle = load_score_file(path);
     EXPECT_EQ(bundle.file, path.string());
     EXPECT_EQ(bundle.clef_of(bundle.score.bars[0]).strings[2].frequency, 200.0);
@@ -65,8 +65,9 @@ TEST(Bundle, StringBeyondTheBarsClefIsNamedAtTheNote) {
                     {{"c.xml", kClef}});
     });
     EXPECT_EQ(diagnostic.where.line, 2);
-    EXPECT_NE(diagnostic.message.find("string 4 is beyond clef \"c\", which defines strings 1 to 3"),
-              std::string::npos)
+    EXPECT_NE(
+        diagnostic.message.find("string 4 is beyond clef \"c\", which defines strings 1 to 3"),
+        std::string::npos)
         << diagnostic.message;
 }
 
@@ -77,8 +78,9 @@ TEST(Bundle, NumberBeyondTheBarsClefIsNamedAtTheNote) {
                     {{"c.xml", kClef}});
     });
     EXPECT_EQ(diagnostic.where.line, 3);
-    EXPECT_NE(diagnostic.message.find("number 3 is beyond clef \"c\", which defines numbers 1 to 2"),
-              std::string::npos);
+    EXPECT_NE(
+        diagnostic.message.find("number 3 is beyond clef \"c\", which defines numbers 1 to 2"),
+        std::string::npos);
 }
 
 TEST(Bundle, RefusesScoresLongerThanTheLimit) {
@@ -87,8 +89,9 @@ TEST(Bundle, RefusesScoresLongerThanTheLimit) {
     for (int i = 0; i < 61; ++i) {
         bars += "<Bar clef=\"c\"><Rest length=\"whole\"/></Bar>";
     }
-    const auto diagnostic = first_diagnostic(
-        [&] { bundle_from(one_clef_score(bars), {{"c.xml", sine_clef(15, {100}, {1})}}); });
+    const auto diagnostic = first_diagnostic([&] {
+        bundle_from(one_clef_score(bars), {{"c.xml", sine_clef(15, {100}, {1})}});
+    });
     EXPECT_NE(diagnostic.message.find("lasts 3660 s; the limit is 3600 s"), std::string::npos)
         << diagnostic.message;
 }
@@ -110,7 +113,8 @@ TEST(Bundle, TellsScoresFromClefsByRoot) {
     EXPECT_EQ(document_kind("<VibScore/>", "x"), DocumentKind::score);
     EXPECT_EQ(document_kind("<?xml version=\"1.0\"?><VibClef/>", "x"), DocumentKind::clef);
     const auto other = first_diagnostic([] { document_kind("\n<html/>", "page.xml"); });
-    EXPECT_EQ(format(other), "page.xml:2:1: root element is <html>, expected <VibScore> or <VibClef>");
+    EXPECT_EQ(format(other),
+              "page.xml:2:1: root element is <html>, expected <VibScore> or <VibClef>");
     const auto broken = first_diagnostic([] { document_kind("<VibScore>", "broken.xml"); });
     EXPECT_NE(broken.message.find("malformed XML"), std::string::npos);
 }

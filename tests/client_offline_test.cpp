@@ -16,8 +16,12 @@ using testing::required_env;
 using testing::run_command;
 using testing::TempDir;
 
-std::string vibscore() { return required_env("VIBSCORE"); }
-std::string shipped(const std::string& name) { return required_env("VIBSCORE_CLEFS") + "/" + name; }
+std::string vibscore() {
+    return required_env("VIBSCORE");
+}
+std::string shipped(const std::string& name) {
+    return required_env("VIBSCORE_CLEFS") + "/" + name;
+}
 
 std::string slurp(const std::filesystem::path& path) {
     std::ifstream in(path, std::ios::binary);
@@ -27,18 +31,20 @@ std::string slurp(const std::filesystem::path& path) {
 // Thesis Fig. 2.3's first measure on disk.
 std::filesystem::path write_figure_2_3(const TempDir& dir) {
     dir.write("c.xml", testing::sine_clef(1.0, {100, 150, 200}, {1, 2}));
-    return dir.write("fig23.xml",
-                     "<VibScore><Title>Fig 2.3</Title><Clef id=\"c\" href=\"c.xml\"/><Bar clef=\"c\">"
-                     "<Note length=\"8th\" number=\"1\" string=\"2\" legato=\"1\"/>"
-                     "<Note length=\"quarter\" number=\"2\" string=\"3\" legato=\"1\"/>"
-                     "<Rest length=\"8th\"/><Note length=\"half\" number=\"2\" string=\"1\"/>"
-                     "</Bar></VibScore>");
+    return dir.write(
+        "fig23.xml",
+        "<VibScore><Title>Fig 2.3</Title><Clef id=\"c\" href=\"c.xml\"/><Bar clef=\"c\">"
+        "<Note length=\"8th\" number=\"1\" string=\"2\" legato=\"1\"/>"
+        "<Note length=\"quarter\" number=\"2\" string=\"3\" legato=\"1\"/>"
+        "<Rest length=\"8th\"/><Note length=\"half\" number=\"2\" string=\"1\"/>"
+        "</Bar></VibScore>");
 }
 
 TEST(ClientOffline, HelpOnTheProgramAndEveryVerb) {
-    for (const std::vector<std::string>& args :
-         {std::vector<std::string>{"--help"}, {"check", "--help"}, {"render", "--help"},
-          {"info", "--help"}}) {
+    for (const std::vector<std::string>& args : {std::vector<std::string>{"--help"},
+                                                 {"check", "--help"},
+                                                 {"render", "--help"},
+                                                 {"info", "--help"}}) {
         std::vector<std::string> argv{vibscore()};
         argv.insert(argv.end(), args.begin(), args.end());
         const auto result = run_command(argv);
@@ -53,8 +59,8 @@ TEST(ClientOffline, UsageErrorsExitTwo) {
     EXPECT_EQ(run_command({vibscore(), "check"}).exit_code, 2);
     const auto rate = run_command({vibscore(), "render", "x.xml", "--rate", "0", "--out", "a.csv"});
     EXPECT_EQ(rate.exit_code, 2);
-    const auto format = run_command({vibscore(), "render", shipped("create.score.xml"), "--out",
-                                     "/tmp/out.mp3"});
+    const auto format =
+        run_command({vibscore(), "render", shipped("create.score.xml"), "--out", "/tmp/out.mp3"});
     EXPECT_EQ(format.exit_code, 2);
     EXPECT_NE(format.err.find("name it .csv or .wav"), std::string::npos) << format.err;
 }
@@ -75,12 +81,13 @@ TEST(ClientOffline, CheckAcceptsEveryShippedDocument) {
 TEST(ClientOffline, CheckListsEveryProblemWithFileLineColumnAndExitsOne) {
     TempDir dir;
     dir.write("c.xml", testing::sine_clef(1.0, {100}, {1}));
-    const auto bad = dir.write("bad.xml",
-                               "<VibScore><Clef id=\"c\" href=\"c.xml\"/>\n<Bar clef=\"c\">\n"
-                               "  <Note length=\"9th\" number=\"1\" string=\"1\"/>\n"
-                               "  <Note length=\"8th\" number=\"1\" string=\"2\"/>\n</Bar></VibScore>");
-    const auto good = dir.write("good.xml",
-                                "<VibScore><Clef id=\"c\" href=\"c.xml\"/><Bar clef=\"c\"/></VibScore>");
+    const auto bad =
+        dir.write("bad.xml",
+                  "<VibScore><Clef id=\"c\" href=\"c.xml\"/>\n<Bar clef=\"c\">\n"
+                  "  <Note length=\"9th\" number=\"1\" string=\"1\"/>\n"
+                  "  <Note length=\"8th\" number=\"1\" string=\"2\"/>\n</Bar></VibScore>");
+    const auto good = dir.write(
+        "good.xml", "<VibScore><Clef id=\"c\" href=\"c.xml\"/><Bar clef=\"c\"/></VibScore>");
     const auto result = run_command({vibscore(), "check", good.string(), bad.string()});
     EXPECT_EQ(result.exit_code, 1);
     EXPECT_NE(result.out.find(good.string() + ": ok"), std::string::npos);
@@ -92,9 +99,10 @@ TEST(ClientOffline, CheckListsEveryProblemWithFileLineColumnAndExitsOne) {
 TEST(ClientOffline, CheckNamesANoteBeyondItsClef) {
     TempDir dir;
     dir.write("c.xml", testing::sine_clef(1.0, {100}, {1}));
-    const auto bad = dir.write("bad.xml",
-                               "<VibScore><Clef id=\"c\" href=\"c.xml\"/>\n<Bar clef=\"c\">\n"
-                               "  <Note length=\"8th\" number=\"1\" string=\"2\"/>\n</Bar></VibScore>");
+    const auto bad =
+        dir.write("bad.xml",
+                  "<VibScore><Clef id=\"c\" href=\"c.xml\"/>\n<Bar clef=\"c\">\n"
+                  "  <Note length=\"8th\" number=\"1\" string=\"2\"/>\n</Bar></VibScore>");
     const auto result = run_command({vibscore(), "check", bad.string()});
     EXPECT_EQ(result.exit_code, 1);
     EXPECT_NE(result.err.find(":3:3: string 2 is beyond clef \"c\""), std::string::npos)
@@ -171,8 +179,8 @@ TEST(ClientOffline, RenderOfABrokenScoreLeavesNoFileBehind) {
 }
 
 TEST(ClientOffline, RenderIntoAMissingDirectoryFailsNamingThePath) {
-    const auto result = run_command({vibscore(), "render", shipped("create.score.xml"), "--out",
-                                     "/nonexistent/dir/out.csv"});
+    const auto result = run_command(
+        {vibscore(), "render", shipped("create.score.xml"), "--out", "/nonexistent/dir/out.csv"});
     EXPECT_EQ(result.exit_code, 1);
     EXPECT_NE(result.err.find("/nonexistent/dir/out.csv.partial: cannot create"), std::string::npos)
         << result.err;
@@ -201,7 +209,8 @@ TEST(ClientOffline, InfoShowsTitleDurationBarsAndClefs) {
     EXPECT_NE(result.out.find("title:    Fig 2.3"), std::string::npos) << result.out;
     EXPECT_NE(result.out.find("duration: 4.000 s (1 bar, 3 notes, 1 rest)"), std::string::npos)
         << result.out;
-    EXPECT_NE(result.out.find("c  c.xml  sine, tempo 1 s, 3 strings, 2 numbers"), std::string::npos);
+    EXPECT_NE(result.out.find("c  c.xml  sine, tempo 1 s, 3 strings, 2 numbers"),
+              std::string::npos);
     EXPECT_NE(result.out.find("1  clef c  4 beats  at 0.000 s, 4.000 s"), std::string::npos);
 }
 

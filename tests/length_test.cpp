@@ -7,8 +7,9 @@ namespace {
 
 TEST(Length, EveryDocumentSpellingHasTheThesisDuration) {
     const std::pair<const char*, double> expected[] = {
-        {"whole", 4},   {"half_dot", 3}, {"half", 2},       {"quarter_dot", 1.5}, {"quarter", 1},
-        {"8th_dot", 0.75}, {"8th", 0.5}, {"16th_dot", 0.375}, {"16th", 0.25},     {"32th", 0.125},
+        {"whole", 4},   {"half_dot", 3},   {"half", 2},  {"quarter_dot", 1.5},
+        {"quarter", 1}, {"8th_dot", 0.75}, {"8th", 0.5}, {"16th_dot", 0.375},
+        {"16th", 0.25}, {"32th", 0.125},
     };
     for (const auto& [name, quarters] : expected) {
         const auto length = parse_length(name);

@@ -25,16 +25,23 @@ std::string note(const char* length, int number, int string, const std::string& 
            "\" string=\"" + std::to_string(string) + "\" " + extra + "/>";
 }
 
-std::string bar(const std::string& symbols) { return "<Bar clef=\"c\">" + symbols + "</Bar>"; }
+std::string bar(const std::string& symbols) {
+    return "<Bar clef=\"c\">" + symbols + "</Bar>";
+}
 
 // Thesis Fig. 2.3c: with a sine clef at tempo 1 s, an 8th (150 Hz, A=1) tied by legato to a
 // quarter (200 Hz, A=2), an 8th rest and a half note (100 Hz, A=2).
 double figure_2_3c(double t) {
-    if (t < 0.0) return 0.0;
-    if (t < 0.5) return 1.0 * std::sin(kTwoPi * 150 * t);
-    if (t < 1.5) return 2.0 * std::sin(kTwoPi * 200 * t);
-    if (t < 2.0) return 0.0;
-    if (t < 4.0) return 2.0 * std::sin(kTwoPi * 100 * t);
+    if (t < 0.0)
+        return 0.0;
+    if (t < 0.5)
+        return 1.0 * std::sin(kTwoPi * 150 * t);
+    if (t < 1.5)
+        return 2.0 * std::sin(kTwoPi * 200 * t);
+    if (t < 2.0)
+        return 0.0;
+    if (t < 4.0)
+        return 2.0 * std::sin(kTwoPi * 100 * t);
     return 0.0;
 }
 
@@ -67,10 +74,9 @@ TEST(Golden, Figure23cSampledAt8kHz) {
 }
 
 TEST(Timing, EachLengthLastsItsBeatsTimesTheTempo) {
-    const auto performance =
-        perform(bar(note("whole", 1, 1) + "<Rest length=\"half_dot\"/>" + note("16th_dot", 1, 1) +
-                    note("32th", 1, 1)),
-                sine_clef(0.15, {100}, {1}));
+    const auto performance = perform(bar(note("whole", 1, 1) + "<Rest length=\"half_dot\"/>" +
+                                         note("16th_dot", 1, 1) + note("32th", 1, 1)),
+                                     sine_clef(0.15, {100}, {1}));
     const auto& timeline = performance.timeline();
     ASSERT_EQ(timeline.size(), 4u);
     EXPECT_DOUBLE_EQ(timeline[1].onset, 0.6);
@@ -108,25 +114,25 @@ TEST(Timing, EachBarUsesItsOwnClefsTempoAndPitch) {
 }
 
 TEST(Silence, SeparatesAdjacentNotesByCuttingTheEarlierOnesEnd) {
-    const auto performance = perform(bar(note("quarter", 1, 1) + note("quarter", 1, 1)),
-                                     sine_clef(1.0, {100}, {1}));
+    const auto performance =
+        perform(bar(note("quarter", 1, 1) + note("quarter", 1, 1)), sine_clef(1.0, {100}, {1}));
     const auto& tones = performance.tones();
     EXPECT_DOUBLE_EQ(tones[0].duration, 0.97);
-    EXPECT_DOUBLE_EQ(tones[1].onset, 1.0);  // onsets stay on the beat
+    EXPECT_DOUBLE_EQ(tones[1].onset, 1.0);     // onsets stay on the beat
     EXPECT_DOUBLE_EQ(tones[1].duration, 1.0);  // the last note keeps its length
     EXPECT_EQ(performance.value_at(0.975), 0.0);
     EXPECT_NE(performance.value_at(0.9625), 0.0);
 }
 
 TEST(Silence, IsAtMostAQuarterOfAShortNote) {
-    const auto performance = perform(bar(note("32th", 1, 1) + note("32th", 1, 1)),
-                                     sine_clef(0.15, {100}, {1}));
+    const auto performance =
+        perform(bar(note("32th", 1, 1) + note("32th", 1, 1)), sine_clef(0.15, {100}, {1}));
     EXPECT_DOUBLE_EQ(performance.tones()[0].duration, 0.75 * 0.125 * 0.15);
 }
 
 TEST(Silence, IsNotAddedBeforeARestOrAcrossLegato) {
-    const auto before_rest = perform(bar(note("quarter", 1, 1) + "<Rest length=\"8th\"/>"),
-                                     sine_clef(1.0, {100}, {1}));
+    const auto before_rest =
+        perform(bar(note("quarter", 1, 1) + "<Rest length=\"8th\"/>"), sine_clef(1.0, {100}, {1}));
     EXPECT_DOUBLE_EQ(before_rest.tones()[0].duration, 1.0);
     const auto tied = perform(bar(note("quarter", 1, 1, "legato=\"3\"") +
                                   note("quarter", 1, 1, "legato=\"3\"") + note("quarter", 1, 1)),
@@ -143,8 +149,8 @@ TEST(Silence, DifferentLegatoSerialsDoNotTie) {
 }
 
 TEST(Silence, SeparatesNotesAcrossABarLine) {
-    const auto performance =
-        perform(bar(note("quarter", 1, 1)) + bar(note("quarter", 1, 1)), sine_clef(1.0, {100}, {1}));
+    const auto performance = perform(bar(note("quarter", 1, 1)) + bar(note("quarter", 1, 1)),
+                                     sine_clef(1.0, {100}, {1}));
     EXPECT_DOUBLE_EQ(performance.tones()[0].duration, 0.97);
 }
 
@@ -157,8 +163,8 @@ TEST(Silence, LengthIsAnOption) {
 }
 
 TEST(Phase, AnUntiedNoteStartsAtZeroPhase) {
-    const auto performance = perform(bar(note("quarter", 1, 1) + note("quarter", 1, 1)),
-                                     sine_clef(1.0, {130}, {1}));
+    const auto performance =
+        perform(bar(note("quarter", 1, 1) + note("quarter", 1, 1)), sine_clef(1.0, {130}, {1}));
     EXPECT_NEAR(performance.value_at(1.0), 0.0, 1e-12);
     EXPECT_NEAR(performance.value_at(1.0 + 0.25 / 130), 1.0, 1e-12);
 }
@@ -229,8 +235,8 @@ TEST(Portamento, BetweenSineAndShapeClefsTiesWithoutGlidingPitch) {
 }
 
 TEST(Dynamics, ALoneCrescendoRisesFromSilenceToItsStrength) {
-    const auto performance = perform(bar(note("half", 2, 1, "dynamics=\"crescendo\"")),
-                                     sine_clef(1.0, {100}, {1, 4}));
+    const auto performance =
+        perform(bar(note("half", 2, 1, "dynamics=\"crescendo\"")), sine_clef(1.0, {100}, {1, 4}));
     const auto& tone = performance.tones()[0];
     EXPECT_EQ(tone.amplitude_start, 0.0);
     EXPECT_EQ(tone.amplitude_end, 4.0);
@@ -238,18 +244,17 @@ TEST(Dynamics, ALoneCrescendoRisesFromSilenceToItsStrength) {
 }
 
 TEST(Dynamics, ALoneDecrescendoFallsFromItsStrengthToSilence) {
-    const auto performance = perform(bar(note("half", 2, 1, "dynamics=\"decrescendo\"")),
-                                     sine_clef(1.0, {100}, {1, 4}));
+    const auto performance =
+        perform(bar(note("half", 2, 1, "dynamics=\"decrescendo\"")), sine_clef(1.0, {100}, {1, 4}));
     EXPECT_EQ(performance.tones()[0].amplitude_start, 4.0);
     EXPECT_EQ(performance.tones()[0].amplitude_end, 0.0);
 }
 
 TEST(Dynamics, ACrescendoRunIsOneHairpinThroughTheNotesStrengths) {
     const std::string c = "dynamics=\"crescendo\"";
-    const auto performance =
-        perform(bar(note("8th", 1, 1, c) + note("8th", 2, 1, c) + "<Blank/>" + note("8th", 3, 1, c) +
-                    note("8th", 3, 1)),
-                sine_clef(1.0, {100}, {1, 2, 3}));
+    const auto performance = perform(bar(note("8th", 1, 1, c) + note("8th", 2, 1, c) + "<Blank/>" +
+                                         note("8th", 3, 1, c) + note("8th", 3, 1)),
+                                     sine_clef(1.0, {100}, {1, 2, 3}));
     const auto& tones = performance.tones();
     EXPECT_EQ(tones[0].amplitude_start, 0.0);
     EXPECT_EQ(tones[0].amplitude_end, 1.0);
@@ -262,9 +267,9 @@ TEST(Dynamics, ACrescendoRunIsOneHairpinThroughTheNotesStrengths) {
 
 TEST(Dynamics, ADecrescendoRunFallsThroughTheNotesToSilence) {
     const std::string d = "dynamics=\"decrescendo\"";
-    const auto performance = perform(bar(note("8th", 3, 1, d) + note("8th", 2, 1, d) +
-                                         note("8th", 1, 1, d)),
-                                     sine_clef(1.0, {100}, {1, 2, 3}));
+    const auto performance =
+        perform(bar(note("8th", 3, 1, d) + note("8th", 2, 1, d) + note("8th", 1, 1, d)),
+                sine_clef(1.0, {100}, {1, 2, 3}));
     const auto& tones = performance.tones();
     EXPECT_EQ(tones[0].amplitude_start, 3.0);
     EXPECT_EQ(tones[0].amplitude_end, 2.0);
@@ -274,9 +279,9 @@ TEST(Dynamics, ADecrescendoRunFallsThroughTheNotesToSilence) {
 
 TEST(Dynamics, ARestEndsTheHairpin) {
     const std::string c = "dynamics=\"crescendo\"";
-    const auto performance = perform(bar(note("8th", 2, 1, c) + "<Rest length=\"8th\"/>" +
-                                         note("8th", 3, 1, c)),
-                                     sine_clef(1.0, {100}, {1, 2, 3}));
+    const auto performance =
+        perform(bar(note("8th", 2, 1, c) + "<Rest length=\"8th\"/>" + note("8th", 3, 1, c)),
+                sine_clef(1.0, {100}, {1, 2, 3}));
     EXPECT_EQ(performance.tones()[1].amplitude_start, 0.0);
 }
 

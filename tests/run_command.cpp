@@ -31,11 +31,13 @@ struct Pipe {
         close_write();
     }
     void close_read() {
-        if (read_end >= 0) ::close(read_end);
+        if (read_end >= 0)
+            ::close(read_end);
         read_end = -1;
     }
     void close_write() {
-        if (write_end >= 0) ::close(write_end);
+        if (write_end >= 0)
+            ::close(write_end);
         write_end = -1;
     }
 };

@@ -36,8 +36,8 @@ Performance mixed_performance() {
   </Bar>
 </VibScore>)";
     return Performance(testing::bundle_from(
-        score, {{"s.xml", testing::sine_clef(0.31, {97, 173.5, 251}, {0.5, 1, 1.5})},
-                {"k.xml", curve}}));
+        score,
+        {{"s.xml", testing::sine_clef(0.31, {97, 173.5, 251}, {0.5, 1, 1.5})}, {"k.xml", curve}}));
 }
 
 TEST(Sampler, SignalMatchesValueAtEverySample) {

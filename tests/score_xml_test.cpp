@@ -99,19 +99,20 @@ TEST_P(BadScoreTest, NamesFileLineColumnAndValue) {
 }
 
 std::string score_with(const std::string& note) {
-    return "<VibScore version=\"1.0\">\n<Clef id=\"c\" href=\"c.xml\"/>\n<Bar clef=\"c\">\n  " + note +
-           "\n</Bar>\n</VibScore>\n";
+    return "<VibScore version=\"1.0\">\n<Clef id=\"c\" href=\"c.xml\"/>\n<Bar clef=\"c\">\n  " +
+           note + "\n</Bar>\n</VibScore>\n";
 }
 
 INSTANTIATE_TEST_SUITE_P(
     ScoreXml, BadScoreTest,
     ::testing::Values(
-        BadScore{"MalformedXml", "<VibScore>\n<Bar clef=\"c\">\n</VibScore>", 3, 3, "malformed XML"},
+        BadScore{"MalformedXml", "<VibScore>\n<Bar clef=\"c\">\n</VibScore>", 3, 3,
+                 "malformed XML"},
         BadScore{"WrongRoot", "<?xml version=\"1.0\"?>\n  <Score/>", 2, 3, "expected <VibScore>"},
         BadScore{"UnknownElement", score_with("<Chord length=\"quarter\"/>"), 4, 3,
                  "unknown element <Chord>"},
-        BadScore{"UnknownLength", score_with("<Note length=\"9th\" number=\"1\" string=\"1\"/>"),
-                 4, 3, "unknown length \"9th\""},
+        BadScore{"UnknownLength", score_with("<Note length=\"9th\" number=\"1\" string=\"1\"/>"), 4,
+                 3, "unknown length \"9th\""},
         BadScore{"MissingLength", score_with("<Rest/>"), 4, 3, "has no length"},
         BadScore{"UnknownAttribute",
                  score_with("<Note length=\"8th\" number=\"1\" string=\"1\" volume=\"3\"/>"), 4, 3,
@@ -119,8 +120,8 @@ INSTANTIATE_TEST_SUITE_P(
         BadScore{"NumberNotAnInteger",
                  score_with("<Note length=\"8th\" number=\"two\" string=\"1\"/>"), 4, 3,
                  "number \"two\" is not a whole number"},
-        BadScore{"NumberZero", score_with("<Note length=\"8th\" number=\"0\" string=\"1\"/>"), 4,
-                 3, "number \"0\" is out of range (1 to 9)"},
+        BadScore{"NumberZero", score_with("<Note length=\"8th\" number=\"0\" string=\"1\"/>"), 4, 3,
+                 "number \"0\" is out of range (1 to 9)"},
         BadScore{"StringBeyondStaff",
                  score_with("<Note length=\"8th\" number=\"1\" string=\"7\"/>"), 4, 3,
                  "string \"7\" is out of range (1 to 6)"},
@@ -134,8 +135,8 @@ INSTANTIATE_TEST_SUITE_P(
                  "legato serial \"-1\" is out of range"},
         BadScore{"TextInBar", score_with("hello"), 3, 15, "unexpected text \"hello\""},
         BadScore{"UndeclaredClef",
-                 "<VibScore>\n<Clef id=\"c\" href=\"c.xml\"/>\n<Bar clef=\"d\"/>\n</VibScore>", 3, 1,
-                 "uses clef \"d\", which no <Clef> declares"},
+                 "<VibScore>\n<Clef id=\"c\" href=\"c.xml\"/>\n<Bar clef=\"d\"/>\n</VibScore>", 3,
+                 1, "uses clef \"d\", which no <Clef> declares"},
         BadScore{"BarWithoutClef", "<VibScore>\n<Clef id=\"c\" href=\"c.xml\"/>\n<Bar/></VibScore>",
                  3, 1, "<Bar> has no clef"},
         BadScore{"DuplicateClefId",

@@ -13,7 +13,9 @@
 namespace vibscore {
 namespace {
 
-std::filesystem::path shipped_dir() { return testing::required_env("VIBSCORE_CLEFS"); }
+std::filesystem::path shipped_dir() {
+    return testing::required_env("VIBSCORE_CLEFS");
+}
 
 std::vector<std::filesystem::path> shipped(const char* suffix) {
     std::vector<std::filesystem::path> found;
@@ -72,11 +74,28 @@ TEST(ShippedDocuments, EveryScoreRoundTripsAndRendersAFiniteAudibleSignal) {
 }
 
 TEST(ShippedDocuments, TheNamedTactonsAndPiecesAreThere) {
-    for (const char* name :
-         {"create", "delete", "file", "folder", "create-file", "create-folder", "delete-file",
-          "delete-folder", "call", "message", "call-high-priority", "notification-message",
-          "notification-mail", "notification-calendar", "alarm", "ringtone", "success", "failure",
-          "touch-tick", "touch-click", "ode-to-joy", "twinkle-twinkle"}) {
+    for (const char* name : {"create",
+                             "delete",
+                             "file",
+                             "folder",
+                             "create-file",
+                             "create-folder",
+                             "delete-file",
+                             "delete-folder",
+                             "call",
+                             "message",
+                             "call-high-priority",
+                             "notification-message",
+                             "notification-mail",
+                             "notification-calendar",
+                             "alarm",
+                             "ringtone",
+                             "success",
+                             "failure",
+                             "touch-tick",
+                             "touch-click",
+                             "ode-to-joy",
+                             "twinkle-twinkle"}) {
         EXPECT_TRUE(std::filesystem::exists(shipped_dir() / (std::string(name) + ".score.xml")))
             << name;
     }

@@ -40,8 +40,8 @@ ScoreBundle bundle_from(const std::string& score_xml,
 
 std::string sine_clef(double tempo, const std::vector<double>& frequencies,
                       const std::vector<double>& amplitudes) {
-    std::string text = "<VibClef type=\"sine\" version=\"1.0\"><Tempo>" + xml::format_number(tempo) +
-                       "</Tempo><Numbers>";
+    std::string text = "<VibClef type=\"sine\" version=\"1.0\"><Tempo>" +
+                       xml::format_number(tempo) + "</Tempo><Numbers>";
     for (const double amplitude : amplitudes) {
         text += "<Number>" + xml::format_number(amplitude) + "</Number>";
     }

@@ -33,7 +33,9 @@ double frequency(const Slot& slot) {
     return slot.clef->strings.at(static_cast<std::size_t>(slot.note->string - 1)).frequency;
 }
 
-double fraction(double x) { return x - std::floor(x); }
+double fraction(double x) {
+    return x - std::floor(x);
+}
 
 }  // namespace
 
@@ -80,7 +82,13 @@ Performance::Performance(const ScoreBundle& bundle, const RenderOptions& options
             return found->second;
         }
         const auto& points = slot.clef->strings.at(static_cast<std::size_t>(key.second - 1)).points;
-        waveforms_.emplace_back(slot.clef->type, points);
+        const Waveform& added = waveforms_.emplace_back(slot.clef->type, points);
+        // A Catmull-Rom spline can overshoot its points; find the true peak by sampling.
+        double peak = 0.0;
+        for (int k = 0; k <= 4096; ++k) {
+            peak = std::max(peak, std::abs(added.level(k / 4096.0)));
+        }
+        waveform_peaks_.push_back(peak);
         const int index = static_cast<int>(waveforms_.size() - 1);
         shape_of_string.emplace(key, index);
         return index;
@@ -93,8 +101,8 @@ Performance::Performance(const ScoreBundle& bundle, const RenderOptions& options
         }
         const Note& note = *slot.note;
         const Slot* previous = i > 0 && slots[i - 1].note != nullptr ? &slots[i - 1] : nullptr;
-        const Slot* next = i + 1 < slots.size() && slots[i + 1].note != nullptr ? &slots[i + 1]
-                                                                                 : nullptr;
+        const Slot* next =
+            i + 1 < slots.size() && slots[i + 1].note != nullptr ? &slots[i + 1] : nullptr;
         const bool tied_to_next = next != nullptr && tied(note, *next->note);
         const bool tied_from_previous = previous != nullptr && tied(*previous->note, note);
         const bool glide = next != nullptr && portamento(note, *next->note);
@@ -122,8 +130,8 @@ Performance::Performance(const ScoreBundle& bundle, const RenderOptions& options
         }
 
         tone.tempo = slot.clef->tempo;
-        const bool next_same_kind =
-            next != nullptr && (next->clef->type == ClefType::sine) == (slot.clef->type == ClefType::sine);
+        const bool next_same_kind = next != nullptr && (next->clef->type == ClefType::sine) ==
+                                                           (slot.clef->type == ClefType::sine);
         if (slot.clef->type == ClefType::sine) {
             tone.kind = Tone::Kind::sine;
             tone.frequency_start = tone.frequency_end = frequency(slot);
@@ -148,14 +156,11 @@ Performance::Performance(const ScoreBundle& bundle, const RenderOptions& options
     for (const Tone& tone : tones_) {
         double level = 1.0;
         if (tone.kind == Tone::Kind::shape) {
-            // A Catmull-Rom spline can overshoot its points; find the true peak by sampling.
-            level = 0.0;
-            for (int k = 0; k <= 1024; ++k) {
-                level = std::max(level, std::abs(waveform(tone.shape).level(k / 1024.0)));
-                if (tone.shape_to >= 0) {
-                    level = std::max(level, std::abs(waveform(tone.shape_to).level(k / 1024.0)));
-                }
-            }
+            // A cross-fade never leaves the larger of its two waveforms' peaks.
+            const auto peak_of = [&](int shape) {
+                return shape < 0 ? 0.0 : waveform_peaks_[static_cast<std::size_t>(shape)];
+            };
+            level = std::max(peak_of(tone.shape), peak_of(tone.shape_to));
         }
         peak_ = std::max(
             peak_, level * std::max(std::abs(tone.amplitude_start), std::abs(tone.amplitude_end)));
@@ -176,7 +181,8 @@ double Performance::amplitude(const Tone& tone, double dt) {
     if (tone.amplitude_end == tone.amplitude_start) {
         return tone.amplitude_start;
     }
-    return tone.amplitude_start + (tone.amplitude_end - tone.amplitude_start) * (dt / tone.duration);
+    return tone.amplitude_start +
+           (tone.amplitude_end - tone.amplitude_start) * (dt / tone.duration);
 }
 
 double Performance::shape_level(const Tone& tone, double dt, ShapeCursor& cursor) const {
@@ -190,8 +196,9 @@ double Performance::shape_level(const Tone& tone, double dt, ShapeCursor& cursor
 }
 
 std::ptrdiff_t Performance::tone_index_at(double t) const {
-    const auto after = std::upper_bound(tones_.begin(), tones_.end(), t,
-                                        [](double time, const Tone& tone) { return time < tone.onset; });
+    const auto after =
+        std::upper_bound(tones_.begin(), tones_.end(), t,
+                         [](double time, const Tone& tone) { return time < tone.onset; });
     return (after - tones_.begin()) - 1;
 }
 

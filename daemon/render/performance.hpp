@@ -51,7 +51,7 @@ struct SymbolTiming {
 // A score performed through its clefs: the exact drive signal y(t) in clef units, and for
 // actuators without waveform control its amplitude envelope.
 class Performance {
-public:
+  public:
     Performance(const ScoreBundle& bundle, const RenderOptions& options = {});
 
     double duration() const { return duration_; }
@@ -81,10 +81,11 @@ public:
     // Level (before amplitude) of a shape tone at local time dt.
     double shape_level(const Tone& tone, double dt, ShapeCursor& cursor) const;
 
-private:
+  private:
     std::vector<Tone> tones_;
     std::vector<SymbolTiming> timeline_;
     std::vector<Waveform> waveforms_;
+    std::vector<double> waveform_peaks_;  // largest |level| of each waveform
     double duration_ = 0.0;
     double peak_ = 0.0;
 };

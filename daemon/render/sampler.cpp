@@ -49,8 +49,8 @@ void steady_sine(const Tone& tone, double rate, std::uint64_t begin, std::uint64
     }
 }
 
-void render(const Performance& performance, double rate, std::uint64_t first,
-            std::span<double> out, View view) {
+void render(const Performance& performance, double rate, std::uint64_t first, std::span<double> out,
+            View view) {
     std::fill(out.begin(), out.end(), 0.0);
     const std::uint64_t last = first + out.size();
     const auto& tones = performance.tones();
@@ -88,7 +88,8 @@ void render(const Performance& performance, double rate, std::uint64_t first,
         Performance::ShapeCursor cursor;
         for (std::uint64_t k = begin; k < end; ++k) {
             const double dt = static_cast<double>(k) / rate - tone.onset;
-            const double y = Performance::amplitude(tone, dt) * performance.shape_level(tone, dt, cursor);
+            const double y =
+                Performance::amplitude(tone, dt) * performance.shape_level(tone, dt, cursor);
             *target++ = view == View::envelope ? std::abs(y) : y;
         }
     }

@@ -13,7 +13,7 @@ namespace vibscore::render {
 // segments. Two points at the same time make a vertical step; each side of a step is its own
 // spline. Before the first point and after the last the level holds.
 class Waveform {
-public:
+  public:
     Waveform(ClefType type, const std::vector<ClefPoint>& points);
 
     double level(double tau) const;
@@ -21,10 +21,10 @@ public:
     // As level(), for a tau that mostly increases between calls: hint remembers the segment.
     double level(double tau, std::size_t& hint) const;
 
-private:
+  private:
     struct Segment {
-        double start = 0.0;  // tau where it begins
-        double width = 0.0;  // > 0
+        double start = 0.0;                             // tau where it begins
+        double width = 0.0;                             // > 0
         double c0 = 0.0, c1 = 0.0, c2 = 0.0, c3 = 0.0;  // level = c0 + s(c1 + s(c2 + s c3))
     };
 
