@@ -202,33 +202,39 @@ std::ptrdiff_t Performance::tone_index_at(double t) const {
     return (after - tones_.begin()) - 1;
 }
 
-double Performance::value_at(double t) const {
+const Tone* Performance::tone_sounding_at(double t) const {
     const auto index = tone_index_at(t);
     if (index < 0 || t >= tones_[static_cast<std::size_t>(index)].end()) {
+        return nullptr;
+    }
+    return &tones_[static_cast<std::size_t>(index)];
+}
+
+double Performance::value_at(double t) const {
+    const Tone* tone = tone_sounding_at(t);
+    if (tone == nullptr) {
         return 0.0;
     }
-    const Tone& tone = tones_[static_cast<std::size_t>(index)];
-    const double dt = t - tone.onset;
-    if (tone.kind == Tone::Kind::sine) {
-        const double cycles = fraction(tone.phase_cycles + sine_cycles(tone, dt));
-        return amplitude(tone, dt) * std::sin(2.0 * M_PI * cycles);
+    const double dt = t - tone->onset;
+    if (tone->kind == Tone::Kind::sine) {
+        const double cycles = fraction(tone->phase_cycles + sine_cycles(*tone, dt));
+        return amplitude(*tone, dt) * std::sin(2.0 * M_PI * cycles);
     }
     ShapeCursor cursor;
-    return amplitude(tone, dt) * shape_level(tone, dt, cursor);
+    return amplitude(*tone, dt) * shape_level(*tone, dt, cursor);
 }
 
 double Performance::envelope_at(double t) const {
-    const auto index = tone_index_at(t);
-    if (index < 0 || t >= tones_[static_cast<std::size_t>(index)].end()) {
+    const Tone* tone = tone_sounding_at(t);
+    if (tone == nullptr) {
         return 0.0;
     }
-    const Tone& tone = tones_[static_cast<std::size_t>(index)];
-    const double dt = t - tone.onset;
-    if (tone.kind == Tone::Kind::sine) {
-        return std::abs(amplitude(tone, dt));
+    const double dt = t - tone->onset;
+    if (tone->kind == Tone::Kind::sine) {
+        return std::abs(amplitude(*tone, dt));
     }
     ShapeCursor cursor;
-    return std::abs(amplitude(tone, dt) * shape_level(tone, dt, cursor));
+    return std::abs(amplitude(*tone, dt) * shape_level(*tone, dt, cursor));
 }
 
 }  // namespace vibscore::render

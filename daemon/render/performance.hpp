@@ -69,6 +69,8 @@ class Performance {
 
     // Index of the tone sounding at t, or of the last one before it; -1 if none started yet.
     std::ptrdiff_t tone_index_at(double t) const;
+    // The tone sounding at t, or nullptr in silence.
+    const Tone* tone_sounding_at(double t) const;
 
     // Phase (in cycles, unreduced) of a sine tone at local time dt since its onset.
     static double sine_cycles(const Tone& tone, double dt);
