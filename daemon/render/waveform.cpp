@@ -22,6 +22,11 @@ Waveform::Waveform(ClefType type, const std::vector<ClefPoint>& points) {
     if (points.empty()) {
         throw std::invalid_argument("a waveform needs at least one point");
     }
+    for (const auto& point : points) {
+        if (point_times_.empty() || point_times_.back() != point.time) {
+            point_times_.push_back(point.time);
+        }
+    }
     first_level_ = points.front().level;
     last_level_ = points.back().level;
     // Split at steps (equal times) into pieces of strictly increasing time.

@@ -21,6 +21,9 @@ class Waveform {
     // As level(), for a tau that mostly increases between calls: hint remembers the segment.
     double level(double tau, std::size_t& hint) const;
 
+    // The times (0..1) of the control points, where a line waveform has its corners and steps.
+    const std::vector<double>& point_times() const { return point_times_; }
+
   private:
     struct Segment {
         double start = 0.0;                             // tau where it begins
@@ -31,6 +34,7 @@ class Waveform {
     double evaluate(const Segment& segment, double tau) const;
 
     std::vector<Segment> segments_;
+    std::vector<double> point_times_;
     double first_level_ = 0.0;
     double last_level_ = 0.0;
 };

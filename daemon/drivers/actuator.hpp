@@ -1,0 +1,51 @@
+#pragma once
+
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace vibscore::drivers {
+
+// What an actuator backend can do; the player adapts what it sends to it.
+struct Capabilities {
+    bool amplitude_control = true;   // strength can vary, not only on/off
+    bool frequency_control = false;  // the vibration frequency can be chosen per note
+    bool waveform_playback = false;  // arbitrary sample streams
+    bool effect_memory = false;      // effects can be uploaded ahead of their onset
+    double max_on_time_s = 0.0;      // longest continuous drive allowed; 0 = no limit
+
+    // The names the D-Bus Capabilities property lists: "amplitude-control", ...
+    std::vector<std::string> names() const;
+};
+
+// One instruction: from now on vibrate with this strength and frequency.
+struct Drive {
+    double amplitude = 0.0;     // 0..1 of the actuator's full drive; 0 is off
+    double frequency_hz = 0.0;  // 0: the actuator's own (an ERM's, or an LRA's resonance)
+    bool operator==(const Drive&) const = default;
+};
+
+// The device failed or went away; the message names the device and the errno text.
+class DeviceError : public std::runtime_error {
+  public:
+    using std::runtime_error::runtime_error;
+};
+
+// The narrow interface between the player and an actuator backend. Calls come from the daemon's
+// single event-loop thread and must return quickly (no sleeping).
+class Actuator {
+  public:
+    virtual ~Actuator() = default;
+
+    virtual std::string_view driver_name() const = 0;
+    virtual Capabilities capabilities() const = 0;
+
+    // Applies the drive at once. Throws DeviceError when the device fails.
+    virtual void apply(const Drive& drive) = 0;
+
+    // Stops vibrating at once. Never throws: it is called on every error and shutdown path.
+    virtual void off() noexcept = 0;
+};
+
+}  // namespace vibscore::drivers
