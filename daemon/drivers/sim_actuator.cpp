@@ -1,0 +1,154 @@
+#include "daemon/drivers/sim_actuator.hpp"
+
+#include <time.h>
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <stdexcept>
+#include <utility>
+
+#include "daemon/log.hpp"
+
+namespace vibscore::drivers {
+
+namespace {
+
+std::string meter_label(ActuatorKind kind) {
+    return kind == ActuatorKind::erm ? "sim erm" : "sim lra";
+}
+
+std::invalid_argument bad_value(const std::string& key, const std::string& value,
+                                std::string_view expected) {
+    return std::invalid_argument("sim actuator setting " + key + " = \"" + value + "\": expected " +
+                                 std::string(expected));
+}
+
+double positive_number(const std::string& key, const std::string& value) {
+    double number = 0.0;
+    const char* const end = value.data() + value.size();
+    const auto [ptr, error] = std::from_chars(value.data(), end, number);
+    if (error != std::errc{} || ptr != end || !std::isfinite(number) || number <= 0.0) {
+        throw bad_value(key, value, "a positive number");
+    }
+    return number;
+}
+
+}  // namespace
+
+std::int64_t monotonic_now_ns() {
+    timespec now{};
+    ::clock_gettime(CLOCK_MONOTONIC, &now);
+    return static_cast<std::int64_t>(now.tv_sec) * 1'000'000'000 + now.tv_nsec;
+}
+
+SimActuator::SimActuator(SimSettings settings, MonotonicClock clock)
+    : clock_(clock ? std::move(clock) : MonotonicClock(monotonic_now_ns)), model_(settings.model) {
+    if (settings.trace) {
+        trace_.emplace(*settings.trace);
+    }
+    if (settings.meter) {
+        meter_ =
+            std::make_unique<TerminalMeter>(settings.meter_fd, meter_label(settings.model.kind),
+                                            TerminalMeter::glyphs_for_environment());
+    }
+}
+
+Capabilities SimActuator::capabilities() const {
+    Capabilities capabilities;
+    capabilities.amplitude_control = true;
+    capabilities.frequency_control = true;
+    capabilities.waveform_playback = false;
+    capabilities.effect_memory = false;
+    return capabilities;
+}
+
+void SimActuator::take(double amplitude, double frequency_hz) {
+    const std::int64_t now_ns = clock_();
+    const double t_s = static_cast<double>(now_ns) * 1e-9;
+    // The strength is continuous, so its value at the command instant is the same before and
+    // after it: how far the actuator got with the previous command.
+    const double response = model_.response_at(t_s);
+    model_.command(t_s, amplitude, frequency_hz);
+    ++commands_;
+    if (meter_) {
+        // The meter shows where the actuator is heading; an ERM has no frequency to show.
+        const bool erm = model_.settings().kind == ActuatorKind::erm;
+        const double shown_hz =
+            erm ? -1.0 : (frequency_hz == 0.0 ? model_.settings().resonance_hz : frequency_hz);
+        meter_->show(model_.target(), shown_hz);
+    }
+    if (trace_) {
+        trace_->record(now_ns, amplitude, frequency_hz, response);
+    }
+}
+
+void SimActuator::apply(const Drive& drive) {
+    const double amplitude = drive.amplitude > 0.0 ? std::min(drive.amplitude, 1.0) : 0.0;
+    const double frequency_hz =
+        std::isfinite(drive.frequency_hz) && drive.frequency_hz > 0.0 ? drive.frequency_hz : 0.0;
+    try {
+        take(amplitude, frequency_hz);
+    } catch (const std::runtime_error& error) {
+        throw DeviceError(error.what());
+    }
+}
+
+void SimActuator::off() noexcept {
+    try {
+        take(0.0, 0.0);
+    } catch (const std::exception& error) {
+        // off() runs on every error path; one warning is enough to say the trace is incomplete.
+        if (!trace_failure_logged_) {
+            trace_failure_logged_ = true;
+            log::warning(std::string("sim actuator: ") + error.what() +
+                         " (further trace errors on off() are not logged)");
+        }
+    } catch (...) {
+        // Nothing else in take() is expected to throw; off() must not, whatever happens.
+    }
+}
+
+std::unique_ptr<Actuator> make_sim_actuator(const std::map<std::string, std::string>& settings) {
+    SimSettings sim;
+    for (const auto& [key, value] : settings) {
+        if (key == "model") {
+            if (value == "erm") {
+                sim.model.kind = ActuatorKind::erm;
+            } else if (value == "lra") {
+                sim.model.kind = ActuatorKind::lra;
+            } else {
+                throw bad_value(key, value, "erm or lra");
+            }
+        } else if (key == "resonance-hz") {
+            sim.model.resonance_hz = positive_number(key, value);
+        } else if (key == "q") {
+            sim.model.q = positive_number(key, value);
+        } else if (key == "spin-up-ms") {
+            sim.model.spin_up_s = positive_number(key, value) / 1000.0;
+        } else if (key == "spin-down-ms") {
+            sim.model.spin_down_s = positive_number(key, value) / 1000.0;
+        } else if (key == "trace") {
+            if (value.empty()) {
+                throw bad_value(key, value, "a file path");
+            }
+            sim.trace = value;
+        } else if (key == "meter") {
+            if (value == "true") {
+                sim.meter = true;
+            } else if (value == "false") {
+                sim.meter = false;
+            } else {
+                throw bad_value(key, value, "true or false");
+            }
+        } else {
+            // A misspelt key would otherwise be silently ignored and the default used.
+            throw std::invalid_argument("unknown sim actuator setting " + key + " = \"" + value +
+                                        "\" (known: model, resonance-hz, q, spin-up-ms, "
+                                        "spin-down-ms, trace, meter)");
+        }
+    }
+    return std::make_unique<SimActuator>(std::move(sim));
+}
+
+}  // namespace vibscore::drivers

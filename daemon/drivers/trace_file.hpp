@@ -1,0 +1,49 @@
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <utility>
+
+namespace vibscore::drivers {
+
+// A CSV record of every command a simulated actuator received:
+//   time_ns,amplitude,frequency_hz,response
+// Each line goes out in one write() on an unbuffered descriptor, so another process (a test, a
+// benchmark) can follow the file while it grows and never sees half a line.
+class TraceFile {
+  public:
+    // Creates or truncates the file and writes the header. Throws std::runtime_error naming the
+    // path and the errno text when it cannot.
+    explicit TraceFile(std::filesystem::path path);
+
+    TraceFile(TraceFile&&) noexcept = default;
+    TraceFile& operator=(TraceFile&&) noexcept = default;
+
+    // Appends one line. Numbers are written in their shortest form that reads back exactly.
+    // Throws std::runtime_error naming the path and the errno text when the write fails.
+    void record(std::int64_t time_ns, double amplitude, double frequency_hz, double response);
+
+    const std::filesystem::path& path() const { return path_; }
+
+  private:
+    // Owns the descriptor so every exit path, including a failed header write, closes it.
+    class Fd {
+      public:
+        explicit Fd(int fd = -1) noexcept : fd_(fd) {}
+        Fd(Fd&& other) noexcept : fd_(std::exchange(other.fd_, -1)) {}
+        Fd& operator=(Fd&& other) noexcept;
+        ~Fd();
+        int get() const noexcept { return fd_; }
+
+      private:
+        int fd_;
+    };
+
+    void write_line(const char* data, std::size_t size);
+
+    std::filesystem::path path_;
+    Fd fd_;
+};
+
+}  // namespace vibscore::drivers

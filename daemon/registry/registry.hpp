@@ -1,0 +1,166 @@
+#pragma once
+
+#include <cstddef>
+#include <filesystem>
+#include <functional>
+#include <map>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "score/bundle.hpp"
+#include "score/clef.hpp"
+#include "score/limits.hpp"
+
+namespace vibscore::daemon {
+
+// The two kinds of document the registry holds. On the bus: "score" and "clef".
+enum class DocumentClass { score, clef };
+
+std::string_view to_string(DocumentClass document_class);
+
+// Accepts "score", "scores", "clef" and "clefs".
+std::optional<DocumentClass> parse_document_class(std::string_view text);
+
+// A request the registry refuses. The bus layer maps code() to a named D-Bus error and sends
+// what() as its message, which names the document and the value at fault.
+class RegistryError : public std::runtime_error {
+  public:
+    enum class Code { invalid_document, not_found, permission_denied, limit_exceeded, in_use };
+
+    RegistryError(Code code, const std::string& message)
+        : std::runtime_error(message), code_(code) {}
+
+    Code code() const { return code_; }
+
+  private:
+    Code code_;
+};
+
+// "invalid-document", "not-found", ...: a stable spelling for error names and logs.
+std::string_view to_string(RegistryError::Code code);
+
+struct RegistryEntry {
+    std::string name;
+    std::string title;  // a score's <Title>; for a clef e.g. "sine, tempo 0.2 s, 6 strings"
+    bool shipped = false;
+    bool operator==(const RegistryEntry&) const = default;
+};
+
+// How much the writable store may hold, so a client cannot fill the disk.
+struct StoreLimits {
+    std::size_t document_bytes = limits::document_bytes;
+    std::size_t documents = 1000;
+    std::size_t total_bytes = std::size_t{64} << 20;
+};
+
+// Whether name is a valid registry name: 1-64 of [a-z0-9._-], starting with [a-z0-9].
+bool is_valid_name(std::string_view name);
+
+// The scores and clefs the daemon can play: read-only shipped documents plus a writable store
+// that survives restarts and crashes. Both directories hold NAME.score.xml and NAME.clef.xml.
+// Scores refer to clefs by name only (href "NAME.clef.xml"), never by path, so nothing a client
+// sends can make the daemon read another file. Everything is held in memory after loading;
+// writes reach memory only after they are durable on disk.
+//
+// Invariant: every score held (stored or shipped, shadowed or not) binds to the clefs currently
+// visible; changes that would break one are refused.
+//
+// Single-threaded: the daemon's event loop owns it.
+class Registry {
+  public:
+    // Creates store_dir if missing, removes stale temporary files from it and loads both
+    // directories. Documents that fail to load are logged and skipped. Throws std::system_error
+    // when store_dir cannot be created or listed.
+    Registry(std::filesystem::path shipped_dir, std::filesystem::path store_dir,
+             StoreLimits store_limits = {});
+
+    // The visible documents of a class (stored ones shadow shipped ones), sorted by name.
+    std::vector<RegistryEntry> list(DocumentClass document_class) const;
+
+    // The document text exactly as composed or shipped. Throws not_found.
+    std::string get(DocumentClass document_class, std::string_view name) const;
+
+    // Validates document, stores it durably under name (replacing a stored document of the same
+    // name and class, shadowing a shipped one) and returns its class, told by the root element.
+    // Throws invalid_document, limit_exceeded; std::system_error when the disk write fails.
+    DocumentClass compose(std::string_view name, std::string_view document);
+
+    // Deletes a stored document; a shipped one of the same name becomes visible again.
+    // Throws not_found, permission_denied (shipped only) or in_use (a clef a score needs).
+    void remove(DocumentClass document_class, std::string_view name);
+
+    // A registry score with its clefs resolved from the registry. Throws not_found.
+    ScoreBundle score(std::string_view name) const;
+
+    // A VibScore document sent over the bus, its clefs resolved from the registry; nothing is
+    // stored. Throws invalid_document or limit_exceeded.
+    ScoreBundle inline_score(std::string_view document) const;
+
+    // A registry clef. Throws not_found.
+    Clef clef(std::string_view name) const;
+
+    bool contains(DocumentClass document_class, std::string_view name) const;
+    bool is_shipped(DocumentClass document_class, std::string_view name) const;
+
+    std::size_t stored_documents() const { return stored_clefs_.size() + stored_scores_.size(); }
+    std::size_t stored_bytes() const { return stored_bytes_; }
+    const std::filesystem::path& store_dir() const { return store_dir_; }
+    const std::filesystem::path& shipped_dir() const { return shipped_dir_; }
+
+  private:
+    struct ClefRecord {
+        std::string text;
+        std::string title;
+        Clef clef;
+    };
+    struct ScoreRecord {
+        std::string text;
+        ScoreBundle bundle;
+        std::vector<std::string> clef_names;  // registry clefs it uses, by name
+    };
+    template <typename Record>
+    using Records = std::map<std::string, Record, std::less<>>;
+
+    // A held score bound again after a clef it uses changed.
+    struct Rebound {
+        bool shipped;
+        std::string name;
+        ScoreBundle bundle;
+    };
+
+    void load_clef(const std::filesystem::path& path, const std::string& name, bool shipped);
+    void load_score(const std::filesystem::path& path, const std::string& name, bool shipped);
+
+    const ClefRecord* find_clef(std::string_view name) const;
+    const ScoreRecord* find_score(std::string_view name) const;
+
+    // Binds a parsed score to registry clefs, with an optional replacement for one clef name.
+    ScoreRecord bind(ParsedScore parsed, std::string file, std::string_view replaced_name = {},
+                     const Clef* replacement = nullptr) const;
+    // Every held score that uses clef name, bound again with it replaced by clef. Throws a
+    // RegistryError with code naming each score that no longer fits, after context.
+    std::vector<Rebound> rebind_dependents(std::string_view name, const Clef& clef,
+                                           RegistryError::Code code,
+                                           std::string_view context) const;
+    // "score \"a\"", "shipped score \"b\"": each held score that uses clef name.
+    std::vector<std::string> users_of(std::string_view clef_name) const;
+    void commit(std::vector<Rebound> rebound);
+
+    void compose_clef(const std::string& name, std::string_view document);
+    void compose_score(const std::string& name, std::string_view document);
+    void check_store_limits(DocumentClass document_class, const std::string& name,
+                            std::size_t new_size) const;
+    std::filesystem::path stored_path(DocumentClass document_class, std::string_view name) const;
+
+    std::filesystem::path shipped_dir_;
+    std::filesystem::path store_dir_;
+    StoreLimits limits_;
+    Records<ClefRecord> shipped_clefs_, stored_clefs_;
+    Records<ScoreRecord> shipped_scores_, stored_scores_;
+    std::size_t stored_bytes_ = 0;
+};
+
+}  // namespace vibscore::daemon
