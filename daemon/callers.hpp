@@ -1,0 +1,48 @@
+#pragma once
+
+#include <sys/types.h>
+
+#include <cstdint>
+#include <string>
+#include <unordered_map>
+
+namespace sdbus {
+class Message;
+}
+
+namespace vibscore::daemon {
+
+struct Caller {
+    std::string sender;  // unique bus name, ":1.42"
+    uid_t uid = 0;
+    bool privileged = false;  // root, or a member of group "vibscore"
+};
+
+// Who is calling, from the bus's credentials for the sender (not from anything the caller says),
+// cached per connection; and a token bucket per connection so one caller cannot flood the daemon.
+class CallerDirectory {
+  public:
+    CallerDirectory(double requests_per_second, double burst);
+
+    const Caller& identify(const sdbus::Message& message);
+    // True if the sender may make another request now; spends one token.
+    bool admit(const std::string& sender, std::uint64_t now_us);
+    void forget(const std::string& sender);
+    void set_rate(double requests_per_second, double burst);
+    double requests_per_second() const { return rate_; }
+
+  private:
+    struct Bucket {
+        double tokens = 0.0;
+        std::uint64_t updated_us = 0;
+    };
+    std::unordered_map<std::string, Caller> callers_;
+    std::unordered_map<std::string, Bucket> buckets_;
+    double rate_;
+    double burst_;
+};
+
+// Is `uid` root or a member (primary or supplementary) of `group` in the user database?
+bool user_in_group(uid_t uid, const char* group);
+
+}  // namespace vibscore::daemon

@@ -1,0 +1,80 @@
+#pragma once
+
+#include <systemd/sd-event.h>
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+
+namespace sdbus {
+class IConnection;
+}
+
+namespace vibscore::daemon {
+
+// Microseconds on CLOCK_MONOTONIC, the clock every deadline in the daemon is measured on.
+std::uint64_t monotonic_now_us();
+
+struct EventSourceUnref {
+    void operator()(sd_event_source* source) const { sd_event_source_disable_unref(source); }
+};
+using EventSourcePtr = std::unique_ptr<sd_event_source, EventSourceUnref>;
+
+// The daemon's one thread and one loop: the bus, timers and signals all run here, so nothing
+// needs a lock.
+class EventLoop {
+  public:
+    EventLoop();
+    ~EventLoop();
+    EventLoop(const EventLoop&) = delete;
+    EventLoop& operator=(const EventLoop&) = delete;
+
+    sd_event* get() const { return event_; }
+
+    // Runs until exit(); returns the code given to it.
+    int run();
+    void exit(int code);
+
+    // A one-shot timer on CLOCK_MONOTONIC with microsecond accuracy, re-armed at will.
+    class Timer {
+      public:
+        Timer(EventLoop& loop, std::function<void()> fire);
+        // Fires at the absolute time `at_us` (monotonic_now_us() scale); replaces any earlier arm.
+        void arm(std::uint64_t at_us);
+        void disarm();
+        bool armed() const;
+
+      private:
+        static int dispatch(sd_event_source*, std::uint64_t, void* self);
+        std::function<void()> fire_;
+        EventSourcePtr source_;
+    };
+
+    // Calls `handler` when `signo` arrives (the signal is blocked for the thread first).
+    EventSourcePtr on_signal(int signo, std::function<void()> handler);
+
+  private:
+    sd_event* event_ = nullptr;
+    std::vector<std::unique_ptr<std::function<void()>>> signal_handlers_;
+};
+
+// Serves an sdbus-c++ connection from the loop: its fd and timeout become loop sources, refreshed
+// before every wait, so bus calls are handled in the same thread as timers.
+class BusLoopBinding {
+  public:
+    BusLoopBinding(EventLoop& loop, sdbus::IConnection& connection);
+    BusLoopBinding(const BusLoopBinding&) = delete;
+    BusLoopBinding& operator=(const BusLoopBinding&) = delete;
+
+  private:
+    static int on_io(sd_event_source*, int, std::uint32_t, void* self);
+    static int on_time(sd_event_source*, std::uint64_t, void* self);
+    static int on_prepare(sd_event_source*, void* self);
+    void process();
+
+    sdbus::IConnection& connection_;
+    EventSourcePtr io_;
+    EventSourcePtr timer_;
+};
+
+}  // namespace vibscore::daemon

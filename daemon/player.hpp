@@ -1,0 +1,98 @@
+#pragma once
+
+#include <sys/types.h>
+
+#include <cstdint>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "daemon/drivers/actuator.hpp"
+#include "daemon/event_loop.hpp"
+#include "daemon/render/cue_schedule.hpp"
+#include "daemon/usage.hpp"
+
+namespace vibscore::daemon {
+
+struct PlaybackRequest {
+    std::string label;  // registry name, or "<inline>"
+    std::vector<render::Cue> cues;
+    double duration_s = 0.0;  // one pass
+    Usage usage = Usage::notification;
+    int repeat = 0;  // 0 once, n more times, -1 until stopped
+    double intensity = 1.0;
+    uid_t owner = 0;     // the user who asked; may stop it
+    std::string sender;  // bus connection; when it leaves, the playback ends
+};
+
+// What the player reports; the bus service turns these into signals.
+class PlayerListener {
+  public:
+    virtual ~PlayerListener() = default;
+    virtual void playback_started(std::uint64_t id, const std::string& label) = 0;
+    virtual void playback_position(std::uint64_t id, std::size_t bar, std::size_t symbol) = 0;
+    virtual void playback_finished(std::uint64_t id, const std::string& reason) = 0;
+};
+
+// A request lost arbitration against the playback in progress.
+class PlayerBusy : public std::runtime_error {
+  public:
+    using std::runtime_error::runtime_error;
+};
+
+// Plays one score at a time on the actuator, each cue at its absolute CLOCK_MONOTONIC deadline
+// (start + cue time), so lateness never accumulates. Arbitration between overlapping requests
+// follows their usage; see dbus/org.vibscore.Haptics1.xml (Play) and docs/daemon.md.
+class Player {
+  public:
+    Player(EventLoop& loop, drivers::Actuator& actuator, PlayerListener& listener);
+    ~Player();
+    Player(const Player&) = delete;
+    Player& operator=(const Player&) = delete;
+
+    // Starts at once: the first drive reaches the actuator before this returns.
+    // Throws PlayerBusy when a more important (or a repeating, equally important) playback plays.
+    std::uint64_t play(PlaybackRequest request);
+
+    enum class StopResult { stopped, not_playing, not_found, not_permitted };
+    // Stops playback `id` (0: whatever `caller` has playing). Privileged callers may stop any.
+    StopResult stop(std::uint64_t id, uid_t caller, bool privileged);
+
+    // The caller's bus connection went away.
+    void sender_vanished(const std::string& sender);
+
+    // Ends any playback with `reason` and switches the actuator off (shutdown, driver switch).
+    void stop_all(const std::string& reason);
+
+    // Uses another actuator from now on; the current one is switched off first.
+    void replace_actuator(drivers::Actuator& actuator);
+
+    void set_master_intensity(double intensity) { master_intensity_ = intensity; }
+    double master_intensity() const { return master_intensity_; }
+
+    std::optional<std::uint64_t> current_id() const;
+
+  private:
+    struct Playback {
+        std::uint64_t id = 0;
+        PlaybackRequest request;
+        std::uint64_t start_us = 0;  // when pass 0 began
+        std::uint64_t pass = 0;
+        std::size_t next_cue = 0;
+    };
+
+    std::uint64_t due_us(const Playback& playback, const render::Cue& cue) const;
+    void run_due();
+    bool execute(const render::Cue& cue);
+    void finish(const std::string& reason);
+
+    EventLoop::Timer timer_;
+    drivers::Actuator* actuator_;
+    PlayerListener& listener_;
+    std::optional<Playback> current_;
+    std::uint64_t next_id_ = 1;
+    double master_intensity_ = 1.0;
+};
+
+}  // namespace vibscore::daemon

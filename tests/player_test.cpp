@@ -1,0 +1,228 @@
+#include <gtest/gtest.h>
+
+#include "daemon/player.hpp"
+
+namespace vibscore::daemon {
+namespace {
+
+using render::Cue;
+
+struct Applied {
+    std::uint64_t at_us;
+    drivers::Drive drive;
+};
+
+class RecordingActuator : public drivers::Actuator {
+  public:
+    std::string_view driver_name() const override { return "recording"; }
+    drivers::Capabilities capabilities() const override { return {}; }
+    void apply(const drivers::Drive& drive) override {
+        if (fail_after >= 0 && static_cast<int>(applied.size()) >= fail_after) {
+            throw drivers::DeviceError("/dev/fake: No such device");
+        }
+        applied.push_back({monotonic_now_us(), drive});
+    }
+    void off() noexcept override { applied.push_back({monotonic_now_us(), {}}); }
+    std::vector<Applied> applied;
+    int fail_after = -1;
+};
+
+class RecordingListener : public PlayerListener {
+  public:
+    explicit RecordingListener(EventLoop& loop) : loop_(loop) {}
+    void playback_started(std::uint64_t id, const std::string& label) override {
+        events.push_back("started " + std::to_string(id) + " " + label);
+    }
+    void playback_position(std::uint64_t id, std::size_t bar, std::size_t symbol) override {
+        events.push_back("position " + std::to_string(id) + " " + std::to_string(bar) + "." +
+                         std::to_string(symbol));
+    }
+    void playback_finished(std::uint64_t id, const std::string& reason) override {
+        events.push_back("finished " + std::to_string(id) + " " + reason);
+        if (exit_on_finish) {
+            loop_.exit(0);
+        }
+    }
+    std::vector<std::string> events;
+    bool exit_on_finish = true;
+
+  private:
+    EventLoop& loop_;
+};
+
+Cue drive(double at, double amplitude, double frequency = 0.0) {
+    Cue cue;
+    cue.at = at;
+    cue.amplitude = amplitude;
+    cue.frequency_hz = frequency;
+    return cue;
+}
+
+Cue position(double at, std::size_t bar, std::size_t symbol) {
+    Cue cue;
+    cue.at = at;
+    cue.kind = Cue::Kind::position;
+    cue.bar = bar;
+    cue.symbol = symbol;
+    return cue;
+}
+
+PlaybackRequest request(Usage usage = Usage::notification, int repeat = 0, uid_t owner = 1000) {
+    PlaybackRequest request;
+    request.label = "tacton";
+    request.cues = {drive(0, 0.5, 170), position(0, 0, 0), drive(0.004, 0.8, 200),
+                    position(0.004, 0, 1), drive(0.008, 0)};
+    request.duration_s = 0.01;
+    request.usage = usage;
+    request.repeat = repeat;
+    request.owner = owner;
+    request.sender = ":1.7";
+    return request;
+}
+
+class PlayerTest : public ::testing::Test {
+  protected:
+    EventLoop loop;
+    RecordingActuator actuator;
+    RecordingListener listener{loop};
+    Player player{loop, actuator, listener};
+};
+
+TEST_F(PlayerTest, TheActuatorIsOffFromTheStart) {
+    ASSERT_EQ(actuator.applied.size(), 1u);
+    EXPECT_EQ(actuator.applied[0].drive.amplitude, 0.0);
+}
+
+TEST_F(PlayerTest, PlaysEveryCueInOrderNeverEarlyThenCompletes) {
+    actuator.applied.clear();
+    const std::uint64_t before = monotonic_now_us();
+    const auto id = player.play(request());
+    ASSERT_EQ(actuator.applied.size(), 1u) << "first drive before play() returns";
+    EXPECT_EQ(actuator.applied[0].drive, (drivers::Drive{0.5, 170}));
+    loop.run();
+    EXPECT_EQ(listener.events,
+              (std::vector<std::string>{"started 1 tacton", "position 1 0.0", "position 1 0.1",
+                                        "finished 1 completed"}));
+    ASSERT_GE(actuator.applied.size(), 3u);
+    EXPECT_EQ(actuator.applied[1].drive, (drivers::Drive{0.8, 200}));
+    EXPECT_GE(actuator.applied[1].at_us, before + 4000);
+    EXPECT_EQ(actuator.applied.back().drive.amplitude, 0.0);
+    EXPECT_EQ(id, 1u);
+    EXPECT_FALSE(player.current_id());
+}
+
+TEST_F(PlayerTest, RepeatsTheWholeScoreTheAskedNumberOfTimesMore) {
+    player.play(request(Usage::ringtone, 2));
+    loop.run();
+    EXPECT_EQ(std::count_if(listener.events.begin(), listener.events.end(),
+                            [](const std::string& e) { return e == "position 1 0.0"; }),
+              3);
+    EXPECT_EQ(listener.events.back(), "finished 1 completed");
+}
+
+TEST_F(PlayerTest, IntensityScalesAndIsClampedToFullDrive) {
+    actuator.applied.clear();
+    auto loud = request();
+    loud.intensity = 0.5;
+    player.set_master_intensity(0.5);
+    player.play(loud);
+    EXPECT_DOUBLE_EQ(actuator.applied[0].drive.amplitude, 0.125);
+    player.stop(0, 1000, false);
+    auto over = request();
+    over.cues[0].amplitude = 7.0;
+    player.set_master_intensity(1.0);
+    player.play(over);
+    EXPECT_EQ(actuator.applied.back().drive.amplitude, 1.0);
+}
+
+TEST_F(PlayerTest, AMoreImportantRequestPreemptsALessImportantOne) {
+    player.play(request(Usage::touch));
+    actuator.applied.clear();
+    const auto alarm = player.play(request(Usage::alarm));
+    EXPECT_EQ(listener.events.at(2), "finished 1 preempted");
+    EXPECT_EQ(actuator.applied.at(0).drive.amplitude, 0.0) << "off between the two";
+    EXPECT_EQ(player.current_id(), alarm);
+}
+
+TEST_F(PlayerTest, ALessImportantRequestIsRefused) {
+    player.play(request(Usage::alarm));
+    EXPECT_THROW(player.play(request(Usage::notification)), PlayerBusy);
+    EXPECT_EQ(player.current_id(), 1u);
+}
+
+TEST_F(PlayerTest, AnEquallyImportantRequestTakesOver) {
+    player.play(request(Usage::notification));
+    player.play(request(Usage::notification));
+    EXPECT_EQ(listener.events.at(2), "finished 1 preempted");
+    EXPECT_EQ(player.current_id(), 2u);
+}
+
+TEST_F(PlayerTest, ARepeatingPlaybackKeepsItsTurnAgainstAnEqualOneShot) {
+    player.play(request(Usage::ringtone, -1));
+    EXPECT_THROW(player.play(request(Usage::ringtone, 0)), PlayerBusy);
+    player.play(request(Usage::ringtone, -1));  // another ringtone replaces it
+    EXPECT_EQ(player.current_id(), 2u);
+}
+
+TEST_F(PlayerTest, CommunicationAndAccessibilityAreEquallyImportant) {
+    player.play(request(Usage::accessibility));
+    player.play(request(Usage::communication));
+    EXPECT_EQ(player.current_id(), 2u);
+    EXPECT_THROW(player.play(request(Usage::hardware_feedback)), PlayerBusy);
+    EXPECT_EQ(importance(Usage::touch), importance(Usage::media));
+}
+
+TEST_F(PlayerTest, StopSilencesAtOnceAndReportsStopped) {
+    const auto id = player.play(request(Usage::ringtone, -1));
+    actuator.applied.clear();
+    EXPECT_EQ(player.stop(id, 1000, false), Player::StopResult::stopped);
+    ASSERT_EQ(actuator.applied.size(), 1u);
+    EXPECT_EQ(actuator.applied[0].drive.amplitude, 0.0);
+    EXPECT_EQ(listener.events.back(), "finished 1 stopped");
+    EXPECT_EQ(player.stop(id, 1000, false), Player::StopResult::not_playing);
+    EXPECT_EQ(player.stop(99, 1000, false), Player::StopResult::not_found);
+}
+
+TEST_F(PlayerTest, OnlyTheOwnerOrAPrivilegedCallerMayStop) {
+    const auto id = player.play(request(Usage::ringtone, -1, 1000));
+    EXPECT_EQ(player.stop(id, 1001, false), Player::StopResult::not_permitted);
+    EXPECT_EQ(player.stop(0, 1001, false), Player::StopResult::not_playing);
+    EXPECT_EQ(player.current_id(), id);
+    EXPECT_EQ(player.stop(id, 0, true), Player::StopResult::stopped);
+}
+
+TEST_F(PlayerTest, StopZeroStopsWhatTheCallerHasPlaying) {
+    player.play(request(Usage::ringtone, -1, 1000));
+    EXPECT_EQ(player.stop(0, 1000, false), Player::StopResult::stopped);
+}
+
+TEST_F(PlayerTest, APlaybackEndsWhenItsCallerLeavesTheBus) {
+    player.play(request(Usage::ringtone, -1));
+    player.sender_vanished(":1.99");
+    EXPECT_TRUE(player.current_id());
+    player.sender_vanished(":1.7");
+    EXPECT_EQ(listener.events.back(), "finished 1 client-vanished");
+    EXPECT_EQ(actuator.applied.back().drive.amplitude, 0.0);
+}
+
+TEST_F(PlayerTest, ADeviceErrorEndsThePlaybackWithItsReason) {
+    actuator.fail_after = 2;
+    player.play(request());
+    loop.run();
+    EXPECT_EQ(listener.events.back(), "finished 1 device-error: /dev/fake: No such device");
+    EXPECT_EQ(actuator.applied.back().drive.amplitude, 0.0);
+}
+
+TEST_F(PlayerTest, ReplacingTheActuatorStopsPlaybackAndSwitchesBothOff) {
+    player.play(request(Usage::ringtone, -1));
+    RecordingActuator other;
+    player.replace_actuator(other);
+    EXPECT_EQ(listener.events.back(), "finished 1 stopped");
+    EXPECT_EQ(actuator.applied.back().drive.amplitude, 0.0);
+    ASSERT_EQ(other.applied.size(), 1u);
+    EXPECT_EQ(other.applied[0].drive.amplitude, 0.0);
+    player.replace_actuator(actuator);  // `other` dies before the player does
+}
+
+}  // namespace
+}  // namespace vibscore::daemon
