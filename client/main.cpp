@@ -3,6 +3,7 @@
 
 #include <iostream>
 
+#include "client/bus_verbs.hpp"
 #include "client/offline_verbs.hpp"
 #include "config.h"
 
@@ -38,6 +39,42 @@ int main(int argc, char** argv) {
         "info", "Show a score's title, duration, bars and clefs, or a clef's mapping.");
     info->add_option("FILE", info_file, "VibScore or VibClef document")->required();
 
+    PlayRequest play_request;
+    auto* play_verb = app.add_subcommand(
+        "play", "Play a registry score, or a score file, on the device (through vibscored).");
+    play_verb->add_option("SCORE", play_request.score, "registry name or VibScore file")
+        ->required();
+    play_verb->add_option("--usage", play_request.usage,
+                          "ringtone, alarm, notification (default), communication, "
+                          "accessibility, hardware-feedback, touch or media");
+    play_verb->add_option("--repeat", play_request.repeat,
+                          "0 once (default), n more times, -1 until stopped");
+    play_verb->add_option("--clef", play_request.clef, "play every bar with this registry clef");
+    play_verb->add_option("--intensity", play_request.intensity, "0..1")
+        ->check(CLI::Range(0.0, 1.0));
+    play_verb->add_flag("--wait", play_request.wait,
+                        "stay until it ends, showing each bar; Ctrl-C stops it");
+
+    std::uint64_t stop_id = 0;
+    auto* stop_verb = app.add_subcommand("stop", "Stop a playback (default: all of yours).");
+    stop_verb->add_option("ID", stop_id, "playback id printed by play");
+
+    std::string kind = "score";
+    std::string name;
+    std::string file;
+    auto* list_verb = app.add_subcommand("list", "List the registry's scores or clefs.");
+    list_verb->add_option("KIND", kind, "scores (default) or clefs");
+    auto* get_verb = app.add_subcommand("get", "Print a registry score or clef.");
+    get_verb->add_option("KIND", kind, "score or clef")->required();
+    get_verb->add_option("NAME", name, "registry name")->required();
+    auto* compose_verb = app.add_subcommand(
+        "compose", "Store a score or clef file in the registry (root or group vibscore).");
+    compose_verb->add_option("NAME", name, "registry name")->required();
+    compose_verb->add_option("FILE", file, "VibScore or VibClef file")->required();
+    auto* delete_verb = app.add_subcommand("delete", "Delete a stored score or clef.");
+    delete_verb->add_option("KIND", kind, "score or clef")->required();
+    delete_verb->add_option("NAME", name, "registry name")->required();
+
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {
@@ -56,6 +93,24 @@ int main(int argc, char** argv) {
     }
     if (render_verb->parsed()) {
         return render_document(render, std::cout, std::cerr);
+    }
+    if (play_verb->parsed()) {
+        return play(play_request, std::cout, std::cerr);
+    }
+    if (stop_verb->parsed()) {
+        return stop(stop_id, std::cout, std::cerr);
+    }
+    if (list_verb->parsed()) {
+        return list(kind, std::cout, std::cerr);
+    }
+    if (get_verb->parsed()) {
+        return get(kind, name, std::cout, std::cerr);
+    }
+    if (compose_verb->parsed()) {
+        return compose(name, file, std::cout, std::cerr);
+    }
+    if (delete_verb->parsed()) {
+        return remove(kind, name, std::cout, std::cerr);
     }
     return describe_document(info_file, std::cout, std::cerr);
 }

@@ -1,0 +1,206 @@
+#include "client/bus_verbs.hpp"
+
+#include <sdbus-c++/sdbus-c++.h>
+
+#include <atomic>
+#include <chrono>
+#include <csignal>
+#include <filesystem>
+#include <map>
+#include <mutex>
+#include <thread>
+
+#include "client/offline_verbs.hpp"
+#include "haptics1-proxy.h"
+#include "score/bundle.hpp"
+
+namespace vibscore::client {
+
+namespace {
+
+constexpr const char* kService = "org.vibscore.Haptics1";
+constexpr const char* kPath = "/org/vibscore/Haptics1";
+
+std::atomic<bool> g_interrupted{false};
+
+// A client of the daemon that remembers how each playback ended and where each one is.
+class Haptics : public sdbus::ProxyInterfaces<org::vibscore::Haptics1_proxy> {
+  public:
+    explicit Haptics(std::unique_ptr<sdbus::IConnection> connection)
+        : ProxyInterfaces(*connection, kService, kPath), connection_(std::move(connection)) {
+        registerProxy();
+    }
+    ~Haptics() {
+        connection_->leaveEventLoop();
+        unregisterProxy();
+    }
+    void listen() { connection_->enterEventLoopAsync(); }
+
+    std::optional<std::string> finished(std::uint64_t id) {
+        std::lock_guard lock(mutex_);
+        const auto found = finished_.find(id);
+        return found == finished_.end() ? std::nullopt : std::optional(found->second);
+    }
+    std::optional<std::pair<std::uint32_t, std::uint32_t>> position(std::uint64_t id) {
+        std::lock_guard lock(mutex_);
+        const auto found = positions_.find(id);
+        return found == positions_.end() ? std::nullopt : std::optional(found->second);
+    }
+
+  private:
+    void onPlaybackStarted(const uint64_t&, const std::string&) override {}
+    void onPlaybackPosition(const uint64_t& id, const uint32_t& bar,
+                            const uint32_t& symbol) override {
+        std::lock_guard lock(mutex_);
+        positions_[id] = {bar, symbol};
+    }
+    void onPlaybackFinished(const uint64_t& id, const std::string& reason) override {
+        std::lock_guard lock(mutex_);
+        finished_[id] = reason;
+    }
+    void onRegistryChanged(const std::string&, const std::string&) override {}
+
+    std::unique_ptr<sdbus::IConnection> connection_;
+    std::mutex mutex_;
+    std::map<std::uint64_t, std::string> finished_;
+    std::map<std::uint64_t, std::pair<std::uint32_t, std::uint32_t>> positions_;
+};
+
+// The daemon's error names, in words.
+std::string explain(const sdbus::Error& error) {
+    const std::string name = error.getName();
+    const std::string prefix = "org.vibscore.Haptics1.Error.";
+    if (name.rfind(prefix, 0) == 0) {
+        static const std::map<std::string, std::string> kWords{
+            {"InvalidDocument", "invalid"},
+            {"NotFound", "not found"},
+            {"PermissionDenied", "not permitted"},
+            {"LimitExceeded", "over a limit"},
+            {"Busy", "busy"},
+            {"Device", "actuator failed"},
+        };
+        const auto words = kWords.find(name.substr(prefix.size()));
+        return (words == kWords.end() ? name : words->second) + ": " + error.getMessage();
+    }
+    if (name == "org.freedesktop.DBus.Error.ServiceUnknown" ||
+        name == "org.freedesktop.DBus.Error.NameHasNoOwner") {
+        return "vibscored is not running on the system bus (" + error.getMessage() + ")";
+    }
+    return error.getMessage() + " (" + name + ")";
+}
+
+template <typename Body>
+int with_daemon(std::ostream& err, Body&& body) {
+    std::unique_ptr<sdbus::IConnection> connection;
+    try {
+        connection = sdbus::createSystemBusConnection();
+    } catch (const sdbus::Error& error) {
+        err << "vibscore: cannot connect to the system bus: " << error.getMessage() << "\n";
+        return exit_failed;
+    }
+    try {
+        Haptics haptics(std::move(connection));
+        return body(haptics);
+    } catch (const sdbus::Error& error) {
+        err << "vibscore: " << explain(error) << "\n";
+    } catch (const DocumentError& error) {
+        err << error.what() << "\n";
+    }
+    return exit_failed;
+}
+
+// A file is sent whole, so the daemon needs no access to it; anything else is a registry name.
+std::string score_argument(const std::string& score) {
+    std::error_code ignored;
+    if (score.find('/') != std::string::npos || std::filesystem::is_regular_file(score, ignored)) {
+        return read_document_file(score);
+    }
+    return score;
+}
+
+}  // namespace
+
+int play(const PlayRequest& request, std::ostream& out, std::ostream& err) {
+    return with_daemon(err, [&](Haptics& haptics) {
+        std::map<std::string, sdbus::Variant> options;
+        if (!request.usage.empty())
+            options["usage"] = sdbus::Variant(request.usage);
+        if (request.repeat != 0)
+            options["repeat"] = sdbus::Variant(std::int32_t{request.repeat});
+        if (!request.clef.empty())
+            options["clef"] = sdbus::Variant(request.clef);
+        if (request.intensity >= 0.0)
+            options["intensity"] = sdbus::Variant(request.intensity);
+        if (request.wait) {
+            haptics.listen();
+        }
+        const auto id = haptics.Play(score_argument(request.score), options);
+        if (!request.wait) {
+            out << id << "\n";
+            return exit_ok;
+        }
+        // Ctrl-C stops the playback rather than leaving it to end as "client-vanished".
+        g_interrupted = false;
+        const auto previous = std::signal(SIGINT, [](int) { g_interrupted = true; });
+        std::int64_t shown_bar = -1;
+        std::optional<std::string> reason;
+        while (!(reason = haptics.finished(id))) {
+            if (g_interrupted.exchange(false)) {
+                haptics.Stop(id);
+            }
+            const auto position = haptics.position(id);
+            if (position && static_cast<std::int64_t>(position->first) != shown_bar) {
+                shown_bar = position->first;
+                out << "playback " << id << ": bar " << shown_bar + 1 << "\n" << std::flush;
+            }
+            std::this_thread::sleep_for(std::chrono::milliseconds(10));
+        }
+        std::signal(SIGINT, previous);
+        out << "playback " << id << " " << *reason << "\n";
+        return *reason == "completed" || *reason == "stopped" ? exit_ok : exit_failed;
+    });
+}
+
+int stop(std::uint64_t id, std::ostream& out, std::ostream& err) {
+    return with_daemon(err, [&](Haptics& haptics) {
+        haptics.Stop(id);
+        out << (id == 0 ? std::string("stopped your playbacks") : "stopped " + std::to_string(id))
+            << "\n";
+        return exit_ok;
+    });
+}
+
+int list(const std::string& kind, std::ostream& out, std::ostream& err) {
+    return with_daemon(err, [&](Haptics& haptics) {
+        for (const auto& entry : haptics.List(kind)) {
+            out << entry.get<0>() << "\t" << entry.get<1>() << "\n";
+        }
+        return exit_ok;
+    });
+}
+
+int get(const std::string& kind, const std::string& name, std::ostream& out, std::ostream& err) {
+    return with_daemon(err, [&](Haptics& haptics) {
+        out << haptics.Get(kind, name);
+        return exit_ok;
+    });
+}
+
+int compose(const std::string& name, const std::string& file, std::ostream& out,
+            std::ostream& err) {
+    return with_daemon(err, [&](Haptics& haptics) {
+        haptics.Compose(name, read_document_file(file));
+        out << "stored " << name << "\n";
+        return exit_ok;
+    });
+}
+
+int remove(const std::string& kind, const std::string& name, std::ostream& out, std::ostream& err) {
+    return with_daemon(err, [&](Haptics& haptics) {
+        haptics.Delete(kind, name);
+        out << "deleted " << kind << " " << name << "\n";
+        return exit_ok;
+    });
+}
+
+}  // namespace vibscore::client
