@@ -341,6 +341,47 @@ TEST_F(DaemonBus, SighupReloadsTheDriverAndKeepsServingOnABadFile) {
     EXPECT_EQ(daemon.call({"List", "s", "clef"}).exit_code, 0);
 }
 
+std::vector<std::string> vibscore_command(std::initializer_list<std::string> args) {
+    std::vector<std::string> argv{testing::required_env("VIBSCORE")};
+    argv.insert(argv.end(), args);
+    return argv;
+}
+
+TEST_F(DaemonBus, TheClientPlaysAndWaitsListsComposesAndExplainsErrors) {
+    const auto played =
+        testing::run_command(vibscore_command({"play", "notification-message", "--wait"}));
+    EXPECT_EQ(played.exit_code, 0) << played.err;
+    EXPECT_NE(played.out.find("playback 1: bar 1"), std::string::npos) << played.out;
+    EXPECT_NE(played.out.find("playback 1 completed"), std::string::npos) << played.out;
+    const auto listed = testing::run_command(vibscore_command({"list", "clefs"}));
+    EXPECT_NE(listed.out.find("lra-phone\tsine, tempo 0.2 s, 6 strings"), std::string::npos);
+    const auto file = daemon.store().parent_path() / "mine.score.xml";
+    std::ofstream(file) << kShortScore;
+    EXPECT_EQ(testing::run_command(vibscore_command({"compose", "mine", file.string()})).exit_code,
+              0);
+    const auto from_file =
+        testing::run_command(vibscore_command({"play", file.string(), "--wait"}));
+    EXPECT_NE(from_file.out.find("completed"), std::string::npos) << from_file.err;
+    const auto missing = testing::run_command(vibscore_command({"play", "nope"}));
+    EXPECT_EQ(missing.exit_code, 1);
+    EXPECT_EQ(missing.err, "vibscore: not found: no score \"nope\"\n");
+    const auto not_root = testing::run_command(
+        {"/usr/bin/setpriv", "--reuid=65534", "--regid=65534", "--clear-groups", "--",
+         "/usr/bin/env", "DBUS_SYSTEM_BUS_ADDRESS=" + daemon.bus_address(),
+         testing::required_env("VIBSCORE"), "delete", "score", "mine"});
+    EXPECT_EQ(not_root.exit_code, 1);
+    EXPECT_NE(not_root.err.find("vibscore: not permitted: Delete needs root"), std::string::npos)
+        << not_root.err;
+}
+
+TEST(ClientWithoutDaemon, SaysTheBusCannotBeReached) {
+    setenv("DBUS_SYSTEM_BUS_ADDRESS", "unix:path=/nonexistent/bus", 1);
+    const auto result = testing::run_command(vibscore_command({"list"}));
+    EXPECT_EQ(result.exit_code, 1);
+    EXPECT_NE(result.err.find("vibscore: cannot connect to the system bus"), std::string::npos)
+        << result.err;
+}
+
 class RateLimitedDaemon : public ::testing::Test {
   protected:
     DaemonFixture daemon{"requests-per-second = 5\nrequest-burst = 5"};
