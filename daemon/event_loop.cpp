@@ -33,6 +33,9 @@ std::uint64_t monotonic_now_us() {
 
 EventLoop::EventLoop() {
     check(sd_event_new(&event_), "sd_event_new");
+    // Pings the service manager only when it asked for a watchdog (WATCHDOG_USEC); otherwise an
+    // idle loop stays asleep.
+    check(sd_event_set_watchdog(event_, 1), "sd_event_set_watchdog");
 }
 
 EventLoop::~EventLoop() {

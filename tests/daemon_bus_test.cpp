@@ -3,6 +3,11 @@
 #include <gtest/gtest.h>
 
 #include <signal.h>
+#include <sys/socket.h>
+#include <sys/un.h>
+#include <unistd.h>
+
+#include <cstring>
 
 #include <fstream>
 #include <thread>
@@ -339,6 +344,39 @@ TEST_F(DaemonBus, SighupReloadsTheDriverAndKeepsServingOnABadFile) {
               std::string::npos);
     EXPECT_NE(daemon.daemon_log().find("separation-ms = \"lots\""), std::string::npos);
     EXPECT_EQ(daemon.call({"List", "s", "clef"}).exit_code, 0);
+}
+
+TEST_F(DaemonBus, TellsTheServiceManagerItIsReadyAndAlive) {
+    const auto socket_path = daemon.store().parent_path() / "notify";
+    const int fd = socket(AF_UNIX, SOCK_DGRAM | SOCK_CLOEXEC, 0);
+    ASSERT_GE(fd, 0);
+    sockaddr_un address{};
+    address.sun_family = AF_UNIX;
+    std::strncpy(address.sun_path, socket_path.c_str(), sizeof address.sun_path - 1);
+    ASSERT_EQ(bind(fd, reinterpret_cast<sockaddr*>(&address), sizeof address), 0);
+    const timeval timeout{2, 0};
+    setsockopt(fd, SOL_SOCKET, SO_RCVTIMEO, &timeout, sizeof timeout);
+    daemon.kill_daemon();
+    setenv("NOTIFY_SOCKET", socket_path.c_str(), 1);
+    setenv("WATCHDOG_USEC", "200000", 1);
+    daemon.start_daemon();
+    unsetenv("NOTIFY_SOCKET");
+    unsetenv("WATCHDOG_USEC");
+    std::string received;
+    char buffer[512];
+    // The first ping comes as the loop is made, READY=1 once serving, then more pings.
+    const auto seen_all = [&] {
+        const auto ready = received.find("READY=1");
+        const auto last_ping = received.rfind("WATCHDOG=1");
+        return ready != std::string::npos && last_ping != std::string::npos && last_ping > ready;
+    };
+    for (int i = 0; i < 20 && !seen_all(); ++i) {
+        const ssize_t n = recv(fd, buffer, sizeof buffer, 0);
+        if (n > 0)
+            received.append(buffer, static_cast<std::size_t>(n)).append("|");
+    }
+    close(fd);
+    EXPECT_TRUE(seen_all()) << received;
 }
 
 std::vector<std::string> vibscore_command(std::initializer_list<std::string> args) {
