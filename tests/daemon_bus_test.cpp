@@ -101,6 +101,32 @@ TEST_F(DaemonBus, PlaysAScoreWithSignalsInOrderAndTheActuatorEndsOff) {
     EXPECT_EQ(rows.back().amplitude, 0.0);
 }
 
+TEST_F(DaemonBus, BusctlMonitorSeesThePlaybackSignals) {
+    const auto log = daemon.store().parent_path() / "monitor.log";
+    testing::Process monitor(
+        {"/usr/bin/env", "DBUS_SYSTEM_BUS_ADDRESS=" + daemon.bus_address(), "/usr/bin/busctl",
+         "--system", "monitor", "--match=type='signal',interface='org.vibscore.Haptics1'"},
+        log);
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));  // let it subscribe
+    auto client = daemon.client();
+    const auto id = client->Play("touch-click", options());
+    ASSERT_TRUE(client->wait_finished(id));
+    std::this_thread::sleep_for(std::chrono::milliseconds(200));
+    monitor.signal(SIGTERM);
+    monitor.wait();
+    std::ifstream in(log);
+    const std::string text{std::istreambuf_iterator<char>(in), {}};
+    const auto started = text.find("Member=PlaybackStarted");
+    const auto position = text.find("Member=PlaybackPosition");
+    const auto finished = text.find("Member=PlaybackFinished");
+    ASSERT_NE(started, std::string::npos) << text;
+    ASSERT_NE(position, std::string::npos) << text;
+    ASSERT_NE(finished, std::string::npos) << text;
+    EXPECT_LT(started, position);
+    EXPECT_LT(position, finished);
+    EXPECT_NE(text.find("STRING \"completed\""), std::string::npos) << text;
+}
+
 TEST_F(DaemonBus, BusctlStopSilencesARepeatingPlaybackAtOnce) {
     auto client = daemon.client();
     const auto id =
