@@ -13,22 +13,10 @@
 namespace vibscore::daemon {
 namespace {
 
+using testing::file_names;
 using ::testing::HasSubstr;
+using testing::read_file;
 using testing::TempDir;
-
-std::string read_file(const std::filesystem::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-std::vector<std::string> file_names(const std::filesystem::path& directory) {
-    std::vector<std::string> names;
-    for (const auto& entry : std::filesystem::directory_iterator(directory)) {
-        names.push_back(entry.path().filename().string());
-    }
-    std::sort(names.begin(), names.end());
-    return names;
-}
 
 TEST(AtomicFile, CreatesAndReplacesTheContent) {
     TempDir dir;

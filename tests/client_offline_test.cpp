@@ -23,11 +23,6 @@ std::string shipped(const std::string& name) {
     return required_env("VIBSCORE_CLEFS") + "/" + name;
 }
 
-std::string slurp(const std::filesystem::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), {}};
-}
-
 // Thesis Fig. 2.3's first measure on disk.
 std::filesystem::path write_figure_2_3(const TempDir& dir) {
     dir.write("c.xml", testing::sine_clef(1.0, {100, 150, 200}, {1, 2}));
@@ -117,7 +112,7 @@ TEST(ClientOffline, RenderCsvHasHeaderAndOneRowPerSampleOfTheSignal) {
         {vibscore(), "render", score.string(), "--rate", "1000", "--out", csv.string()});
     ASSERT_EQ(result.exit_code, 0) << result.err;
     EXPECT_NE(result.out.find("4000 samples at 1000 Hz"), std::string::npos) << result.out;
-    std::istringstream lines(slurp(csv));
+    std::istringstream lines(testing::read_file(csv));
     std::string line;
     std::getline(lines, line);
     EXPECT_EQ(line, "t,y");
@@ -144,7 +139,7 @@ TEST(ClientOffline, RenderWavIsMonoFloatAtTheRateWithEverySample) {
     const auto result = run_command(
         {vibscore(), "render", score.string(), "--rate", "8000", "--out", wav.string()});
     ASSERT_EQ(result.exit_code, 0) << result.err;
-    const std::string bytes = slurp(wav);
+    const std::string bytes = testing::read_file(wav);
     const auto u16 = [&](std::size_t at) {
         return static_cast<unsigned>(static_cast<unsigned char>(bytes[at]) |
                                      static_cast<unsigned char>(bytes[at + 1]) << 8);

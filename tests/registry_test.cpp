@@ -27,6 +27,8 @@ using ::testing::ElementsAre;
 using ::testing::HasSubstr;
 using ::testing::Not;
 using Code = RegistryError::Code;
+using testing::file_names;
+using testing::read_file;
 using testing::sine_clef;
 using testing::TempDir;
 
@@ -39,20 +41,6 @@ std::string score_using(const std::string& href, int string = 1, const std::stri
            "</Title>\n  <Clef id=\"c\" href=\"" + href +
            "\"/>\n  <Bar clef=\"c\">\n    <Note length=\"quarter\" number=\"1\" string=\"" +
            std::to_string(string) + "\"/>\n  </Bar>\n</VibScore>\n";
-}
-
-std::string read_file(const std::filesystem::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-std::vector<std::string> file_names(const std::filesystem::path& directory) {
-    std::vector<std::string> names;
-    for (const auto& entry : std::filesystem::directory_iterator(directory)) {
-        names.push_back(entry.path().filename().string());
-    }
-    std::sort(names.begin(), names.end());
-    return names;
 }
 
 std::vector<std::string> names_of(const std::vector<RegistryEntry>& entries) {

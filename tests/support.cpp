@@ -1,5 +1,6 @@
 #include "tests/support.hpp"
 
+#include <algorithm>
 #include <fstream>
 #include <random>
 
@@ -24,6 +25,20 @@ std::filesystem::path TempDir::write(const std::string& name, const std::string&
     std::filesystem::create_directories(file.parent_path());
     std::ofstream(file, std::ios::binary) << text;
     return file;
+}
+
+std::string read_file(const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+std::vector<std::string> file_names(const std::filesystem::path& directory) {
+    std::vector<std::string> names;
+    for (const auto& entry : std::filesystem::directory_iterator(directory)) {
+        names.push_back(entry.path().filename().string());
+    }
+    std::sort(names.begin(), names.end());
+    return names;
 }
 
 ScoreBundle bundle_from(const std::string& score_xml,

@@ -25,6 +25,12 @@ class TempDir {
     std::filesystem::path path_;
 };
 
+// The whole content of a file ("" if it cannot be read).
+std::string read_file(const std::filesystem::path& path);
+
+// The names of the entries of a directory, sorted.
+std::vector<std::string> file_names(const std::filesystem::path& directory);
+
 // A score bound to in-memory clef documents, keyed by href.
 ScoreBundle bundle_from(const std::string& score_xml,
                         const std::map<std::string, std::string>& clefs_by_href);
