@@ -7,7 +7,6 @@
 #include "daemon/log.hpp"
 #include "daemon/render/cue_schedule.hpp"
 #include "score/document_error.hpp"
-#include "score/limits.hpp"
 
 namespace vibscore::daemon {
 
@@ -162,11 +161,6 @@ PlaybackRequest HapticsService::prepare(const std::string& score,
 
     ScoreBundle bundle;
     if (is_inline_document(score)) {
-        if (score.size() > limits::document_bytes) {
-            throw sdbus::Error(kLimit, "the document is " + std::to_string(score.size()) +
-                                           " bytes; the limit is " +
-                                           std::to_string(limits::document_bytes));
-        }
         bundle = registry_.inline_score(score);
         request.label = "<inline>";
     } else {

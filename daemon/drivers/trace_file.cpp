@@ -23,24 +23,8 @@ std::runtime_error failure(const std::filesystem::path& path, const char* what, 
 
 }  // namespace
 
-TraceFile::Fd& TraceFile::Fd::operator=(Fd&& other) noexcept {
-    if (this != &other) {
-        if (fd_ >= 0) {
-            ::close(fd_);
-        }
-        fd_ = std::exchange(other.fd_, -1);
-    }
-    return *this;
-}
-
-TraceFile::Fd::~Fd() {
-    if (fd_ >= 0) {
-        ::close(fd_);
-    }
-}
-
 TraceFile::TraceFile(std::filesystem::path path) : path_(std::move(path)) {
-    fd_ = Fd(::open(path_.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644));
+    fd_ = UniqueFd(::open(path_.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644));
     if (fd_.get() < 0) {
         throw failure(path_, "cannot open", errno);
     }

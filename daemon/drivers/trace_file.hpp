@@ -1,5 +1,7 @@
 #pragma once
 
+#include "daemon/unique_fd.hpp"
+
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
@@ -27,23 +29,10 @@ class TraceFile {
     const std::filesystem::path& path() const { return path_; }
 
   private:
-    // Owns the descriptor so every exit path, including a failed header write, closes it.
-    class Fd {
-      public:
-        explicit Fd(int fd = -1) noexcept : fd_(fd) {}
-        Fd(Fd&& other) noexcept : fd_(std::exchange(other.fd_, -1)) {}
-        Fd& operator=(Fd&& other) noexcept;
-        ~Fd();
-        int get() const noexcept { return fd_; }
-
-      private:
-        int fd_;
-    };
-
     void write_line(const char* data, std::size_t size);
 
     std::filesystem::path path_;
-    Fd fd_;
+    UniqueFd fd_;  // closed on every exit path, a failed header write included
 };
 
 }  // namespace vibscore::drivers

@@ -1,5 +1,7 @@
 #include "daemon/registry/atomic_file.hpp"
 
+#include "daemon/unique_fd.hpp"
+
 #include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -18,33 +20,6 @@ namespace {
     throw std::system_error(error, std::generic_category(),
                             path.string() + ": " + std::string(what));
 }
-
-// Owns one file descriptor and closes it exactly once.
-class FileDescriptor {
-  public:
-    explicit FileDescriptor(int fd) : fd_(fd) {}
-    ~FileDescriptor() {
-        if (fd_ >= 0) {
-            ::close(fd_);
-        }
-    }
-    FileDescriptor(const FileDescriptor&) = delete;
-    FileDescriptor& operator=(const FileDescriptor&) = delete;
-
-    int get() const { return fd_; }
-
-    // Closes now and reports the error, which the destructor cannot.
-    void close(const std::filesystem::path& path) {
-        const int fd = std::exchange(fd_, -1);
-        // Linux releases the descriptor even when close fails, so it is never retried.
-        if (::close(fd) != 0 && errno != EINTR) {
-            throw_errno(errno, path, "close failed");
-        }
-    }
-
-  private:
-    int fd_;
-};
 
 // A temporary file that is unlinked unless it was renamed into place.
 class TemporaryFile {
@@ -93,7 +68,7 @@ std::filesystem::path directory_of(const std::filesystem::path& path) {
 }  // namespace
 
 void sync_directory(const std::filesystem::path& directory) {
-    const FileDescriptor fd(::open(directory.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC));
+    const UniqueFd fd(::open(directory.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC));
     if (fd.get() < 0) {
         throw_errno(errno, directory, "cannot open directory");
     }
@@ -108,7 +83,7 @@ void write_file_atomically(const std::filesystem::path& path, std::string_view c
     std::string name_template =
         (directory / ("." + path.filename().string() + std::string(temporary_marker) + "XXXXXX"))
             .string();
-    FileDescriptor fd(::mkostemp(name_template.data(), O_CLOEXEC));
+    UniqueFd fd(::mkostemp(name_template.data(), O_CLOEXEC));
     if (fd.get() < 0) {
         throw_errno(errno, path,
                     "cannot create a temporary file in " + directory.string() + " to write it");
@@ -123,7 +98,9 @@ void write_file_atomically(const std::filesystem::path& path, std::string_view c
     // The data must be on disk before the rename is, or a crash could leave the new name
     // pointing at an empty or partial file.
     sync_fd(fd.get(), temporary.path());
-    fd.close(temporary.path());
+    if (const int error = fd.close(); error != 0) {
+        throw_errno(error, temporary.path(), "close failed");
+    }
 
     if (::rename(temporary.path().c_str(), path.c_str()) != 0) {
         throw_errno(errno, path, "cannot rename " + temporary.path().string() + " over it");
