@@ -12,6 +12,10 @@ std::vector<std::string> Capabilities::names() const {
         names.emplace_back("waveform-playback");
     if (effect_memory)
         names.emplace_back("effect-memory");
+    if (envelopes)
+        names.emplace_back("envelopes");
+    if (gain_control)
+        names.emplace_back("gain-control");
     if (max_on_time_s > 0.0)
         names.emplace_back("max-on-time");
     return names;

@@ -12,7 +12,9 @@ struct Capabilities {
     bool amplitude_control = true;   // strength can vary, not only on/off
     bool frequency_control = false;  // the vibration frequency can be chosen per note
     bool waveform_playback = false;  // arbitrary sample streams
-    bool effect_memory = false;      // effects can be uploaded ahead of their onset
+    bool effect_memory = false;      // effects can be uploaded ahead of their onset (prepare)
+    bool envelopes = false;          // a linear ramp can be handed over whole (Drive::ramp_s)
+    bool gain_control = false;       // the device scales every drive itself (set_gain)
     double max_on_time_s = 0.0;      // longest continuous drive allowed; 0 = no limit
 
     // The names the D-Bus Capabilities property lists: "amplitude-control", ...
@@ -23,6 +25,10 @@ struct Capabilities {
 struct Drive {
     double amplitude = 0.0;     // 0..1 of the actuator's full drive; 0 is off
     double frequency_hz = 0.0;  // 0: the actuator's own (an ERM's, or an LRA's resonance)
+    // Only for backends with envelopes: the strength moves linearly from `amplitude` to
+    // `ramp_to` over `ramp_s` seconds and then holds there. ramp_s = 0: no ramp.
+    double ramp_to = 0.0;
+    double ramp_s = 0.0;
     bool operator==(const Drive&) const = default;
 };
 
@@ -46,6 +52,14 @@ class Actuator {
 
     // Stops vibrating at once. Never throws: it is called on every error and shutdown path.
     virtual void off() noexcept = 0;
+
+    // Backends with effect memory load the drive that comes next, ahead of its onset, so that
+    // apply(next) then costs one write. Called after each apply; may be ignored.
+    virtual void prepare(const Drive& /*next*/) {}
+
+    // Backends with gain control scale every drive by `gain` (0..1, the master intensity) in
+    // the device; the player then leaves the master intensity out of the drives it sends.
+    virtual void set_gain(double /*gain*/) {}
 };
 
 }  // namespace vibscore::drivers

@@ -3,11 +3,11 @@
 #include <time.h>
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <stdexcept>
 #include <utility>
 
+#include "daemon/drivers/driver_settings.hpp"
 #include "daemon/log.hpp"
 
 namespace vibscore::drivers {
@@ -16,22 +16,6 @@ namespace {
 
 std::string meter_label(ActuatorKind kind) {
     return kind == ActuatorKind::erm ? "sim erm" : "sim lra";
-}
-
-std::invalid_argument bad_value(const std::string& key, const std::string& value,
-                                std::string_view expected) {
-    return std::invalid_argument("sim actuator setting " + key + " = \"" + value + "\": expected " +
-                                 std::string(expected));
-}
-
-double positive_number(const std::string& key, const std::string& value) {
-    double number = 0.0;
-    const char* const end = value.data() + value.size();
-    const auto [ptr, error] = std::from_chars(value.data(), end, number);
-    if (error != std::errc{} || ptr != end || !std::isfinite(number) || number <= 0.0) {
-        throw bad_value(key, value, "a positive number");
-    }
-    return number;
 }
 
 }  // namespace
@@ -110,44 +94,21 @@ void SimActuator::off() noexcept {
 }
 
 std::unique_ptr<Actuator> make_sim_actuator(const std::map<std::string, std::string>& settings) {
+    DriverSettings read("sim", settings);
     SimSettings sim;
-    for (const auto& [key, value] : settings) {
-        if (key == "model") {
-            if (value == "erm") {
-                sim.model.kind = ActuatorKind::erm;
-            } else if (value == "lra") {
-                sim.model.kind = ActuatorKind::lra;
-            } else {
-                throw bad_value(key, value, "erm or lra");
-            }
-        } else if (key == "resonance-hz") {
-            sim.model.resonance_hz = positive_number(key, value);
-        } else if (key == "q") {
-            sim.model.q = positive_number(key, value);
-        } else if (key == "spin-up-ms") {
-            sim.model.spin_up_s = positive_number(key, value) / 1000.0;
-        } else if (key == "spin-down-ms") {
-            sim.model.spin_down_s = positive_number(key, value) / 1000.0;
-        } else if (key == "trace") {
-            if (value.empty()) {
-                throw bad_value(key, value, "a file path");
-            }
-            sim.trace = value;
-        } else if (key == "meter") {
-            if (value == "true") {
-                sim.meter = true;
-            } else if (value == "false") {
-                sim.meter = false;
-            } else {
-                throw bad_value(key, value, "true or false");
-            }
-        } else {
-            // A misspelt key would otherwise be silently ignored and the default used.
-            throw std::invalid_argument("unknown sim actuator setting " + key + " = \"" + value +
-                                        "\" (known: model, resonance-hz, q, spin-up-ms, "
-                                        "spin-down-ms, trace, meter)");
-        }
+    sim.model.kind = read.choice("model", "lra", {"erm", "lra"}) == "erm" ? ActuatorKind::erm
+                                                                          : ActuatorKind::lra;
+    sim.model.resonance_hz = read.number("resonance-hz", sim.model.resonance_hz, 1.0, 1000.0);
+    sim.model.q = read.number("q", sim.model.q, 0.1, 1000.0);
+    sim.model.spin_up_s =
+        read.number("spin-up-ms", sim.model.spin_up_s * 1000.0, 0.1, 10000.0) / 1000.0;
+    sim.model.spin_down_s =
+        read.number("spin-down-ms", sim.model.spin_down_s * 1000.0, 0.1, 10000.0) / 1000.0;
+    if (auto trace = read.text("trace")) {
+        sim.trace = *trace;
     }
+    sim.meter = read.flag("meter", sim.meter);
+    read.reject_unknown();
     return std::make_unique<SimActuator>(std::move(sim));
 }
 

@@ -1,0 +1,46 @@
+#pragma once
+
+#include <initializer_list>
+#include <map>
+#include <optional>
+#include <set>
+#include <stdexcept>
+#include <string>
+
+namespace vibscore::drivers {
+
+// Reads one driver's "key = value" settings (its section of vibscored.conf) with typed
+// accessors. Every error is std::invalid_argument naming the driver, key and value, e.g.
+//   evdev setting carrier-hz = "fast": expected a number from 10 to 20000
+// Drivers call reject_unknown() last, so a misspelt key is an error, not a silent default.
+class DriverSettings {
+  public:
+    DriverSettings(std::string driver, std::map<std::string, std::string> settings);
+
+    const std::string& driver() const { return driver_; }
+    bool has(const std::string& key) const;
+
+    std::optional<std::string> text(const std::string& key);
+    std::string text(const std::string& key, const std::string& fallback);
+    double number(const std::string& key, double fallback, double min, double max);
+    std::optional<double> number(const std::string& key, double min, double max);
+    long integer(const std::string& key, long fallback, long min, long max);
+    std::optional<long> integer(const std::string& key, long min, long max);
+    bool flag(const std::string& key, bool fallback);
+    std::string choice(const std::string& key, const std::string& fallback,
+                       std::initializer_list<const char*> allowed);
+
+    // Throws for any setting none of the accessors above asked for, listing the known keys.
+    void reject_unknown() const;
+
+  private:
+    const std::string* lookup(const std::string& key);
+    std::invalid_argument bad(const std::string& key, const std::string& value,
+                              const std::string& expected) const;
+
+    std::string driver_;
+    std::map<std::string, std::string> settings_;
+    std::set<std::string> asked_;
+};
+
+}  // namespace vibscore::drivers
