@@ -186,17 +186,21 @@ struct SegmentFigures {
 
 // The thread keeps every edge on the grid anchor + k·T (+ high time for falls): lateness is the
 // distance past the latest grid point. The anchor is the first edge, written at once when the
-// first waveform was taken. A wake-up later than a whole period shows as its remainder; those
-// periods are counted as long periods.
+// first waveform was taken (within a microsecond of its period start). A wake-up later than 0.9
+// of a period shows wrapped; the periods it stretches count as long periods.
 SegmentFigures analyse(const std::vector<Edge>& edges, const Segment& segment,
                        std::int64_t anchor_ns, std::int64_t period_ns) {
     SegmentFigures figures;
     const std::int64_t high_ns = std::llround(segment.duty * static_cast<double>(period_ns));
     const std::int64_t from = segment.start_ns + kSettlePeriods * period_ns;
     std::vector<double> errors, lateness;
+    // Lateness within [-T/10, 9T/10): the anchor itself is a little late, so an edge can show
+    // as slightly early.
     const auto late_past = [&](std::int64_t time, std::int64_t offset) {
-        const std::int64_t since = (time - anchor_ns - offset) % period_ns;
-        return static_cast<double>(since < 0 ? since + period_ns : since) / 1e3;
+        std::int64_t since = (time - anchor_ns - offset) % period_ns;
+        since += since < 0 ? period_ns : 0;
+        since -= since >= period_ns - period_ns / 10 ? period_ns : 0;
+        return static_cast<double>(since) / 1e3;
     };
     std::int64_t rise = -1, fall = -1;
     for (const Edge& edge : edges) {
