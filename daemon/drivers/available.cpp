@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 
+#include "daemon/drivers/configured_actuator.hpp"
 #include "daemon/drivers/sim_actuator.hpp"
 
 namespace vibscore::drivers {
@@ -12,10 +13,24 @@ std::vector<DriverInfo> available_drivers() {
     };
 }
 
-std::unique_ptr<Actuator> make_actuator(const std::string& name,
-                                        const std::map<std::string, std::string>& settings) {
+namespace {
+
+std::unique_ptr<Actuator> make_backend(const std::string& name,
+                                       const std::map<std::string, std::string>& settings) {
     if (name == "sim") {
         return make_sim_actuator(settings);
+    }
+    return nullptr;
+}
+
+}  // namespace
+
+std::unique_ptr<Actuator> make_actuator(const std::string& name,
+                                        const std::map<std::string, std::string>& settings) {
+    auto own_settings = settings;
+    const CommonSettings common = take_common_settings(name, own_settings);
+    if (auto backend = make_backend(name, own_settings)) {
+        return std::make_unique<ConfiguredActuator>(std::move(backend), common);
     }
     std::string known;
     for (const auto& driver : available_drivers()) {
