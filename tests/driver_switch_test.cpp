@@ -73,7 +73,7 @@ TEST_F(DriverSwitch, OnlyPrivilegedCallersSwitchAndOnlyToKnownDrivers) {
     const auto denied = daemon.call({"SwitchDriver", "s", "trace"}, kNobody);
     EXPECT_THAT(denied.err, HasSubstr("Switching the driver needs root or membership of group"));
     const auto unknown = daemon.call({"SwitchDriver", "s", "piezo"});
-    EXPECT_THAT(unknown.err, HasSubstr("no driver \"piezo\" (available: sim, trace)"));
+    EXPECT_THAT(unknown.err, HasSubstr("no driver \"piezo\" (available: sim, evdev, trace)"));
     EXPECT_EQ(property("Driver"), "s \"sim\"\n");
 }
 
