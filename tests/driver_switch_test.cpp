@@ -99,5 +99,19 @@ TEST_F(DriverSwitch, ADriverThatFailsToOpenLeavesThePreviousOneRunning) {
     EXPECT_GT(daemon.trace_rows().size(), rows_before);  // the sim, reopened, still plays
 }
 
+TEST_F(DriverSwitch, TheClientListsAndSwitchesDrivers) {
+    const auto vibscore = testing::required_env("VIBSCORE");
+    const auto listed = testing::run_command({vibscore, "drivers"});
+    ASSERT_EQ(listed.exit_code, 0) << listed.err;
+    EXPECT_THAT(listed.out, HasSubstr("* sim\t"));
+    EXPECT_THAT(listed.out, HasSubstr("  trace\texample driver module"));
+    const auto switched = testing::run_command({vibscore, "driver", "trace"});
+    EXPECT_EQ(switched.exit_code, 0) << switched.err;
+    EXPECT_EQ(switched.out, "driver trace: amplitude-control frequency-control\n");
+    const auto unknown = testing::run_command({vibscore, "driver", "piezo"});
+    EXPECT_EQ(unknown.exit_code, 1);
+    EXPECT_EQ(unknown.err, "vibscore: not found: no driver \"piezo\" (available: sim, trace)\n");
+}
+
 }  // namespace
 }  // namespace vibscore
