@@ -110,7 +110,8 @@ TEST_F(DriverSwitch, TheClientListsAndSwitchesDrivers) {
     EXPECT_EQ(switched.out, "driver trace: amplitude-control frequency-control\n");
     const auto unknown = testing::run_command({vibscore, "driver", "piezo"});
     EXPECT_EQ(unknown.exit_code, 1);
-    EXPECT_EQ(unknown.err, "vibscore: not found: no driver \"piezo\" (available: sim, trace)\n");
+    EXPECT_EQ(unknown.err,
+              "vibscore: not found: no driver \"piezo\" (available: sim, evdev, trace)\n");
 }
 
 }  // namespace
