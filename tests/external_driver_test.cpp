@@ -102,7 +102,7 @@ TEST(ExternalDriver, ModulesThatAreNotDriversAreNamedAndLeftOut) {
     EXPECT_EQ(found[0].path, dir.path() / "copy.so");
     EXPECT_THAT([&] { make_actuator("nosuch", {}, dir.path()); },
                 ::testing::ThrowsMessage<std::invalid_argument>(
-                    HasSubstr("unknown driver \"nosuch\" (available: sim, trace)")));
+                    HasSubstr("unknown driver \"nosuch\" (available: sim, evdev, trace)")));
 }
 
 TEST(ExternalDriver, ALibraryWithoutTheEntryPointIsRefused) {

@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "daemon/drivers/configured_actuator.hpp"
+#include "daemon/drivers/evdev_actuator.hpp"
 #include "daemon/drivers/external_driver.hpp"
 #include "daemon/drivers/sim_actuator.hpp"
 #include "daemon/log.hpp"
@@ -15,6 +16,7 @@ namespace {
 std::vector<DriverInfo> built_in_drivers() {
     return {
         {"sim", "simulated ERM or LRA: models the response, traces commands, shows a meter"},
+        {"evdev", "Linux force feedback (a vibra, rumble motors): periodic or rumble effects"},
     };
 }
 
@@ -46,6 +48,9 @@ std::unique_ptr<Actuator> make_backend(const std::string& name,
                                        const std::map<std::string, std::string>& settings) {
     if (name == "sim") {
         return make_sim_actuator(settings);
+    }
+    if (name == "evdev") {
+        return make_evdev_actuator(settings);
     }
     return nullptr;
 }
