@@ -2,6 +2,7 @@
 
 #include <pthread.h>
 #include <sched.h>
+#include <sys/prctl.h>
 #include <time.h>
 
 #include <atomic>
@@ -136,6 +137,9 @@ void PwmThread::fail(std::unique_lock<std::mutex>& lock, const std::string& mess
 }
 
 void PwmThread::run() {
+    // Without SCHED_FIFO the kernel may defer each wake-up by the timer slack (50 µs by
+    // default) to batch it with others: too much for a 1 ms carrier. Best effort.
+    ::prctl(PR_SET_TIMERSLACK, 1UL, 0UL, 0UL, 0UL);
     std::unique_lock lock(mutex_);
     PwmWaveform playing;  // steady low
     std::size_t next_edge = 0;
