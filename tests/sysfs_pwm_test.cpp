@@ -21,6 +21,26 @@ using ::testing::IsEmpty;
 using vibscore::testing::FakeSysfs;
 using vibscore::testing::TempDir;
 
+TEST(KernelSysfsAttributes, WritesReplaceReadsTrimAndErrorsNameThePath) {
+    TempDir tree;
+    const auto attribute = tree.write("period", "1000000\n");
+    const auto sysfs = make_kernel_sysfs_attributes();
+    sysfs->write(attribute, "50");
+    EXPECT_EQ(vibscore::testing::read_file(attribute), "50");
+    EXPECT_EQ(sysfs->read(tree.write("trigger", "none [transient] timer\n")),
+              "none [transient] timer");
+    EXPECT_TRUE(sysfs->exists(attribute));
+    EXPECT_FALSE(sysfs->exists(tree.path() / "enable"));
+    EXPECT_THAT([&] { sysfs->write(tree.path() / "enable", "1"); },
+                ::testing::ThrowsMessage<DeviceError>(
+                    HasSubstr((tree.path() / "enable").string() +
+                              ": cannot write \"1\": No such file or directory")));
+    EXPECT_FALSE(sysfs->exists(tree.path() / "enable")) << "a missing attribute is not created";
+    EXPECT_THAT([&] { sysfs->read(tree.path() / "duty_cycle"); },
+                ::testing::ThrowsMessage<DeviceError>(
+                    HasSubstr((tree.path() / "duty_cycle").string() + ": cannot read")));
+}
+
 class SysfsPwmTest : public ::testing::Test {
   protected:
     SysfsPwmTest() { sysfs->add_pwm_chip(0); }

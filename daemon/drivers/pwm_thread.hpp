@@ -60,7 +60,6 @@ class PwmThread {
     std::optional<std::string> take_error();
 
     bool realtime() const { return realtime_; }
-    const GpioLines& lines() const { return *lines_; }
 
   private:
     void run();

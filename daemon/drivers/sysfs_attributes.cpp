@@ -47,13 +47,19 @@ class KernelSysfsAttributes final : public SysfsAttributes {
         if (fd.get() < 0) {
             throw failure(attribute, "cannot read", errno);
         }
-        // An attribute is at most a page.
+        // Most attributes fit a page, but an LED's trigger list can be longer: read to the end.
+        std::string text;
         char buffer[4096];
-        const ssize_t length = ::read(fd.get(), buffer, sizeof buffer);
-        if (length < 0) {
-            throw failure(attribute, "cannot read", errno);
+        for (;;) {
+            const ssize_t length = ::read(fd.get(), buffer, sizeof buffer);
+            if (length < 0) {
+                throw failure(attribute, "cannot read", errno);
+            }
+            if (length == 0) {
+                break;
+            }
+            text.append(buffer, static_cast<std::size_t>(length));
         }
-        std::string text(buffer, static_cast<std::size_t>(length));
         while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) {
             text.pop_back();
         }
