@@ -75,6 +75,14 @@ int main(int argc, char** argv) {
     delete_verb->add_option("KIND", kind, "score or clef")->required();
     delete_verb->add_option("NAME", name, "registry name")->required();
 
+    app.add_subcommand("drivers", "List the actuator backends vibscored offers (* in use).");
+    std::string driver_name;
+    auto* driver_verb =
+        app.add_subcommand("driver",
+                           "Show the actuator backend in use, or switch to another (root or group "
+                           "vibscore; its settings come from vibscored.conf).");
+    driver_verb->add_option("NAME", driver_name, "backend to switch to (see 'vibscore drivers')");
+
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {
@@ -111,6 +119,12 @@ int main(int argc, char** argv) {
     }
     if (delete_verb->parsed()) {
         return remove(kind, name, std::cout, std::cerr);
+    }
+    if (app.got_subcommand("drivers")) {
+        return list_drivers(std::cout, std::cerr);
+    }
+    if (driver_verb->parsed()) {
+        return driver(driver_name, std::cout, std::cerr);
     }
     return describe_document(info_file, std::cout, std::cerr);
 }

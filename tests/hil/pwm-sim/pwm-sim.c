@@ -121,7 +121,8 @@ static int state_show(struct seq_file *out, void *unused)
 		const struct pwm_sim_channel *channel = &sim->channels[i];
 
 		seq_printf(out,
-			   "pwm%u requested=%d enabled=%d period=%llu duty_cycle=%llu polarity=%s applies=%llu\n",
+			   "pwm%u requested=%d enabled=%d period=%llu duty_cycle=%llu polarity=%s "
+			   "applies=%llu\n",
 			   i, channel->requested, channel->state.enabled, channel->state.period,
 			   channel->state.duty_cycle, polarity_name(channel->state.polarity),
 			   channel->applies);
