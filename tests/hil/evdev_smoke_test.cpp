@@ -5,10 +5,13 @@
 #include <fcntl.h>
 #include <libevdev/libevdev.h>
 #include <sys/ioctl.h>
+#include <sys/stat.h>
+#include <sys/sysmacros.h>
 #include <unistd.h>
 
 #include <cerrno>
 #include <cstring>
+#include <fstream>
 #include <memory>
 #include <sstream>
 
@@ -173,9 +176,19 @@ TEST(EvdevSmoke, ARemovedDeviceFailsItsClientsAndComesBackWithANewNode) {
         EXPECT_FALSE(libevdev_has_event_type(device.get(), EV_KEY));
         EXPECT_TRUE(libevdev_has_event_code(device.get(), EV_FF, FF_RUMBLE));
     }
+    struct stat node {};
+    ASSERT_EQ(::stat(vibrator.event_node().c_str(), &node), 0);
+    EXPECT_EQ(vibrator.udev_entry(), "/run/udev/data/c13:" + std::to_string(minor(node.st_rdev)));
+    std::ifstream entry(vibrator.udev_entry());
+    std::string line;
+    EXPECT_TRUE(std::getline(entry, line));
+    EXPECT_EQ(line, "E:FEEDBACKD_TYPE=vibra");
+
     const auto old_node = vibrator.event_node();
+    const auto old_entry = vibrator.udev_entry();
     vibrator.destroy();
     EXPECT_FALSE(std::filesystem::exists(old_node));
+    EXPECT_FALSE(std::filesystem::exists(old_entry));
     input_event play{};
     play.type = EV_FF;
     play.value = 1;

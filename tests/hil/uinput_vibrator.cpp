@@ -3,10 +3,13 @@
 #include <fcntl.h>
 #include <linux/uinput.h>
 #include <sys/ioctl.h>
+#include <sys/stat.h>
+#include <sys/sysmacros.h>
 #include <unistd.h>
 
 #include <cerrno>
 #include <cstring>
+#include <fstream>
 #include <stdexcept>
 
 #include "tests/hil/kernel_files.hpp"
@@ -119,6 +122,7 @@ UinputVibratorOptions UinputVibratorOptions::phone_vibrator() {
     options.id = {BUS_HOST, 0, 0, 0};
     options.ff_bits = {FF_RUMBLE, FF_PERIODIC, FF_SQUARE,   FF_TRIANGLE,
                        FF_SINE,   FF_SAW_UP,   FF_SAW_DOWN, FF_GAIN};
+    options.mark_as_vibra = true;
     return options;
 }
 
@@ -169,10 +173,28 @@ void UinputVibrator::create() {
         throw std::runtime_error(device.string() + " has no eventN: is the evdev module loaded?");
     }
     wait_for_path(event_node_);
+    if (options_.mark_as_vibra) {
+        write_udev_entry();
+    }
 
     uinput_ = std::move(fd);
     record({FfEvent::Kind::Created, std::chrono::steady_clock::now()});
     thread_ = std::make_unique<FdServiceThread>(uinput_.get(), [this] { service(); });
+}
+
+void UinputVibrator::write_udev_entry() {
+    struct stat node {};
+    if (::stat(event_node_.c_str(), &node) != 0) {
+        throw_errno("cannot stat", event_node_);
+    }
+    std::filesystem::create_directories(options_.udev_data);
+    udev_entry_ = options_.udev_data / ("c" + std::to_string(major(node.st_rdev)) + ":" +
+                                        std::to_string(minor(node.st_rdev)));
+    std::ofstream entry(udev_entry_);
+    entry << "E:FEEDBACKD_TYPE=vibra\n";
+    if (!entry.flush()) {
+        throw std::runtime_error("cannot write " + udev_entry_.string());
+    }
 }
 
 void UinputVibrator::destroy() {
@@ -180,6 +202,10 @@ void UinputVibrator::destroy() {
     thread_.reset();
     uinput_ioctl(uinput_.get(), UI_DEV_DESTROY, "UI_DEV_DESTROY", 0);
     uinput_.close();
+    if (!udev_entry_.empty()) {
+        std::filesystem::remove(udev_entry_);
+        udev_entry_.clear();
+    }
     std::lock_guard lock(mutex_);
     effects_.clear();
     playing_.clear();

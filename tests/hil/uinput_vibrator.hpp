@@ -44,9 +44,14 @@ struct UinputVibratorOptions {
     // FF_PERIODIC needs a waveform bit (FF_SINE...) too, or the kernel refuses periodic uploads.
     std::vector<int> ff_bits{FF_PERIODIC, FF_SINE, FF_SQUARE, FF_RUMBLE, FF_GAIN};
     unsigned effects_max = 16;
+    // Marks the device as feedbackd's udev rules mark a phone's vibra: a udev database entry
+    // <udev_data>/c<major>:<minor> with E:FEEDBACKD_TYPE=vibra (the guest has no udev; /run
+    // is a tmpfs there). Removed with the device.
+    bool mark_as_vibra = false;
+    std::filesystem::path udev_data = "/run/udev/data";
 
     // Looks like a phone's vibrator: Qualcomm's pm8xxx-vibrator on the host bus, only force
-    // feedback (no keys), with the waveforms ff-memless offers on top of rumble.
+    // feedback (no keys), with the waveforms ff-memless offers on top of rumble, marked as vibra.
     static UinputVibratorOptions phone_vibrator();
 };
 
@@ -65,6 +70,8 @@ class UinputVibrator {
     const std::filesystem::path& event_node() const { return event_node_; }
     // The input device's sysfs name (inputN), e.g. for /sys/class/input/inputN/name.
     const std::string& input_name() const { return input_name_; }
+    // The udev database entry written for mark_as_vibra (empty path when not marked).
+    const std::filesystem::path& udev_entry() const { return udev_entry_; }
     bool exists() const { return uinput_.get() >= 0; }
 
     // Removes the device, as if unplugged: clients' fds fail with ENODEV from then on.
@@ -87,6 +94,7 @@ class UinputVibrator {
 
   private:
     void create();
+    void write_udev_entry();
     void service();  // runs on the service thread
     void answer_upload(const input_event& request);
     void answer_erase(const input_event& request);
@@ -97,6 +105,7 @@ class UinputVibrator {
     std::unique_ptr<FdServiceThread> thread_;
     std::filesystem::path event_node_;
     std::string input_name_;
+    std::filesystem::path udev_entry_;
 
     mutable std::mutex mutex_;  // guards what follows
     mutable std::condition_variable changed_;
