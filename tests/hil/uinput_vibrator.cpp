@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <stdexcept>
@@ -131,8 +132,14 @@ UinputVibrator::UinputVibrator(UinputVibratorOptions options) : options_(std::mo
 }
 
 UinputVibrator::~UinputVibrator() {
-    if (exists()) {
+    if (!exists()) {
+        return;
+    }
+    try {
         destroy();
+    } catch (const std::exception& error) {
+        // Closing the uinput fd below removes the device anyway.
+        std::fprintf(stderr, "UinputVibrator: %s\n", error.what());
     }
 }
 
