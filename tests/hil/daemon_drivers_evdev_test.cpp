@@ -320,5 +320,23 @@ TEST(DaemonEvdev, AnUnpluggedDeviceEndsThePlaybackAndTheNextPlayFindsItAgain) {
     EXPECT_EQ(starts_in(since_recreated), 1u) << listing(timeline);
 }
 
+TEST(DaemonEvdev, ADeviceRepluggedWhileIdlePlaysTheNextScoreAtOnce) {
+    UinputVibrator vibra(UinputVibratorOptions::phone_vibrator());
+    DaemonFixture daemon(driver_config("evdev", ""));
+    auto client = daemon.client();
+    std::string reason;
+    auto id = client->Play("touch-tick", {});
+    ASSERT_TRUE(client->wait_finished(id, &reason)) << daemon.daemon_log();
+    EXPECT_EQ(reason, "completed");
+    // Unplugged and back while the daemon had nothing to play: the node it holds is dead, and
+    // nothing told it. The first Play after that plays all the same.
+    vibra.recreate();
+    vibra.clear_timeline();
+    id = client->Play("touch-tick", {});
+    ASSERT_TRUE(client->wait_finished(id, &reason)) << daemon.daemon_log();
+    EXPECT_EQ(reason, "completed") << daemon.daemon_log();
+    EXPECT_EQ(starts_in(vibra.timeline()), 1u) << listing(vibra.timeline());
+}
+
 }  // namespace
 }  // namespace vibscore::hil
