@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <optional>
 #include <sstream>
-#include <thread>
 
 #include "tests/daemon_fixture.hpp"
 #include "tests/hil/gpio_lines_sampler.hpp"
@@ -59,18 +58,12 @@ Driven driven(const std::vector<LinesState>& states, std::size_t index) {
 
 // Waits until the sampler has seen every line low (the PWM thread stops at its next edge).
 bool settles_low(const GpioLinesSampler& sampler) {
-    const auto deadline = Clock::now() + 1s;
-    for (;;) {
-        const auto states = sampler.changes();
-        const auto& last = states.back().values;
-        if (std::all_of(last.begin(), last.end(), [](int value) { return value == 0; })) {
-            return true;
-        }
-        if (Clock::now() >= deadline) {
-            return false;
-        }
-        std::this_thread::sleep_for(1ms);
-    }
+    return eventually(
+        [&] {
+            const auto last = sampler.changes().back().values;
+            return std::all_of(last.begin(), last.end(), [](int value) { return value == 0; });
+        },
+        1s);
 }
 
 // The duty cycle of each whole period of line `index` within [begin, end), rise to rise, that
@@ -103,12 +96,6 @@ std::vector<double> clean_period_duties(const std::vector<LinesState>& states, s
         rise = states[i].seen;
     }
     return duties;
-}
-
-double median(std::vector<double> values) {
-    std::nth_element(values.begin(), values.begin() + static_cast<long>(values.size() / 2),
-                     values.end());
-    return values.empty() ? 0.0 : values[values.size() / 2];
 }
 
 TEST(DaemonGpio, ErmDrivesItsLineAtTheNotesStrengthAsDutyCycleWithTheEnableLine) {

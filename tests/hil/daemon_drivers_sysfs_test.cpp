@@ -24,12 +24,6 @@ using Clock = std::chrono::steady_clock;
 
 const std::string kPhoneClef = "lra-phone.clef.xml";  // quarter = 0.2 s; strings 155..235 Hz
 
-double median(std::vector<double> values) {
-    std::nth_element(values.begin(), values.begin() + static_cast<long>(values.size() / 2),
-                     values.end());
-    return values.empty() ? 0.0 : values[values.size() / 2];
-}
-
 bool has(const std::vector<std::string>& names, const std::string& name) {
     return std::find(names.begin(), names.end(), name) != names.end();
 }

@@ -41,12 +41,6 @@ class GpioLinesSampler {
     // Samples thrown away because a line changed while they were read.
     std::uint64_t torn_samples() const { return torn_; }
 
-    // How long line `index` (into the lines given) was high within [begin, end), by the
-    // `seen` times of the changes.
-    std::chrono::nanoseconds high_time(std::size_t index,
-                                       std::chrono::steady_clock::time_point begin,
-                                       std::chrono::steady_clock::time_point end) const;
-
   private:
     void run(const std::vector<std::filesystem::path>& files, std::chrono::microseconds period);
     void fail(int error);

@@ -29,6 +29,9 @@ std::string driver_config(const std::string& driver, const std::string& section_
 double seconds_between(std::chrono::steady_clock::time_point from,
                        std::chrono::steady_clock::time_point to);
 
+// The median (the upper one of an even count); 0 for no values.
+double median(std::vector<double> values);
+
 // Polls `condition` every millisecond until it holds; false after `timeout`.
 bool eventually(const std::function<bool()>& condition,
                 std::chrono::milliseconds timeout = std::chrono::seconds(5));
