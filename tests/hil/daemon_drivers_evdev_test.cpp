@@ -87,7 +87,8 @@ using EffectCheck = std::function<void(const ff_effect&, const render::Cue&)>;
 // to the first.
 void expect_plays_follow_the_score(const std::vector<FfEvent>& timeline,
                                    const std::vector<ExpectedPlay>& expected,
-                                   const EffectCheck& check_effect) {
+                                   const EffectCheck& check_effect,
+                                   double tolerance_s = kOnsetTolerance_s) {
     const auto seen = seen_plays(timeline);
     ASSERT_EQ(seen.size(), expected.size()) << listing(timeline);
     ASSERT_FALSE(seen.empty());
@@ -105,7 +106,7 @@ void expect_plays_follow_the_score(const std::vector<FfEvent>& timeline,
             EXPECT_EQ(event.effect_id, playing) << "a stop of another effect than the playing one";
         }
         EXPECT_NEAR(seconds_between(seen[0].event.time, event.time),
-                    expected[i].at - expected[0].at, kOnsetTolerance_s)
+                    expected[i].at - expected[0].at, tolerance_s)
             << listing(timeline);
     }
 }
@@ -247,7 +248,9 @@ TEST(DaemonEvdev, ARumbleOnlyDeviceFollowsACrescendoInSmallSteps) {
     ASSERT_TRUE(client->wait_finished(id, &reason)) << daemon.daemon_log();
     EXPECT_EQ(reason, "completed") << daemon.daemon_log();
     const auto timeline = vibrator.timeline();
-    expect_plays_follow_the_score(timeline, expected, expect_strong_rumble);
+    // Hundreds of events: on a busy host one stall of the emulated guest can hold back a few
+    // steps by a little more than an onset's tolerance (the player then catches up).
+    expect_plays_follow_the_score(timeline, expected, expect_strong_rumble, 2 * kOnsetTolerance_s);
 
     // Along the 0.8 s crescendo the magnitude rises step by step, at least 100 times a second.
     const auto seen = seen_plays(timeline);

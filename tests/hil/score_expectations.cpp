@@ -18,18 +18,23 @@ std::string one_bar_score(const std::string& clef_href, const std::string& notes
 }
 
 std::vector<render::Cue> expected_drives(const std::string& score_xml,
-                                         const render::CueAdaptation& adaptation) {
+                                         const render::CueAdaptation& adaptation,
+                                         const std::map<std::string, std::string>& own_clefs) {
     const char* clefs = std::getenv("VIBSCORE_CLEFS");
     if (clefs == nullptr) {
         throw std::runtime_error("VIBSCORE_CLEFS is not set: run this through meson test");
     }
-    // Every href the score names, read from the shipped clefs as the daemon's registry would.
+    // Every href the score names: its own clef, or the shipped one the registry would find.
     std::map<std::string, std::string> clef_documents;
     const std::string attribute = "href=\"";
     for (auto at = score_xml.find(attribute); at != std::string::npos;
          at = score_xml.find(attribute, at + 1)) {
         const auto begin = at + attribute.size();
         const std::string name = score_xml.substr(begin, score_xml.find('"', begin) - begin);
+        if (const auto own = own_clefs.find(name); own != own_clefs.end()) {
+            clef_documents[name] = own->second;
+            continue;
+        }
         const auto text = testing::read_file(std::filesystem::path(clefs) / name);
         if (text.empty()) {
             throw std::runtime_error("no shipped clef " + name + " in " + clefs);

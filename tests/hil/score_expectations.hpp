@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <functional>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -16,10 +17,12 @@ namespace vibscore::hil {
 std::string one_bar_score(const std::string& clef_href, const std::string& notes_xml);
 
 // The drive cues the player sends for `score_xml` to a backend that can do what `adaptation`
-// says, in time order (seconds from the start of the playback): the shipped clefs, the
-// daemon's default note separation, cue_schedule, then adapt_cues.
+// says, in time order (seconds from the start of the playback): the clefs (`own_clefs` by
+// href, as composed into the daemon's store, or else the shipped ones), the daemon's default
+// note separation, cue_schedule, then adapt_cues.
 std::vector<render::Cue> expected_drives(const std::string& score_xml,
-                                         const render::CueAdaptation& adaptation);
+                                         const render::CueAdaptation& adaptation,
+                                         const std::map<std::string, std::string>& own_clefs = {});
 
 // The configuration lines a DaemonFixture gets to run `driver` with these lines in its
 // section; they come after the fixture's own "driver = sim", so they take its place.
