@@ -259,7 +259,7 @@ class Session {
             playback_ = daemon_->play(registry_document(editor_->model.score()), bar);
             editor_->scheme.set_playing(true);
             playing_at_ = Position{bar, 0};
-            message_ = "playing from bar " + std::to_string(bar + 1);
+            message_ = "playing bar " + std::to_string(bar + 1) + " on: any button stops";
         } catch (const DaemonError& error) {
             message_ = "cannot play: " + std::string(error.what());
         }
