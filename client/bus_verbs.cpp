@@ -203,4 +203,29 @@ int remove(const std::string& kind, const std::string& name, std::ostream& out, 
     });
 }
 
+int list_drivers(std::ostream& out, std::ostream& err) {
+    return with_daemon(err, [&](Haptics& haptics) {
+        const std::string current = haptics.Driver();
+        for (const auto& entry : haptics.ListDrivers()) {
+            out << (entry.get<0>() == current ? "* " : "  ") << entry.get<0>() << "\t"
+                << entry.get<1>() << "\n";
+        }
+        return exit_ok;
+    });
+}
+
+int driver(const std::string& name, std::ostream& out, std::ostream& err) {
+    return with_daemon(err, [&](Haptics& haptics) {
+        if (!name.empty()) {
+            haptics.SwitchDriver(name);
+        }
+        out << "driver " << haptics.Driver() << ":";
+        for (const auto& capability : haptics.Capabilities()) {
+            out << " " << capability;
+        }
+        out << "\n";
+        return exit_ok;
+    });
+}
+
 }  // namespace vibscore::client

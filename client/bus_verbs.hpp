@@ -23,5 +23,9 @@ int list(const std::string& kind, std::ostream& out, std::ostream& err);
 int get(const std::string& kind, const std::string& name, std::ostream& out, std::ostream& err);
 int compose(const std::string& name, const std::string& file, std::ostream& out, std::ostream& err);
 int remove(const std::string& kind, const std::string& name, std::ostream& out, std::ostream& err);
+// The actuator backends the daemon offers, with the one in use marked.
+int list_drivers(std::ostream& out, std::ostream& err);
+// Without a name: the driver in use and its capabilities. With one: switch to it.
+int driver(const std::string& name, std::ostream& out, std::ostream& err);
 
 }  // namespace vibscore::client

@@ -77,6 +77,14 @@ int main(int argc, char** argv) {
     delete_verb->add_option("KIND", kind, "score or clef")->required();
     delete_verb->add_option("NAME", name, "registry name")->required();
 
+    app.add_subcommand("drivers", "List the actuator backends vibscored offers (* in use).");
+    std::string driver_name;
+    auto* driver_verb =
+        app.add_subcommand("driver",
+                           "Show the actuator backend in use, or switch to another (root or group "
+                           "vibscore; its settings come from vibscored.conf).");
+    driver_verb->add_option("NAME", driver_name, "backend to switch to (see 'vibscore drivers')");
+
     vibscore::editor::ShowRequest show_request;
     auto* show_verb =
         app.add_subcommand("show", "Draw a registry score or a score file as staff notation.");
@@ -96,7 +104,7 @@ int main(int argc, char** argv) {
                           "a new score's clef: registry clef or clef file (default lra-phone)");
     edit_verb->add_option("--buttons", edit_options.buttons,
                           "evdev device whose keys are the six buttons (repeatable)");
-    edit_verb->add_option("--button-map", edit_options.button_map,
+    edit_verb->add_option("--keymap,--button-map", edit_options.button_map,
                           "keys for the buttons, e.g. up=KEY_UP,select=KEY_ENTER,back=long:KEY_"
                           "POWER (default: phone volume and power keys)");
     edit_verb->add_flag("--grab", edit_options.grab,
@@ -138,6 +146,12 @@ int main(int argc, char** argv) {
     }
     if (delete_verb->parsed()) {
         return remove(kind, name, std::cout, std::cerr);
+    }
+    if (app.got_subcommand("drivers")) {
+        return list_drivers(std::cout, std::cerr);
+    }
+    if (driver_verb->parsed()) {
+        return driver(driver_name, std::cout, std::cerr);
     }
     if (show_verb->parsed()) {
         return vibscore::editor::show_score(show_request, std::cout, std::cerr);

@@ -75,6 +75,8 @@ DaemonConfig parse_config(const std::string& text, const std::string& file, Daem
             config.store = value;
         } else if (key == "shipped") {
             config.shipped = value;
+        } else if (key == "drivers-dir") {
+            config.drivers_dir = value;
         } else if (key == "separation-ms") {
             config.separation_ms = positive_number(value, where, key, 1000.0);
         } else if (key == "requests-per-second") {
@@ -83,8 +85,8 @@ DaemonConfig parse_config(const std::string& text, const std::string& file, Daem
             config.request_burst = positive_number(value, where, key, 1e6);
         } else {
             throw ConfigError(where + ": unknown key \"" + key +
-                              "\" in [daemon] (expected driver, store, shipped, separation-ms, "
-                              "requests-per-second or request-burst)");
+                              "\" in [daemon] (expected driver, drivers-dir, store, shipped, "
+                              "separation-ms, requests-per-second or request-burst)");
         }
         if (value.empty()) {
             throw ConfigError(where + ": " + key + " has no value");

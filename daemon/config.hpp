@@ -1,5 +1,7 @@
 #pragma once
 
+#include "config.h"
+
 #include <filesystem>
 #include <map>
 #include <stdexcept>
@@ -8,13 +10,15 @@
 namespace vibscore::daemon {
 
 // vibscored.conf: INI sections of "key = value" lines; '#' and ';' start comments.
-//   [daemon]  driver, store, shipped, separation-ms, requests-per-second, request-burst
-//   [NAME]    the settings of driver NAME (e.g. [sim] model = erm), handed to that driver
+//   [daemon]  driver, drivers-dir, store, shipped, separation-ms, requests-per-second,
+//   request-burst [NAME]    the settings of driver NAME (e.g. [sim] model = erm), handed to that
+//   driver
 // docs/daemon.md documents every key.
 struct DaemonConfig {
     std::string driver = "sim";
     std::filesystem::path store = "/var/lib/vibscore";
     std::filesystem::path shipped;  // default: the installed clefs directory
+    std::filesystem::path drivers_dir = VIBSCORE_DRIVERDIR;  // driver modules (*.so)
     double separation_ms = 30.0;
     double requests_per_second = 50.0;
     double request_burst = 100.0;

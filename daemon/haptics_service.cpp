@@ -1,5 +1,7 @@
 #include "daemon/haptics_service.hpp"
 
+#include <algorithm>
+
 #include <cmath>
 
 #include "config.h"
@@ -86,13 +88,24 @@ bool is_inline_document(const std::string& score) {
 }  // namespace
 
 HapticsService::HapticsService(sdbus::IConnection& connection, Registry& registry, Player& player,
-                               CallerDirectory& callers, Settings settings)
+                               CallerDirectory& callers, DriverControl& driver_control,
+                               Settings settings)
     : AdaptorInterfaces(connection, kObjectPath),
       registry_(registry),
       player_(player),
       callers_(callers),
+      driver_control_(driver_control),
       settings_(std::move(settings)) {
     registerAdaptor();
+}
+
+void HapticsService::update_settings(Settings settings) {
+    const bool changed =
+        settings.driver != settings_.driver || settings.capabilities != settings_.capabilities;
+    settings_ = std::move(settings);
+    if (changed) {
+        getObject().emitPropertiesChangedSignal(INTERFACE_NAME, {"Driver", "Capabilities"});
+    }
 }
 
 HapticsService::~HapticsService() {
@@ -262,6 +275,40 @@ std::string HapticsService::Get(const std::string& kind, const std::string& name
     return guarded("Get", [&] {
         admit_caller();
         return registry_.get(document_class(kind), name);
+    });
+}
+
+std::vector<sdbus::Struct<std::string, std::string>> HapticsService::ListDrivers() {
+    return guarded("ListDrivers", [&] {
+        admit_caller();
+        std::vector<sdbus::Struct<std::string, std::string>> drivers;
+        for (const auto& driver : driver_control_.drivers()) {
+            drivers.emplace_back(driver.name, driver.description);
+        }
+        return drivers;
+    });
+}
+
+void HapticsService::SwitchDriver(const std::string& driver) {
+    guarded("SwitchDriver", [&] {
+        const Caller& caller = admit_caller();
+        require_privileged(caller, "Switching the driver");
+        const auto known = driver_control_.drivers();
+        if (std::none_of(known.begin(), known.end(),
+                         [&](const drivers::DriverInfo& info) { return info.name == driver; })) {
+            std::string names;
+            for (const auto& info : known) {
+                names += (names.empty() ? "" : ", ") + info.name;
+            }
+            throw sdbus::Error(kNotFound,
+                               "no driver \"" + driver + "\" (available: " + names + ")");
+        }
+        log::info("uid " + std::to_string(caller.uid) + " switches the driver to " + driver);
+        try {
+            driver_control_.switch_driver(driver);
+        } catch (const std::invalid_argument& error) {
+            throw sdbus::Error(kInvalid, error.what());
+        }
     });
 }
 

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "daemon/callers.hpp"
+#include "daemon/drivers/available.hpp"
 #include "daemon/player.hpp"
 #include "daemon/registry/registry.hpp"
 #include "haptics1-adaptor.h"
@@ -14,6 +15,15 @@ namespace vibscore::daemon {
 
 inline constexpr const char* kBusName = "org.vibscore.Haptics1";
 inline constexpr const char* kObjectPath = "/org/vibscore/Haptics1";
+
+// Switching actuator backends at run time; main() owns the backends and the configuration.
+class DriverControl {
+  public:
+    virtual ~DriverControl() = default;
+    virtual std::vector<drivers::DriverInfo> drivers() const = 0;
+    // Switches to `driver` with its configured settings; throws what opening it throws.
+    virtual void switch_driver(const std::string& driver) = 0;
+};
 
 // The org.vibscore.Haptics1 object: checks who calls and what they send, then hands the work to
 // the registry and the player. Every failure leaves here as a named D-Bus error; nothing a caller
@@ -28,10 +38,11 @@ class HapticsService final : public sdbus::AdaptorInterfaces<org::vibscore::Hapt
     };
 
     HapticsService(sdbus::IConnection& connection, Registry& registry, Player& player,
-                   CallerDirectory& callers, Settings settings);
+                   CallerDirectory& callers, DriverControl& driver_control, Settings settings);
     ~HapticsService() override;
 
-    void update_settings(Settings settings) { settings_ = std::move(settings); }
+    // New settings; a change of driver or capabilities is announced with PropertiesChanged.
+    void update_settings(Settings settings);
 
     // PlayerListener: playback events become signals.
     void playback_started(std::uint64_t id, const std::string& label) override;
@@ -46,6 +57,8 @@ class HapticsService final : public sdbus::AdaptorInterfaces<org::vibscore::Hapt
     void Delete(const std::string& kind, const std::string& name) override;
     std::vector<sdbus::Struct<std::string, std::string>> List(const std::string& kind) override;
     std::string Get(const std::string& kind, const std::string& name) override;
+    std::vector<sdbus::Struct<std::string, std::string>> ListDrivers() override;
+    void SwitchDriver(const std::string& driver) override;
     std::string Driver() override { return settings_.driver; }
     std::vector<std::string> Capabilities() override { return settings_.capabilities; }
     double Intensity() override { return player_.master_intensity(); }
@@ -62,6 +75,7 @@ class HapticsService final : public sdbus::AdaptorInterfaces<org::vibscore::Hapt
     Registry& registry_;
     Player& player_;
     CallerDirectory& callers_;
+    DriverControl& driver_control_;
     Settings settings_;
 };
 

@@ -8,9 +8,11 @@
 #include <iostream>
 
 #include "config.h"
+#include "daemon/actuator_host.hpp"
 #include "daemon/callers.hpp"
 #include "daemon/config.hpp"
 #include "daemon/drivers/available.hpp"
+#include "daemon/drivers/configured_actuator.hpp"
 #include "daemon/event_loop.hpp"
 #include "daemon/haptics_service.hpp"
 #include "daemon/log.hpp"
@@ -66,16 +68,55 @@ DaemonConfig read_config(const Options& options) {
     return config;
 }
 
-HapticsService::Settings service_settings(const DaemonConfig& config,
-                                          const drivers::Actuator& actuator) {
-    return {std::string(actuator.driver_name()), actuator.capabilities().names(),
-            config.separation_ms / 1000.0};
-}
+// Driver switches over D-Bus and on SIGHUP: both go through the host, which keeps the player
+// pointing at a live backend whatever fails.
+class DaemonDrivers final : public DriverControl {
+  public:
+    DaemonDrivers(const DaemonConfig& config, ActuatorHost& host, Player& player)
+        : config_(&config), host_(host), player_(player) {}
+
+    void attach(HapticsService& service) { service_ = &service; }
+    void use_config(const DaemonConfig& config) {
+        config_ = &config;
+        host_.set_drivers_dir(config.drivers_dir);
+    }
+
+    std::vector<drivers::DriverInfo> drivers() const override {
+        return drivers::available_drivers(config_->drivers_dir);
+    }
+
+    void switch_driver(const std::string& driver) override {
+        try {
+            host_.switch_to(player_, driver, config_->settings_of(driver));
+        } catch (...) {
+            announce();
+            throw;
+        }
+        announce();
+    }
+
+    HapticsService::Settings service_settings() {
+        return {host_.driver(), host_.actuator().capabilities().names(),
+                config_->separation_ms / 1000.0};
+    }
+
+    void announce() {
+        if (service_) {
+            service_->update_settings(service_settings());
+        }
+    }
+
+  private:
+    const DaemonConfig* config_;
+    ActuatorHost& host_;
+    Player& player_;
+    HapticsService* service_ = nullptr;
+};
 
 int serve(const Options& options) {
     DaemonConfig config = read_config(options);
     EventLoop loop;
-    auto actuator = drivers::make_actuator(config.driver, config.settings_of(config.driver));
+    ActuatorHost host(config.driver, config.settings_of(config.driver), config.drivers_dir);
     Registry registry(config.shipped, config.store);
     log::info("registry: " + std::to_string(registry.list(DocumentClass::score).size()) +
               " scores, " + std::to_string(registry.list(DocumentClass::clef).size()) +
@@ -83,11 +124,13 @@ int serve(const Options& options) {
               ")");
     CallerDirectory callers(config.requests_per_second, config.request_burst);
     ListenerRelay relay;
-    Player player(loop, *actuator, relay);
+    Player player(loop, host.actuator(), relay);
+    DaemonDrivers daemon_drivers(config, host, player);
 
     auto connection = sdbus::createSystemBusConnection();
-    HapticsService service(*connection, registry, player, callers,
-                           service_settings(config, *actuator));
+    HapticsService service(*connection, registry, player, callers, daemon_drivers,
+                           daemon_drivers.service_settings());
+    daemon_drivers.attach(service);
     relay.target = &service;
     auto vanish_watch = connection->addMatch(
         "type='signal',sender='org.freedesktop.DBus',interface='org.freedesktop.DBus',"
@@ -118,17 +161,19 @@ int serve(const Options& options) {
             if (fresh.store != config.store || fresh.shipped != config.shipped) {
                 log::warning("store and shipped directories change only on restart");
             }
-            if (fresh.driver != config.driver ||
-                fresh.settings_of(fresh.driver) != config.settings_of(config.driver)) {
-                auto replacement =
-                    drivers::make_actuator(fresh.driver, fresh.settings_of(fresh.driver));
-                player.replace_actuator(*replacement);
-                actuator = std::move(replacement);
-                log::info("driver is now " + fresh.driver);
-            }
+            // Check the new driver settings before stopping anything.
+            std::map<std::string, std::string> fresh_settings = fresh.settings_of(fresh.driver);
+            drivers::take_common_settings(fresh.driver, fresh_settings);
             callers.set_rate(fresh.requests_per_second, fresh.request_burst);
-            service.update_settings(service_settings(fresh, *actuator));
+            const bool driver_changed = fresh.driver != host.driver() ||
+                                        fresh.settings_of(fresh.driver) != host.settings() ||
+                                        fresh.drivers_dir != config.drivers_dir;
             config = std::move(fresh);
+            daemon_drivers.use_config(config);
+            if (driver_changed) {
+                daemon_drivers.switch_driver(config.driver);
+            }
+            daemon_drivers.announce();
             log::info("configuration reloaded");
         } catch (const std::exception& error) {
             log::error(std::string("reload failed, keeping the running configuration: ") +
@@ -138,7 +183,7 @@ int serve(const Options& options) {
     });
 
     log::info("vibscored " VIBSCORE_VERSION " ready on " + std::string(kBusName) + ", driver " +
-              std::string(actuator->driver_name()));
+              host.driver());
     sd_notify(0, "READY=1\nSTATUS=serving");
     const int code = loop.run();
     player.stop_all("stopped");
@@ -172,7 +217,13 @@ int main(int argc, char** argv) {
     options.config_given = app.count("--config") > 0;
     log::set_verbose(options.verbose);
     if (options.list_drivers) {
-        for (const auto& driver : drivers::available_drivers()) {
+        std::filesystem::path drivers_dir = VIBSCORE_DRIVERDIR;
+        try {
+            drivers_dir = read_config(options).drivers_dir;
+        } catch (const std::exception& error) {
+            log::warning(std::string("listing the default drivers directory: ") + error.what());
+        }
+        for (const auto& driver : drivers::available_drivers(drivers_dir)) {
             std::cout << driver.name << "\t" << driver.description << "\n";
         }
         return 0;

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "daemon/log.hpp"
+#include "daemon/render/cue_adaptation.hpp"
 
 namespace vibscore::daemon {
 
@@ -46,9 +47,25 @@ std::uint64_t Player::play(PlaybackRequest request) {
     }
     const std::uint64_t id = next_id_++;
     const std::string label = request.label;
-    current_ = Playback{id, std::move(request), monotonic_now_us(), 0, 0};
+    const drivers::Capabilities capabilities = actuator_->capabilities();
+    if (capabilities.gain_control) {
+        actuator_->set_gain(master_intensity_);
+    }
+    render::CueAdaptation adaptation;
+    adaptation.frequency = capabilities.frequency_control;
+    adaptation.amplitude = capabilities.amplitude_control;
+    adaptation.envelopes = capabilities.envelopes;
+    adaptation.scale = request.intensity * master_intensity_;
+    adaptation.pulse_period_s = capabilities.pulse_period_s;
+    request.cues = render::adapt_cues(request.cues, request.duration_s, adaptation);
+    on_since_us_.reset();
+    held_off_ = false;
+    current_ = Playback{id, std::move(request), monotonic_now_us(), 0, 0, capabilities};
     // The first drive goes out before anything else: it is what the user feels.
     auto& cues = current_->request.cues;
+    const bool starts_silent = cues.empty() || cues.front().at > 0.0 ||
+                               cues.front().kind != render::Cue::Kind::drive ||
+                               cues.front().amplitude == 0.0;
     while (current_->next_cue < cues.size() && cues[current_->next_cue].at <= 0.0 &&
            cues[current_->next_cue].kind == render::Cue::Kind::drive) {
         if (!execute(cues[current_->next_cue++])) {
@@ -56,8 +73,74 @@ std::uint64_t Player::play(PlaybackRequest request) {
         }
     }
     listener_.playback_started(id, label);
+    if (starts_silent) {
+        prepare_next_drive();  // otherwise the first drive's apply has prepared the second
+    }
     run_due();
     return id;
+}
+
+void Player::set_master_intensity(double intensity) {
+    master_intensity_ = intensity;
+    if (actuator_->capabilities().gain_control) {
+        try {
+            actuator_->set_gain(intensity);
+        } catch (const drivers::DeviceError& error) {
+            // The next play sets the gain again; a failing device shows there.
+            log::warning(std::string("actuator gain: ") + error.what());
+        }
+    }
+}
+
+drivers::Drive Player::drive_for(const render::Cue& cue) const {
+    const auto& capabilities = current_->capabilities;
+    if (!capabilities.amplitude_control) {
+        return {cue.amplitude > 0.0 ? 1.0 : 0.0, cue.frequency_hz};  // pulses carry the strength
+    }
+    double scale = current_->request.intensity;
+    if (!capabilities.gain_control) {
+        scale *= master_intensity_;
+    }
+    drivers::Drive drive{std::clamp(cue.amplitude * scale, 0.0, 1.0), cue.frequency_hz};
+    if (cue.ramp_s > 0.0) {
+        drive.ramp_to = std::clamp(cue.ramp_to * scale, 0.0, 1.0);
+        drive.ramp_s = cue.ramp_s;
+    }
+    return drive;
+}
+
+// Effect-memory backends get the next drive ahead of its onset, so starting it costs one write.
+void Player::prepare_next_drive() {
+    if (!current_ || !current_->capabilities.effect_memory) {
+        return;
+    }
+    const auto& cues = current_->request.cues;
+    const auto is_drive = [](const render::Cue& cue) {
+        return cue.kind == render::Cue::Kind::drive && cue.amplitude > 0.0;
+    };
+    auto next = std::find_if(cues.begin() + static_cast<std::ptrdiff_t>(current_->next_cue),
+                             cues.end(), is_drive);
+    if (next == cues.end() && current_->request.repeat != 0) {
+        next = std::find_if(cues.begin(), cues.end(), is_drive);
+    }
+    if (next == cues.end()) {
+        return;
+    }
+    try {
+        actuator_->prepare(drive_for(*next));
+    } catch (const drivers::DeviceError& error) {
+        log::error(std::string("actuator failed: ") + error.what());
+        finish(std::string("device-error: ") + error.what());
+    }
+}
+
+bool Player::on_time_exceeded(std::uint64_t now_us) {
+    const double limit_s = current_->capabilities.max_on_time_s;
+    if (limit_s <= 0.0 || !on_since_us_) {
+        return false;
+    }
+    const auto limit_us = static_cast<std::uint64_t>(std::llround(limit_s * 1e6));
+    return now_us >= *on_since_us_ + limit_us;
 }
 
 bool Player::execute(const render::Cue& cue) {
@@ -65,15 +148,23 @@ bool Player::execute(const render::Cue& cue) {
         listener_.playback_position(current_->id, cue.bar, cue.symbol);
         return true;
     }
-    const double scale = current_->request.intensity * master_intensity_;
-    const drivers::Drive drive{std::clamp(cue.amplitude * scale, 0.0, 1.0), cue.frequency_hz};
+    const drivers::Drive drive = drive_for(cue);
     try {
-        if (drive.amplitude == 0.0) {
+        if (drive.amplitude == 0.0 && drive.ramp_to == 0.0) {
             actuator_->off();
-        } else {
-            actuator_->apply(drive);
+            on_since_us_.reset();
+            held_off_ = false;
+            return true;
         }
-        return true;
+        if (held_off_) {
+            return true;  // cooling down until the score gives the actuator a break
+        }
+        if (!on_since_us_) {
+            on_since_us_ = monotonic_now_us();
+        }
+        actuator_->apply(drive);
+        prepare_next_drive();
+        return current_.has_value();
     } catch (const drivers::DeviceError& error) {
         log::error(std::string("actuator failed: ") + error.what());
         finish(std::string("device-error: ") + error.what());
@@ -101,8 +192,23 @@ void Player::run_due() {
         }
         const auto& cue = cues[playback.next_cue];
         const std::uint64_t due = due_us(playback, cue);
-        if (due > monotonic_now_us()) {
-            timer_.arm(due);
+        const std::uint64_t now = monotonic_now_us();
+        if (on_time_exceeded(now)) {
+            log::warning("actuator " + std::string(actuator_->driver_name()) + " was on for its " +
+                         "maximum on-time; held off until the score pauses (playback " +
+                         std::to_string(playback.id) + ")");
+            actuator_->off();
+            on_since_us_.reset();
+            held_off_ = true;
+        }
+        if (due > now) {
+            std::uint64_t wake = due;
+            if (on_since_us_ && playback.capabilities.max_on_time_s > 0.0) {
+                wake =
+                    std::min(wake, *on_since_us_ + static_cast<std::uint64_t>(std::llround(
+                                                       playback.capabilities.max_on_time_s * 1e6)));
+            }
+            timer_.arm(wake);
             return;
         }
         ++playback.next_cue;

@@ -68,7 +68,7 @@ class Player {
     // Uses another actuator from now on; the current one is switched off first.
     void replace_actuator(drivers::Actuator& actuator);
 
-    void set_master_intensity(double intensity) { master_intensity_ = intensity; }
+    void set_master_intensity(double intensity);
     double master_intensity() const { return master_intensity_; }
 
     std::optional<std::uint64_t> current_id() const;
@@ -80,11 +80,16 @@ class Player {
         std::uint64_t start_us = 0;  // when pass 0 began
         std::uint64_t pass = 0;
         std::size_t next_cue = 0;
+        drivers::Capabilities capabilities;  // of the actuator when it started
     };
 
     std::uint64_t due_us(const Playback& playback, const render::Cue& cue) const;
     void run_due();
     bool execute(const render::Cue& cue);
+    drivers::Drive drive_for(const render::Cue& cue) const;
+    void prepare_next_drive();
+    // Thermal protection: true when the actuator has been on for its maximum on-time.
+    bool on_time_exceeded(std::uint64_t now_us);
     void finish(const std::string& reason);
 
     EventLoop::Timer timer_;
@@ -93,6 +98,10 @@ class Player {
     std::optional<Playback> current_;
     std::uint64_t next_id_ = 1;
     double master_intensity_ = 1.0;
+    // Since when the actuator has been on without a break, and whether it is held off until
+    // the score itself stops driving it (after exceeding its maximum on-time).
+    std::optional<std::uint64_t> on_since_us_;
+    bool held_off_ = false;
 };
 
 }  // namespace vibscore::daemon

@@ -43,12 +43,20 @@ class TmuxPane {
     }
     std::string screen() const { return tmux({"capture-pane", "-p", "-t", "editor"}).out; }
     void key(const std::string& name) const { tmux({"send-keys", "-t", "editor", name}); }
-    // The pane's program has exited (its status then in exit_status()).
-    bool dead() const {
-        return tmux({"display-message", "-p", "-t", "editor", "#{pane_dead}"}).out == "1\n";
-    }
-    std::string exit_status() const {
-        return tmux({"display-message", "-p", "-t", "editor", "#{pane_dead_status}"}).out;
+    // The exit status of the pane's program once it has exited ("" while it runs). tmux
+    // marks the pane dead a moment before it records the status, so both are waited for.
+    std::string wait_exit(std::chrono::milliseconds timeout = std::chrono::seconds(5)) const {
+        const auto deadline = std::chrono::steady_clock::now() + timeout;
+        while (std::chrono::steady_clock::now() < deadline) {
+            const auto status =
+                tmux({"display-message", "-p", "-t", "editor", "#{pane_dead}:#{pane_dead_status}"})
+                    .out;
+            if (status.starts_with("1:") && status != "1:\n") {
+                return status.substr(2, status.size() - 3);
+            }
+            std::this_thread::sleep_for(std::chrono::milliseconds(10));
+        }
+        return "";
     }
     bool wait_for_text(const std::string& text,
                        std::chrono::milliseconds timeout = std::chrono::seconds(10)) const {
@@ -202,11 +210,7 @@ TEST_F(EditorEndToEnd, ComposesATactonWithSixButtonsSavesItAndPlaysIt) {
     EXPECT_TRUE(vibrated);
 
     send(pane, menu_presses(copy, "quit"));
-    for (int i = 0; i < 200 && !pane.dead(); ++i) {
-        std::this_thread::sleep_for(std::chrono::milliseconds(10));
-    }
-    ASSERT_TRUE(pane.dead());
-    EXPECT_EQ(pane.exit_status(), "0\n");
+    EXPECT_EQ(pane.wait_exit(), "0");
 }
 
 TEST_F(EditorEndToEnd, PlaysFromTheCursorsBarFollowsThePositionAndAnyButtonStops) {
@@ -236,10 +240,7 @@ TEST_F(EditorEndToEnd, PlaysFromTheCursorsBarFollowsThePositionAndAnyButtonStops
     // Editing works again, and nothing was changed by the button that stopped playback.
     EXPECT_EQ(pane.screen().find("*"), std::string::npos) << pane.screen();
     pane.key("q");
-    for (int i = 0; i < 200 && !pane.dead(); ++i) {
-        std::this_thread::sleep_for(std::chrono::milliseconds(10));
-    }
-    EXPECT_TRUE(pane.dead());
+    EXPECT_EQ(pane.wait_exit(), "0");
 }
 
 TEST_F(EditorEndToEnd, ShowDrawsARegistryScore) {

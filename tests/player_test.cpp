@@ -15,7 +15,7 @@ struct Applied {
 class RecordingActuator : public drivers::Actuator {
   public:
     std::string_view driver_name() const override { return "recording"; }
-    drivers::Capabilities capabilities() const override { return {}; }
+    drivers::Capabilities capabilities() const override { return capabilities_; }
     void apply(const drivers::Drive& drive) override {
         if (fail_after >= 0 && static_cast<int>(applied.size()) >= fail_after) {
             throw drivers::DeviceError("/dev/fake: No such device");
@@ -23,8 +23,13 @@ class RecordingActuator : public drivers::Actuator {
         applied.push_back({monotonic_now_us(), drive});
     }
     void off() noexcept override { applied.push_back({monotonic_now_us(), {}}); }
+    void prepare(const drivers::Drive& next) override { prepared.push_back(next); }
+    void set_gain(double gain) override { gains.push_back(gain); }
     std::vector<Applied> applied;
+    std::vector<drivers::Drive> prepared;
+    std::vector<double> gains;
     int fail_after = -1;
+    drivers::Capabilities capabilities_{.frequency_control = true};
 };
 
 class RecordingListener : public PlayerListener {
@@ -222,6 +227,68 @@ TEST_F(PlayerTest, ReplacingTheActuatorStopsPlaybackAndSwitchesBothOff) {
     ASSERT_EQ(other.applied.size(), 1u);
     EXPECT_EQ(other.applied[0].drive.amplitude, 0.0);
     player.replace_actuator(actuator);  // `other` dies before the player does
+}
+
+TEST_F(PlayerTest, AnOnOffActuatorFeelsStrengthAsPulseWidth) {
+    actuator.capabilities_ = {.amplitude_control = false};
+    actuator.applied.clear();
+    auto half = request();
+    half.cues = {drive(0, 0.5), drive(0.2, 0)};
+    half.duration_s = 0.2;
+    player.play(half);
+    loop.run();
+    // 40 ms periods from the onset, each on (full drive) for 20 ms.
+    std::vector<double> on_starts;
+    for (const auto& applied : actuator.applied) {
+        EXPECT_TRUE(applied.drive.amplitude == 0.0 || applied.drive.amplitude == 1.0);
+        if (applied.drive.amplitude == 1.0) {
+            on_starts.push_back(static_cast<double>(applied.at_us));
+        }
+    }
+    EXPECT_EQ(on_starts.size(), 5u);
+}
+
+TEST_F(PlayerTest, AGainCapableActuatorTakesTheMasterIntensityAsItsGain) {
+    actuator.capabilities_ = {.frequency_control = true, .gain_control = true};
+    actuator.applied.clear();
+    player.set_master_intensity(0.5);
+    auto soft = request();
+    soft.intensity = 0.5;
+    player.play(soft);
+    ASSERT_FALSE(actuator.gains.empty());
+    EXPECT_EQ(actuator.gains.back(), 0.5);
+    EXPECT_DOUBLE_EQ(actuator.applied[0].drive.amplitude, 0.25);  // the request's own 0.5 only
+    player.stop(0, 1000, false);
+}
+
+TEST_F(PlayerTest, AnEffectMemoryActuatorGetsEachDriveBeforeItsOnset) {
+    actuator.capabilities_ = {.frequency_control = true, .effect_memory = true};
+    player.play(request());
+    ASSERT_EQ(actuator.prepared.size(), 1u);
+    EXPECT_EQ(actuator.prepared[0], (drivers::Drive{0.8, 200}));
+    loop.run();
+    EXPECT_EQ(actuator.prepared.size(), 1u);  // nothing after the last note
+}
+
+TEST_F(PlayerTest, AnActuatorIsHeldOffAfterItsMaximumOnTimeUntilTheScorePauses) {
+    actuator.capabilities_ = {.frequency_control = true, .max_on_time_s = 0.02};
+    actuator.applied.clear();
+    auto long_note = request();
+    // 60 ms on (two notes, tied), a pause, then a new note that may drive again.
+    long_note.cues = {drive(0, 0.5, 170), drive(0.03, 0.6, 170), drive(0.06, 0),
+                      drive(0.07, 0.7, 170), drive(0.08, 0)};
+    long_note.duration_s = 0.09;
+    player.play(long_note);
+    loop.run();
+    std::vector<double> amplitudes;
+    for (const auto& applied : actuator.applied) {
+        amplitudes.push_back(applied.drive.amplitude);
+    }
+    // On, cut off at 20 ms, the tied 0.6 withheld, then the note after the pause plays.
+    EXPECT_EQ(amplitudes, (std::vector<double>{0.5, 0.0, 0.0, 0.7, 0.0, 0.0}));
+    ASSERT_GE(actuator.applied.size(), 2u);
+    const auto on_us = actuator.applied[1].at_us - actuator.applied[0].at_us;
+    EXPECT_GE(on_us, 20'000u);
 }
 
 }  // namespace

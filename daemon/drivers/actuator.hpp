@@ -16,6 +16,8 @@ struct Capabilities {
     bool envelopes = false;          // a linear ramp can be handed over whole (Drive::ramp_s)
     bool gain_control = false;       // the device scales every drive itself (set_gain)
     double max_on_time_s = 0.0;      // longest continuous drive allowed; 0 = no limit
+    // Without amplitude control, strength is the on-time within each period this long.
+    double pulse_period_s = 0.040;
 
     // The names the D-Bus Capabilities property lists: "amplitude-control", ...
     std::vector<std::string> names() const;

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <filesystem>
 #include <map>
 #include <memory>
 #include <string>
@@ -14,12 +15,16 @@ struct DriverInfo {
     std::string description;
 };
 
-// The backends this build can create, for --list-drivers and error messages.
-std::vector<DriverInfo> available_drivers();
+// The backends this build can create, then the driver modules in `drivers_dir`
+// (include/vibscore/driver.h), for --list-drivers and error messages.
+std::vector<DriverInfo> available_drivers(const std::filesystem::path& drivers_dir = {});
 
-// Creates backend `name` from its configuration section. Throws std::invalid_argument naming an
-// unknown driver or a bad setting, DeviceError when its device cannot be opened.
+// Creates backend `name` from its configuration section: a built-in one, or else a driver
+// module from `drivers_dir`. The common settings (max-on-time-ms, pulse-period-ms) are taken
+// here. Throws std::invalid_argument naming an unknown driver or a bad setting, DeviceError
+// when its device cannot be opened.
 std::unique_ptr<Actuator> make_actuator(const std::string& name,
-                                        const std::map<std::string, std::string>& settings);
+                                        const std::map<std::string, std::string>& settings,
+                                        const std::filesystem::path& drivers_dir = {});
 
 }  // namespace vibscore::drivers

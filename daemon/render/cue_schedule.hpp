@@ -17,6 +17,10 @@ struct Cue {
     // curve and line clefs, whose waveform already is the drive level).
     double amplitude = 0.0;
     double frequency_hz = 0.0;
+    // drive, only after adapt_cues() for backends with envelopes: the strength moves linearly
+    // to ramp_to over ramp_s seconds (0: no ramp) and holds there until the next drive.
+    double ramp_to = 0.0;
+    double ramp_s = 0.0;
     // position: the note or rest that begins now.
     std::size_t bar = 0, symbol = 0;
 };

@@ -1,0 +1,196 @@
+#include "daemon/drivers/external_driver.hpp"
+
+#include <dlfcn.h>
+
+#include <algorithm>
+#include <array>
+#include <cstring>
+#include <stdexcept>
+#include <utility>
+
+#include "daemon/log.hpp"
+#include "include/vibscore/driver.h"
+
+namespace vibscore::drivers {
+
+namespace {
+
+constexpr std::size_t kErrorSize = 512;
+
+class ErrorText {
+  public:
+    char* data() { return text_.data(); }
+    std::size_t size() const { return text_.size(); }
+    // The driver's message, or a fallback when it wrote none (or no NUL).
+    std::string message(const std::string& fallback) {
+        text_.back() = '\0';
+        return text_.front() == '\0' ? fallback : std::string(text_.data());
+    }
+
+  private:
+    std::array<char, kErrorSize> text_{};
+};
+
+vibscore_drive to_c(const Drive& drive) {
+    return {drive.amplitude, drive.frequency_hz, drive.ramp_to, drive.ramp_s};
+}
+
+class ExternalActuator final : public Actuator {
+  public:
+    ExternalActuator(std::shared_ptr<DriverModule> module, void* handle)
+        : module_(std::move(module)), driver_(module_->entry()), handle_(handle) {}
+    ~ExternalActuator() override { driver_.close(handle_); }
+    ExternalActuator(const ExternalActuator&) = delete;
+    ExternalActuator& operator=(const ExternalActuator&) = delete;
+
+    std::string_view driver_name() const override { return driver_.name; }
+
+    Capabilities capabilities() const override {
+        double max_on_time_s = 0.0;
+        const std::uint32_t bits = driver_.capabilities(handle_, &max_on_time_s);
+        Capabilities capabilities;
+        capabilities.amplitude_control = (bits & VIBSCORE_CAP_AMPLITUDE) != 0;
+        capabilities.frequency_control = (bits & VIBSCORE_CAP_FREQUENCY) != 0;
+        capabilities.effect_memory =
+            (bits & VIBSCORE_CAP_EFFECT_MEMORY) != 0 && driver_.prepare != nullptr;
+        capabilities.envelopes = (bits & VIBSCORE_CAP_ENVELOPES) != 0;
+        capabilities.gain_control = (bits & VIBSCORE_CAP_GAIN) != 0 && driver_.set_gain != nullptr;
+        capabilities.max_on_time_s = max_on_time_s > 0.0 ? max_on_time_s : 0.0;
+        return capabilities;
+    }
+
+    void apply(const Drive& drive) override {
+        const vibscore_drive c_drive = to_c(drive);
+        check("apply", driver_.apply(handle_, &c_drive, error_.data(), error_.size()));
+    }
+
+    void off() noexcept override { driver_.off(handle_); }
+
+    void prepare(const Drive& next) override {
+        if (driver_.prepare) {
+            const vibscore_drive c_drive = to_c(next);
+            check("prepare", driver_.prepare(handle_, &c_drive, error_.data(), error_.size()));
+        }
+    }
+
+    void set_gain(double gain) override {
+        if (driver_.set_gain) {
+            check("set_gain", driver_.set_gain(handle_, gain, error_.data(), error_.size()));
+        }
+    }
+
+  private:
+    void check(const char* call, int result) {
+        if (result != 0) {
+            const std::string fallback =
+                std::string(call) + " failed: " + std::strerror(result < 0 ? -result : result);
+            throw DeviceError(std::string(driver_.name) + ": " + error_.message(fallback));
+        }
+    }
+
+    std::shared_ptr<DriverModule> module_;  // keeps the code loaded while the handle lives
+    const vibscore_driver& driver_;
+    void* handle_;
+    ErrorText error_;
+};
+
+bool valid_name(const char* name) {
+    if (name == nullptr || *name == '\0' || std::strlen(name) > 64) {
+        return false;
+    }
+    return std::all_of(name, name + std::strlen(name), [](char c) {
+        return (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '-';
+    });
+}
+
+}  // namespace
+
+DriverModule::DriverModule(Loaded, std::filesystem::path path, void* handle,
+                           const vibscore_driver* entry)
+    : path_(std::move(path)), handle_(handle), entry_(entry) {}
+
+DriverModule::~DriverModule() {
+    ::dlclose(handle_);
+}
+
+std::shared_ptr<DriverModule> DriverModule::load(const std::filesystem::path& path) {
+    // RTLD_LOCAL keeps one module's symbols from resolving another's.
+    void* handle = ::dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+    if (handle == nullptr) {
+        throw std::runtime_error("driver module " + path.string() + ": " + ::dlerror());
+    }
+    const auto fail = [&](const std::string& what) {
+        ::dlclose(handle);
+        return std::runtime_error("driver module " + path.string() + ": " + what);
+    };
+    using EntryFunction = const vibscore_driver* (*)();
+    auto* entry_function =
+        reinterpret_cast<EntryFunction>(::dlsym(handle, "vibscore_driver_entry"));
+    if (entry_function == nullptr) {
+        throw fail("has no vibscore_driver_entry symbol");
+    }
+    const vibscore_driver* entry = entry_function();
+    if (entry == nullptr) {
+        throw fail("vibscore_driver_entry() returned NULL");
+    }
+    if (entry->abi_version != VIBSCORE_DRIVER_ABI_VERSION) {
+        throw fail("built for driver ABI " + std::to_string(entry->abi_version) +
+                   ", this vibscored speaks " + std::to_string(VIBSCORE_DRIVER_ABI_VERSION));
+    }
+    if (!valid_name(entry->name)) {
+        throw fail("its name must be 1-64 of a-z, 0-9 and '-'");
+    }
+    if (!entry->open || !entry->close || !entry->capabilities || !entry->apply || !entry->off) {
+        throw fail("open, close, capabilities, apply and off must all be set");
+    }
+    return std::make_shared<DriverModule>(Loaded{}, path, handle, entry);
+}
+
+std::vector<ExternalDriverInfo> find_external_drivers(const std::filesystem::path& directory) {
+    std::vector<ExternalDriverInfo> found;
+    std::error_code error;
+    if (directory.empty() || !std::filesystem::is_directory(directory, error)) {
+        return found;
+    }
+    for (const auto& file : std::filesystem::directory_iterator(directory, error)) {
+        if (file.path().extension() != ".so") {
+            continue;
+        }
+        try {
+            const auto module = DriverModule::load(file.path());
+            found.push_back({module->entry().name,
+                             module->entry().description ? module->entry().description : "",
+                             file.path()});
+        } catch (const std::exception& failure) {
+            log::warning(failure.what());
+        }
+    }
+    std::sort(found.begin(), found.end(),
+              [](const auto& a, const auto& b) { return a.name < b.name; });
+    return found;
+}
+
+std::unique_ptr<Actuator> make_external_actuator(
+    const std::filesystem::path& directory, const std::string& name,
+    const std::map<std::string, std::string>& settings) {
+    for (const auto& driver : find_external_drivers(directory)) {
+        if (driver.name != name) {
+            continue;
+        }
+        auto module = DriverModule::load(driver.path);
+        std::vector<vibscore_setting> c_settings;
+        for (const auto& [key, value] : settings) {
+            c_settings.push_back({key.c_str(), value.c_str()});
+        }
+        ErrorText error;
+        void* handle =
+            module->entry().open(c_settings.data(), c_settings.size(), error.data(), error.size());
+        if (handle == nullptr) {
+            throw DeviceError(name + ": " + error.message("open failed"));
+        }
+        return std::make_unique<ExternalActuator>(std::move(module), handle);
+    }
+    return nullptr;
+}
+
+}  // namespace vibscore::drivers

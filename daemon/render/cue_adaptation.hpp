@@ -1,0 +1,33 @@
+#pragma once
+
+#include <vector>
+
+#include "daemon/render/cue_schedule.hpp"
+
+namespace vibscore::render {
+
+// What an actuator can take, and how to express what it cannot.
+struct CueAdaptation {
+    // The actuator can choose its frequency; otherwise every drive says 0 (its own).
+    bool frequency = true;
+    // The actuator can vary its strength. Otherwise strength becomes pulse modulation: in each
+    // pulse period from the start of a vibrating stretch the actuator is on for strength x
+    // period and off for the rest, the strength being the one at the period's start (scaled by
+    // `scale` and clamped to 0..1). Strength >= 1 - 1e-9 is continuous on; an on-pulse shorter
+    // than min_pulse_s is left out, since a motor cannot spin up in it.
+    bool amplitude = true;
+    // The actuator takes a linear ramp whole (an FF envelope): runs of update steps that lie
+    // on one line become one drive with ramp_to/ramp_s.
+    bool envelopes = false;
+    double scale = 1.0;  // pulse modulation only: the strength scale the playback asked for
+    double pulse_period_s = 0.040;
+    double min_pulse_s = 0.004;
+    double update_interval_s = CueOptions{}.update_interval_s;
+};
+
+// The cues of one pass (duration_s long) rewritten for an actuator. Position cues are kept;
+// the result is in time order, drives before positions at the same instant, as cue_schedule.
+std::vector<Cue> adapt_cues(const std::vector<Cue>& cues, double duration_s,
+                            const CueAdaptation& adaptation);
+
+}  // namespace vibscore::render
