@@ -56,9 +56,12 @@ class Session {
         } catch (const DaemonError& error) {
             // Files can still be edited; playing and the registry wait for the daemon.
             daemon_.reset();
-            message_ = "no daemon: " + std::string(error.what());
+            daemon_problem_ = error.what();
         }
         load(options.target.empty() ? std::optional<std::string>() : options.target);
+        if (!daemon_) {
+            message_ = "no daemon: " + daemon_problem_;
+        }
         const ButtonMap map = ButtonMap::parse(options.button_map);
         for (const auto& path : options.buttons) {
             ButtonDevice device;
@@ -82,30 +85,29 @@ class Session {
     }
 
   private:
-    // Opens a score: a file, a registry name, or (nullopt) a new one.
+    // Opens a score: a file, a registry name, or (nullopt) a new one. Nothing changes unless
+    // it succeeds, so a failed open cannot leave the session saving to the wrong place.
     void load(const std::optional<std::string>& target) {
         std::vector<ClefDeclaration> available = registry_clefs(registry_clefs_);
         std::optional<Score> score;
-        if (!target) {
-            source_ = {daemon_ ? ScoreSource::Kind::registry : ScoreSource::Kind::file,
-                       fresh_name()};
-        } else {
-            source_ = classify_source(*target);
-        }
-        if (source_.kind == ScoreSource::Kind::file) {
-            auto beside = clefs_beside(source_.name);
+        const ScoreSource source =
+            target ? classify_source(*target)
+                   : ScoreSource{daemon_ ? ScoreSource::Kind::registry : ScoreSource::Kind::file,
+                                 fresh_name()};
+        if (source.kind == ScoreSource::Kind::file) {
+            auto beside = clefs_beside(source.name);
             beside.insert(beside.end(), available.begin(), available.end());
             available = std::move(beside);
-            if (std::filesystem::exists(source_.name)) {
-                score = read_score_file(source_.name);
+            if (std::filesystem::exists(source.name)) {
+                score = read_score_file(source.name);
             }
         } else if (target) {
             if (!daemon_) {
                 throw DaemonError(
-                    "", "cannot open registry score \"" + source_.name + "\": " + message_);
+                    "", "cannot open registry score \"" + source.name + "\": " + message_);
             }
             try {
-                score = read_score(daemon_->get("score", source_.name), source_.name).score;
+                score = read_score(daemon_->get("score", source.name), source.name).score;
             } catch (const DaemonError& error) {
                 if (!error.not_found()) {
                     throw;
@@ -115,14 +117,15 @@ class Session {
         const bool is_new = !score;
         if (is_new) {
             const std::string title =
-                source_.kind == ScoreSource::Kind::file ? stem(source_.name) : source_.name;
+                source.kind == ScoreSource::Kind::file ? stem(source.name) : source.name;
             score = EditorModel::blank_score(title, default_clef(available));
         }
-        editor_ = std::make_unique<Editor>(Editor{EditorModel(std::move(*score), available), {}});
-        editor_->scheme.set_openable(registry_scores_);
-        if (is_new) {
-            message_ = "new score " + source_.name;
-        }
+        auto editor =
+            std::make_unique<Editor>(Editor{EditorModel(std::move(*score), available), {}});
+        editor->scheme.set_openable(registry_scores_);
+        editor_ = std::move(editor);
+        source_ = source;
+        message_ = is_new ? "new score " + source_.name : "";
     }
 
     // A registry name no score has yet: tacton-1, tacton-2, ...
@@ -334,6 +337,7 @@ class Session {
     std::optional<std::uint64_t> playback_;
     std::optional<Position> playing_at_;
     std::string message_;
+    std::string daemon_problem_;  // why there is no daemon, when there is none
     std::string pending_replace_;
     bool running_ = true;
 };
