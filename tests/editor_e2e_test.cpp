@@ -23,17 +23,19 @@ using testing::run_command;
 using testing::SeenSignal;
 
 // A tmux server of its own with one pane running a command; killed with everything in it.
+// The shell in the pane writes the command's exit status to a file when it ends.
 class TmuxPane {
   public:
     TmuxPane(const std::string& command, int width, int height)
         : socket_("vibscore-e2e-" + std::to_string(getpid()) + "-" +
-                  std::to_string(std::random_device{}())) {
+                  std::to_string(std::random_device{}())),
+          status_(dir_.path() / "status") {
         const auto started = tmux({"-f", "/dev/null", "new-session", "-d", "-s", "editor", "-x",
-                                   std::to_string(width), "-y", std::to_string(height), command});
+                                   std::to_string(width), "-y", std::to_string(height),
+                                   command + "; echo $? > " + status_.string()});
         if (started.exit_code != 0) {
             throw std::runtime_error("tmux new-session failed: " + started.err);
         }
-        tmux({"set-option", "-t", "editor", "remain-on-exit", "on"});
     }
     ~TmuxPane() { tmux({"kill-server"}); }
 
@@ -43,16 +45,13 @@ class TmuxPane {
     }
     std::string screen() const { return tmux({"capture-pane", "-p", "-t", "editor"}).out; }
     void key(const std::string& name) const { tmux({"send-keys", "-t", "editor", name}); }
-    // The exit status of the pane's program once it has exited ("" while it runs). tmux
-    // marks the pane dead a moment before it records the status, so both are waited for.
+    // The exit status of the pane's command once it has ended ("" if it runs on).
     std::string wait_exit(std::chrono::milliseconds timeout = std::chrono::seconds(5)) const {
         const auto deadline = std::chrono::steady_clock::now() + timeout;
         while (std::chrono::steady_clock::now() < deadline) {
-            const auto status =
-                tmux({"display-message", "-p", "-t", "editor", "#{pane_dead}:#{pane_dead_status}"})
-                    .out;
-            if (status.starts_with("1:") && status != "1:\n") {
-                return status.substr(2, status.size() - 3);
+            const auto status = testing::read_file(status_);
+            if (!status.empty() && status.back() == '\n') {
+                return status.substr(0, status.size() - 1);
             }
             std::this_thread::sleep_for(std::chrono::milliseconds(10));
         }
@@ -71,7 +70,9 @@ class TmuxPane {
     }
 
   private:
+    testing::TempDir dir_;
     std::string socket_;
+    std::filesystem::path status_;
 };
 
 // The keys tmux sends for the six buttons: arrows, Enter for Select, Backspace for Back.
@@ -210,7 +211,7 @@ TEST_F(EditorEndToEnd, ComposesATactonWithSixButtonsSavesItAndPlaysIt) {
     EXPECT_TRUE(vibrated);
 
     send(pane, menu_presses(copy, "quit"));
-    EXPECT_EQ(pane.wait_exit(), "0");
+    EXPECT_EQ(pane.wait_exit(), "0") << pane.screen();
 }
 
 TEST_F(EditorEndToEnd, PlaysFromTheCursorsBarFollowsThePositionAndAnyButtonStops) {
@@ -240,7 +241,7 @@ TEST_F(EditorEndToEnd, PlaysFromTheCursorsBarFollowsThePositionAndAnyButtonStops
     // Editing works again, and nothing was changed by the button that stopped playback.
     EXPECT_EQ(pane.screen().find("*"), std::string::npos) << pane.screen();
     pane.key("q");
-    EXPECT_EQ(pane.wait_exit(), "0");
+    EXPECT_EQ(pane.wait_exit(), "0") << pane.screen();
 }
 
 TEST_F(EditorEndToEnd, ShowDrawsARegistryScore) {
