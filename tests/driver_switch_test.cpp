@@ -73,7 +73,8 @@ TEST_F(DriverSwitch, OnlyPrivilegedCallersSwitchAndOnlyToKnownDrivers) {
     const auto denied = daemon.call({"SwitchDriver", "s", "trace"}, kNobody);
     EXPECT_THAT(denied.err, HasSubstr("Switching the driver needs root or membership of group"));
     const auto unknown = daemon.call({"SwitchDriver", "s", "piezo"});
-    EXPECT_THAT(unknown.err, HasSubstr("no driver \"piezo\" (available: sim, evdev, trace)"));
+    EXPECT_THAT(unknown.err, HasSubstr("no driver \"piezo\" (available: sim, evdev, gpio-erm, "
+                                       "gpio-lra, sysfs-pwm, led-vibrator, timed-output, trace)"));
     EXPECT_EQ(property("Driver"), "s \"sim\"\n");
 }
 
@@ -111,7 +112,8 @@ TEST_F(DriverSwitch, TheClientListsAndSwitchesDrivers) {
     const auto unknown = testing::run_command({vibscore, "driver", "piezo"});
     EXPECT_EQ(unknown.exit_code, 1);
     EXPECT_EQ(unknown.err,
-              "vibscore: not found: no driver \"piezo\" (available: sim, evdev, trace)\n");
+              "vibscore: not found: no driver \"piezo\" (available: sim, evdev, gpio-erm, "
+              "gpio-lra, sysfs-pwm, led-vibrator, timed-output, trace)\n");
 }
 
 }  // namespace

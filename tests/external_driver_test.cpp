@@ -102,7 +102,8 @@ TEST(ExternalDriver, ModulesThatAreNotDriversAreNamedAndLeftOut) {
     EXPECT_EQ(found[0].path, dir.path() / "copy.so");
     EXPECT_THAT([&] { make_actuator("nosuch", {}, dir.path()); },
                 ::testing::ThrowsMessage<std::invalid_argument>(
-                    HasSubstr("unknown driver \"nosuch\" (available: sim, evdev, trace)")));
+                    HasSubstr("unknown driver \"nosuch\" (available: sim, evdev, gpio-erm, "
+                              "gpio-lra, sysfs-pwm, led-vibrator, timed-output, trace)")));
 }
 
 TEST(ExternalDriver, ALibraryWithoutTheEntryPointIsRefused) {

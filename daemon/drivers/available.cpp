@@ -6,7 +6,10 @@
 #include "daemon/drivers/configured_actuator.hpp"
 #include "daemon/drivers/evdev_actuator.hpp"
 #include "daemon/drivers/external_driver.hpp"
+#include "daemon/drivers/gpio_pwm_actuator.hpp"
+#include "daemon/drivers/led_vibrator_actuator.hpp"
 #include "daemon/drivers/sim_actuator.hpp"
+#include "daemon/drivers/sysfs_pwm_actuator.hpp"
 #include "daemon/log.hpp"
 
 namespace vibscore::drivers {
@@ -17,6 +20,11 @@ std::vector<DriverInfo> built_in_drivers() {
     return {
         {"sim", "simulated ERM or LRA: models the response, traces commands, shows a meter"},
         {"evdev", "Linux force feedback (a vibra, rumble motors): periodic or rumble effects"},
+        {"gpio-erm", "ERM on a GPIO line: software PWM from a real-time thread"},
+        {"gpio-lra", "LRA on an H-bridge of two GPIO lines driven in antiphase"},
+        {"sysfs-pwm", "ERM or LRA on a hardware PWM channel (/sys/class/pwm)"},
+        {"led-vibrator", "on/off vibrator exposed as an LED with the transient trigger"},
+        {"timed-output", "on/off vibrator through the Android timed_output interface"},
     };
 }
 
@@ -51,6 +59,21 @@ std::unique_ptr<Actuator> make_backend(const std::string& name,
     }
     if (name == "evdev") {
         return make_evdev_actuator(settings);
+    }
+    if (name == "gpio-erm") {
+        return make_gpio_erm_actuator(settings);
+    }
+    if (name == "gpio-lra") {
+        return make_gpio_lra_actuator(settings);
+    }
+    if (name == "sysfs-pwm") {
+        return make_sysfs_pwm_actuator(settings);
+    }
+    if (name == "led-vibrator") {
+        return make_led_vibrator_actuator(settings);
+    }
+    if (name == "timed-output") {
+        return make_timed_output_actuator(settings);
     }
     return nullptr;
 }

@@ -1,0 +1,166 @@
+#include "daemon/drivers/gpio_pwm_actuator.hpp"
+
+#include <cmath>
+#include <stdexcept>
+#include <utility>
+
+#include "daemon/drivers/drive_levels.hpp"
+#include "daemon/drivers/driver_settings.hpp"
+
+namespace vibscore::drivers {
+
+namespace {
+
+constexpr long kMaxLineOffset = 65535;
+
+std::int64_t period_ns(double frequency_hz) {
+    return std::llround(1e9 / frequency_hz);
+}
+
+std::vector<int> with_enable(std::vector<int> values, bool enable_line) {
+    if (enable_line) {
+        values.push_back(1);
+    }
+    return values;
+}
+
+unsigned required_line(DriverSettings& read, const std::string& key) {
+    const auto offset = read.integer(key, 0, kMaxLineOffset);
+    if (!offset) {
+        throw std::invalid_argument(read.driver() + " setting " + key +
+                                    " is missing: the line offset on the chip");
+    }
+    return static_cast<unsigned>(*offset);
+}
+
+// The enable line, if configured, goes last; no line may be named twice.
+std::vector<unsigned> with_enable_line(DriverSettings& read, std::vector<unsigned> offsets,
+                                       GpioPwmSettings& settings) {
+    if (const auto enable = read.integer("enable-line", 0, kMaxLineOffset)) {
+        offsets.push_back(static_cast<unsigned>(*enable));
+        settings.enable_line = true;
+    }
+    for (std::size_t i = 0; i < offsets.size(); ++i) {
+        for (std::size_t j = i + 1; j < offsets.size(); ++j) {
+            if (offsets[i] == offsets[j]) {
+                throw std::invalid_argument(read.driver() + " settings name line " +
+                                            std::to_string(offsets[i]) +
+                                            " twice: every line needs its own offset");
+            }
+        }
+    }
+    return offsets;
+}
+
+std::unique_ptr<Actuator> finish_gpio_actuator(DriverSettings& read, GpioPwmSettings settings,
+                                               const std::vector<unsigned>& offsets,
+                                               const std::string& chip,
+                                               const GpioLinesOpener& open) {
+    settings.rt_priority = static_cast<int>(read.integer("rt-priority", 50, 0, 99));
+    read.reject_unknown();
+    return std::make_unique<GpioPwmActuator>(settings, open(chip, offsets));
+}
+
+}  // namespace
+
+PwmWaveform erm_waveform(double duty, double carrier_hz, bool enable_line) {
+    const std::int64_t period = period_ns(carrier_hz);
+    const std::int64_t high = std::llround(duty * static_cast<double>(period));
+    if (!(high > 0)) {
+        return {};
+    }
+    const std::vector<int> on = with_enable({1}, enable_line);
+    if (high >= period) {
+        return {period, {{0, on}}};
+    }
+    return {period, {{0, on}, {high, with_enable({0}, enable_line)}}};
+}
+
+PwmWaveform lra_waveform(double duty, double frequency_hz, bool enable_line) {
+    const std::int64_t period = period_ns(frequency_hz);
+    const std::int64_t half = period / 2;
+    const std::int64_t high = std::llround(duty * static_cast<double>(half));
+    if (!(high > 0)) {
+        return {};
+    }
+    const std::vector<int> a_high = with_enable({1, 0}, enable_line);
+    const std::vector<int> b_high = with_enable({0, 1}, enable_line);
+    if (high >= half) {
+        return {period, {{0, a_high}, {half, b_high}}};
+    }
+    const std::vector<int> both_low = with_enable({0, 0}, enable_line);
+    return {period, {{0, a_high}, {high, both_low}, {half, b_high}, {half + high, both_low}}};
+}
+
+GpioPwmActuator::GpioPwmActuator(const GpioPwmSettings& settings, std::unique_ptr<GpioLines> lines)
+    : settings_(settings),
+      lines_description_(lines->describe()),
+      thread_(std::move(lines), settings.rt_priority) {}
+
+std::string_view GpioPwmActuator::driver_name() const {
+    return settings_.kind == GpioPwmKind::erm ? "gpio-erm" : "gpio-lra";
+}
+
+Capabilities GpioPwmActuator::capabilities() const {
+    Capabilities capabilities;
+    capabilities.amplitude_control = true;
+    capabilities.frequency_control = settings_.kind == GpioPwmKind::lra;
+    return capabilities;
+}
+
+void GpioPwmActuator::hand_over(PwmWaveform waveform) {
+    // The player repeats drives along ramps; an unchanged waveform need not wake the thread.
+    if (handed_over_ == waveform) {
+        return;
+    }
+    handed_over_ = waveform;
+    thread_.play(std::move(waveform));
+}
+
+void GpioPwmActuator::apply(const Drive& drive) {
+    if (auto error = thread_.take_error()) {
+        // The thread has gone quiet with the lines low; the next drive starts afresh.
+        handed_over_.reset();
+        throw DeviceError(std::string(driver_name()) + " on " + lines_description_ + ": " + *error);
+    }
+    const double duty = drive_amplitude(drive);
+    hand_over(settings_.kind == GpioPwmKind::erm
+                  ? erm_waveform(duty, settings_.frequency_hz, settings_.enable_line)
+                  : lra_waveform(duty, lra_frequency_hz(drive, settings_.frequency_hz),
+                                 settings_.enable_line));
+}
+
+void GpioPwmActuator::off() noexcept {
+    try {
+        hand_over({});
+    } catch (...) {
+        // Only allocation can fail here; the thread then keeps its last waveform until the
+        // next call, which is all that can be done.
+    }
+}
+
+std::unique_ptr<Actuator> make_gpio_erm_actuator(const std::map<std::string, std::string>& settings,
+                                                 const GpioLinesOpener& open) {
+    DriverSettings read("gpio-erm", settings);
+    GpioPwmSettings erm;
+    erm.kind = GpioPwmKind::erm;
+    const std::string chip = read.text("chip", "gpiochip0");
+    const auto offsets = with_enable_line(read, {required_line(read, "line")}, erm);
+    erm.frequency_hz = read.number("carrier-hz", 1000.0, 10.0, 20000.0);
+    return finish_gpio_actuator(read, erm, offsets, chip, open);
+}
+
+std::unique_ptr<Actuator> make_gpio_lra_actuator(const std::map<std::string, std::string>& settings,
+                                                 const GpioLinesOpener& open) {
+    DriverSettings read("gpio-lra", settings);
+    GpioPwmSettings lra;
+    lra.kind = GpioPwmKind::lra;
+    const std::string chip = read.text("chip", "gpiochip0");
+    const unsigned line_a = required_line(read, "line-a");
+    const unsigned line_b = required_line(read, "line-b");
+    const auto offsets = with_enable_line(read, {line_a, line_b}, lra);
+    lra.frequency_hz = read.number("resonance-hz", 175.0, kMinLraHz, kMaxLraHz);
+    return finish_gpio_actuator(read, lra, offsets, chip, open);
+}
+
+}  // namespace vibscore::drivers
