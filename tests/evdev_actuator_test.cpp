@@ -507,11 +507,13 @@ TEST_F(EvdevActuatorTest, RemovalThrowsNamingTheDeviceAndReopensOnTheNextDrive) 
     actuator->apply({0.5, 100.0});
     ASSERT_EQ(kernel->opens, 1);
 
+    // The held node fails; the device is looked for again at once, and is not there.
     kernel->unplug();
     EXPECT_EQ(device_error_of([&] {
                   actuator->apply({0.6, 100.0});
               }),
-              "evdev /dev/input/event5: No such device (EVIOCSFF)");
+              "evdev /dev/input/event5: No such file or directory (open)");
+    EXPECT_EQ(kernel->opens, 2);
     EXPECT_EQ(actuator->device_path(), "");
     actuator->off();  // nothing left to stop, and no exception
 
@@ -520,12 +522,12 @@ TEST_F(EvdevActuatorTest, RemovalThrowsNamingTheDeviceAndReopensOnTheNextDrive) 
                     actuator->apply({0.6, 100.0});
                 }),
                 HasSubstr("evdev /dev/input/event5: No such file or directory"));
-    EXPECT_EQ(kernel->opens, 2);
+    EXPECT_EQ(kernel->opens, 3);
 
     kernel->present = true;
     const std::size_t calls_before = kernel->calls.size();
     actuator->apply({0.6, 100.0});
-    EXPECT_EQ(kernel->opens, 3);
+    EXPECT_EQ(kernel->opens, 4);
     EXPECT_EQ(actuator->device_path(), "/dev/input/event5");
     const std::vector<Call> after(kernel->calls.begin() + calls_before, kernel->calls.end());
     ASSERT_EQ(after.size(), 3u);
@@ -534,6 +536,32 @@ TEST_F(EvdevActuatorTest, RemovalThrowsNamingTheDeviceAndReopensOnTheNextDrive) 
     EXPECT_EQ(after[1].effect.id, -1);                             // fresh slots on the new opening
     EXPECT_THAT(after[2].events, ElementsAre(play(after[1].id)));  // nothing to stop there
     EXPECT_EQ(after[2].generation, 2u);
+}
+
+TEST_F(EvdevActuatorTest, ADeviceReplugedSinceTheLastCallIsOpenedAgainAndTheDriveGoesThrough) {
+    auto actuator = make();
+    actuator->apply({0.5, 100.0});
+    actuator->off();
+    kernel->unplug();  // and back, while nothing played: the held node is dead
+    kernel->present = true;
+
+    actuator->set_gain(0.5);  // finds the node gone: no error, the next drive sends it
+    EXPECT_EQ(actuator->device_path(), "");
+    actuator->apply({0.6, 100.0});
+    EXPECT_EQ(kernel->opens, 2);
+    EXPECT_EQ(actuator->device_path(), "/dev/input/event5");
+    const auto writes = kernel->writes();
+    ASSERT_GE(writes.size(), 2u);
+    EXPECT_THAT(writes[writes.size() - 2].events, ElementsAre(gain(32768)));
+    EXPECT_EQ(kernel->uploads().back().generation, 2u);
+    EXPECT_THAT(writes.back().events, ElementsAre(play(kernel->uploads().back().id)));
+
+    // The same for a drive prepared ahead.
+    kernel->unplug();
+    kernel->present = true;
+    actuator->prepare({0.7, 100.0});
+    EXPECT_EQ(kernel->opens, 3);
+    EXPECT_EQ(kernel->uploads().back().generation, 3u);
 }
 
 TEST_F(EvdevActuatorTest, RemovalNoticedByOffIsSwallowedAndReopenedByPrepare) {
@@ -548,18 +576,16 @@ TEST_F(EvdevActuatorTest, RemovalNoticedByOffIsSwallowedAndReopenedByPrepare) {
     EXPECT_EQ(kernel->uploads().back().generation, 2u);
 }
 
-TEST_F(EvdevActuatorTest, WriteFailureOfAGoneDeviceClosesIt) {
+TEST_F(EvdevActuatorTest, WriteFailureOfAGoneDeviceClosesItAndTriesAFreshOpening) {
     auto actuator = make();
     actuator->apply({0.5, 100.0});
     actuator->prepare({0.6, 100.0});
     kernel->fail_next_errno = EIO;
-    EXPECT_EQ(device_error_of([&] {
-                  actuator->apply({0.6, 100.0});
-              }),
-              "evdev /dev/input/event5: Input/output error (write)");
-    EXPECT_EQ(actuator->device_path(), "");
-    actuator->apply({0.6, 100.0});
+    actuator->apply({0.6, 100.0});  // the write fails; the node is opened again, and it works
     EXPECT_EQ(kernel->opens, 2);
+    EXPECT_EQ(kernel->uploads().back().effect.id, -1);  // into the fresh opening's own slot
+    EXPECT_THAT(kernel->writes().back().events, ElementsAre(play(kernel->uploads().back().id)));
+    EXPECT_EQ(actuator->device_path(), "/dev/input/event5");
 }
 
 TEST_F(EvdevActuatorTest, OtherErrorsKeepTheDeviceOpen) {

@@ -150,6 +150,22 @@ void EvdevActuator::guarded(Call&& call) {
     }
 }
 
+template <typename Operation>
+void EvdevActuator::reopening_once(Operation&& operation) {
+    const bool held_open = device_ != nullptr;
+    try {
+        operation();
+    } catch (const FfDeviceError& error) {
+        // Nothing watches the device between playbacks, so a node held open can have gone
+        // since the last call: unplugged, or its driver rebound, and maybe back already. The
+        // first playback after that should not be lost to the stale node.
+        if (!held_open || device_ || !error.device_gone()) {
+            throw;
+        }
+        operation();
+    }
+}
+
 bool EvdevActuator::plays_nothing(const Drive& drive) const {
     const bool rising_from_zero =
         kind_ == EffectKind::periodic && has_ramp(drive) && unit(drive.ramp_to) > 0.0;
@@ -216,6 +232,10 @@ void EvdevActuator::stop_playing() {
 }
 
 void EvdevActuator::apply(const Drive& drive) {
+    reopening_once([&] { apply_now(drive); });
+}
+
+void EvdevActuator::apply_now(const Drive& drive) {
     ensure_open();
     if (plays_nothing(drive)) {
         stop_playing();
@@ -239,6 +259,10 @@ void EvdevActuator::apply(const Drive& drive) {
 }
 
 void EvdevActuator::prepare(const Drive& next) {
+    reopening_once([&] { prepare_now(next); });
+}
+
+void EvdevActuator::prepare_now(const Drive& next) {
     ensure_open();
     if (slot_count_ < 2 || plays_nothing(next)) {
         return;
@@ -269,7 +293,14 @@ void EvdevActuator::set_gain(double gain) {
     }
     const input_event event =
         ff_event(FF_GAIN, static_cast<std::int32_t>(std::lround(*gain_ * 0xffff)));
-    guarded([&](FfDevice& device) { device.write(std::span(&event, 1)); });
+    try {
+        guarded([&](FfDevice& device) { device.write(std::span(&event, 1)); });
+    } catch (const FfDeviceError& error) {
+        // Gone (and closed): the next drive opens the device again and sends the gain then.
+        if (!error.device_gone()) {
+            throw;
+        }
+    }
 }
 
 std::unique_ptr<Actuator> make_evdev_actuator(const std::map<std::string, std::string>& settings) {

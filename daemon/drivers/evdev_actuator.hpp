@@ -40,8 +40,10 @@ using FfDeviceOpener = std::function<std::unique_ptr<FfDevice>()>;
 // effect and starts the spare one; the slots then swap roles. Every effect uploaded is erased
 // again, at the latest in the destructor.
 //
-// When the device goes away (ENODEV, ENOENT, EIO) the call throws DeviceError and the device is
-// closed; the next apply() or prepare() opens it again through the opener.
+// When the device goes away (ENODEV, ENOENT, EIO) the device is closed. A call that finds the
+// device it held gone opens it again through the opener and tries once more (the device may
+// be back already, replugged while the daemon was idle); if that fails too, it throws
+// DeviceError, and the next apply() or prepare() tries again.
 class EvdevActuator : public Actuator {
   public:
     // Opens the device at once. Throws DeviceError when it cannot be opened or has no effect
@@ -61,7 +63,7 @@ class EvdevActuator : public Actuator {
     void off() noexcept override;
     void prepare(const Drive& next) override;
     // Remembered and sent again whenever the device is opened again. Throws DeviceError when the
-    // write fails.
+    // write fails for another reason than the device having gone.
     void set_gain(double gain) override;
 
     // The node in use, empty while the device is closed after it went away.
@@ -81,7 +83,13 @@ class EvdevActuator : public Actuator {
     // Runs a kernel call; a device that has gone is closed before the error goes on.
     template <typename Call>
     void guarded(Call&& call);
+    // Runs one of the player's calls; once more on a fresh opening if the device held open
+    // when it began turns out to have gone.
+    template <typename Operation>
+    void reopening_once(Operation&& operation);
 
+    void apply_now(const Drive& drive);
+    void prepare_now(const Drive& next);
     bool plays_nothing(const Drive& drive) const;
     ff_effect effect_for(const Drive& drive) const;
     void load(Slot& slot, const Drive& drive);

@@ -1,0 +1,270 @@
+// vibscored with driver = gpio-erm and gpio-lra in the guest, on gpio-sim lines: the software
+// PWM as the GPIO character device carries it out (duty cycles, the enable line, an H-bridge's
+// antiphase), note timing, lines low afterwards, and the maximum on-time.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <optional>
+#include <sstream>
+
+#include "tests/daemon_fixture.hpp"
+#include "tests/hil/gpio_lines_sampler.hpp"
+#include "tests/hil/gpio_sim_chip.hpp"
+#include "tests/hil/score_expectations.hpp"
+
+namespace vibscore::hil {
+namespace {
+
+using namespace std::chrono_literals;
+using testing::DaemonFixture;
+using Clock = std::chrono::steady_clock;
+
+const std::string kPhoneClef = "lra-phone.clef.xml";  // quarter = 0.2 s; string 1 = 155 Hz
+
+std::string listing(const std::vector<LinesState>& states, std::size_t limit = 40) {
+    std::ostringstream out;
+    for (std::size_t i = 0; i < states.size() && i < limit; ++i) {
+        out << "\n  " << states[i].seen.time_since_epoch().count() / 1000 << " us:";
+        for (const int value : states[i].values) {
+            out << " " << value;
+        }
+    }
+    if (states.size() > limit) {
+        out << "\n  ... " << states.size() - limit << " more";
+    }
+    return out.str();
+}
+
+// Where line `index` was high: [first rise, last fall) by the sampler's `seen` times.
+struct Driven {
+    Clock::time_point first_rise, last_fall;
+    std::size_t rises = 0;
+};
+
+Driven driven(const std::vector<LinesState>& states, std::size_t index) {
+    Driven result;
+    for (std::size_t i = 0; i < states.size(); ++i) {
+        const bool high = states[i].values[index] == 1;
+        const bool was_high = i > 0 && states[i - 1].values[index] == 1;
+        if (high && !was_high) {
+            result.first_rise = result.rises == 0 ? states[i].seen : result.first_rise;
+            ++result.rises;
+        } else if (!high && was_high) {
+            result.last_fall = states[i].seen;
+        }
+    }
+    return result;
+}
+
+// Waits until the sampler has seen every line low (the PWM thread stops at its next edge).
+bool settles_low(const GpioLinesSampler& sampler) {
+    return eventually(
+        [&] {
+            const auto last = sampler.changes().back().values;
+            return std::all_of(last.begin(), last.end(), [](int value) { return value == 0; });
+        },
+        1s);
+}
+
+// The duty cycle of each whole period of line `index` within [begin, end), rise to rise, that
+// lasted its nominal length (within 25 %). Under TCG on a busy host a wake-up of the PWM thread
+// can be milliseconds late, which stretches or squashes the pulses around it; those periods
+// are left out, and the median of the rest is the waveform the backend asked for.
+std::vector<double> clean_period_duties(const std::vector<LinesState>& states, std::size_t index,
+                                        double period_s, Clock::time_point begin,
+                                        Clock::time_point end) {
+    std::vector<double> duties;
+    std::optional<Clock::time_point> rise, fall;
+    for (std::size_t i = 1; i < states.size(); ++i) {
+        if (states[i].seen < begin || states[i].seen >= end) {
+            continue;
+        }
+        const int value = states[i].values[index];
+        if (value == states[i - 1].values[index]) {
+            continue;
+        }
+        if (value == 0) {
+            fall = states[i].seen;
+            continue;
+        }
+        if (rise && fall && *fall > *rise) {
+            const double length = seconds_between(*rise, states[i].seen);
+            if (std::abs(length - period_s) <= 0.25 * period_s) {
+                duties.push_back(seconds_between(*rise, *fall) / length);
+            }
+        }
+        rise = states[i].seen;
+    }
+    return duties;
+}
+
+TEST(DaemonGpio, ErmDrivesItsLineAtTheNotesStrengthAsDutyCycleWithTheEnableLine) {
+    GpioSimChip sim({2});
+    // A 10 ms carrier period: under TCG on a busy host a wake-up can be milliseconds late.
+    DaemonFixture daemon(driver_config("gpio-erm", "chip = " + sim.chip_name() +
+                                                       "\nline = 0\nenable-line = 1\n"
+                                                       "carrier-hz = 100"));
+    // Started after the daemon: on the guest's one vCPU it competes with everything else.
+    GpioLinesSampler sampler(sim, {0, 1});  // motor, enable
+    auto client = daemon.client();
+    // Strength 0.5 for 0.8 s.
+    const auto score =
+        one_bar_score(kPhoneClef, "<Note length=\"whole\" number=\"4\" string=\"1\"/>");
+    render::CueAdaptation adaptation;
+    adaptation.frequency = false;
+    const auto drives = expected_drives(score, adaptation);
+    ASSERT_EQ(drives.size(), 2u);
+    ASSERT_EQ(drives[0].amplitude, 0.5);
+    const double note_s = drives[1].at - drives[0].at;
+
+    const auto asked = Clock::now();
+    const auto id = client->Play(score, {});
+    std::string reason;
+    ASSERT_TRUE(client->wait_finished(id, &reason)) << daemon.daemon_log();
+    EXPECT_EQ(reason, "completed");
+    ASSERT_TRUE(settles_low(sampler)) << listing(sampler.changes());
+    EXPECT_EQ(sim.value(0), 0);
+    EXPECT_EQ(sim.value(1), 0);
+
+    const auto states = sampler.changes();
+    const auto motor = driven(states, 0);
+    const auto enable = driven(states, 1);
+    ASSERT_GT(motor.rises, 0u) << listing(states);
+    EXPECT_LT(seconds_between(asked, motor.first_rise), 0.1) << "the Play call to the first edge";
+    // On for the note, within a carrier period and the onset tolerance.
+    EXPECT_NEAR(seconds_between(motor.first_rise, motor.last_fall), note_s,
+                kOnsetTolerance_s + 0.01);
+    // The carrier's periods at the note's strength as duty cycle.
+    const double periods = note_s * 100;
+    const auto duties = clean_period_duties(states, 0, 0.01, motor.first_rise, motor.last_fall);
+    ASSERT_GE(duties.size(), 10u) << listing(states, 200);
+    EXPECT_NEAR(median(duties), 0.5, 0.1) << listing(states, 200);
+    EXPECT_LE(static_cast<double>(motor.rises), periods + 1) << listing(states, 200);
+
+    // The enable line is high throughout the note, and the motor line never without it.
+    EXPECT_EQ(enable.rises, 1u) << listing(states);
+    EXPECT_LE(enable.first_rise, motor.first_rise);
+    EXPECT_GE(enable.last_fall, motor.last_fall);
+    for (const auto& state : states) {
+        EXPECT_FALSE(state.values[0] == 1 && state.values[1] == 0)
+            << "motor high without enable at " << state.seen.time_since_epoch().count();
+    }
+}
+
+TEST(DaemonGpio, LraDrivesTwoLinesInAntiphaseAtTheNotesFrequencyNeverBothHigh) {
+    GpioSimChip sim({2});
+    // The resonance is far from the notes' 155 Hz: a backend that ignored the note's
+    // frequency would show twice the pulses.
+    DaemonFixture daemon(driver_config(
+        "gpio-lra", "chip = " + sim.chip_name() + "\nline-a = 0\nline-b = 1\nresonance-hz = 300"));
+    GpioLinesSampler sampler(sim, {0, 1});  // the H-bridge's inputs A and B
+    auto client = daemon.client();
+    // 155 Hz at full strength for 0.4 s, a rest of 0.2 s, 155 Hz at half strength for 0.4 s.
+    const auto score = one_bar_score(kPhoneClef,
+                                     "<Note length=\"half\" number=\"9\" string=\"1\"/>"
+                                     "<Rest length=\"quarter\"/>"
+                                     "<Note length=\"half\" number=\"4\" string=\"1\"/>");
+    const auto drives = expected_drives(score, {});
+    ASSERT_EQ(drives.size(), 4u);
+    ASSERT_EQ(drives[0].frequency_hz, 155.0);
+
+    const auto id = client->Play(score, {});
+    std::string reason;
+    ASSERT_TRUE(client->wait_finished(id, &reason)) << daemon.daemon_log();
+    EXPECT_EQ(reason, "completed");
+    ASSERT_TRUE(settles_low(sampler)) << listing(sampler.changes());
+
+    const auto states = sampler.changes();
+    // The bridge never shorts its supply.
+    for (const auto& state : states) {
+        ASSERT_FALSE(state.values[0] == 1 && state.values[1] == 1)
+            << "A and B both high at " << state.seen.time_since_epoch().count() << " ("
+            << sampler.torn_samples() << " torn samples left out)" << listing(states);
+    }
+    // Antiphase: B rises half a period after A. (Not every pulse: under TCG a wake-up late by
+    // more than a pulse's length squashes that pulse to nothing, so the turns A, B, A, B can
+    // show a gap; the median phase is what the waveform is.)
+    const double period_s = 1.0 / drives[0].frequency_hz;
+    std::vector<double> phases;
+    std::optional<Clock::time_point> last_a_rise;
+    for (std::size_t i = 1; i < states.size(); ++i) {
+        const bool a_rises = states[i].values[0] == 1 && states[i - 1].values[0] == 0;
+        const bool b_rises = states[i].values[1] == 1 && states[i - 1].values[1] == 0;
+        if (a_rises) {
+            last_a_rise = states[i].seen;
+        } else if (b_rises && last_a_rise) {
+            const double since_a = seconds_between(*last_a_rise, states[i].seen);
+            if (since_a < period_s) {
+                phases.push_back(since_a / period_s);
+            }
+        }
+    }
+    ASSERT_GE(phases.size(), 40u) << listing(states);
+    EXPECT_NEAR(median(phases), 0.5, 0.15) << "the median phase of B after A";
+
+    const auto start = driven(states, 0).first_rise;
+    const auto at = [&](double seconds) {
+        return start + std::chrono::duration_cast<Clock::duration>(
+                           std::chrono::duration<double>(seconds - drives[0].at));
+    };
+    // Inside each note (20 ms in from its edges): the duty of each line, and its frequency.
+    struct Note {
+        double from_s, to_s, duty_per_line;
+    };
+    for (const Note note :
+         {Note{drives[0].at, drives[1].at, 0.5}, Note{drives[2].at, drives[3].at, 0.25}}) {
+        SCOPED_TRACE("note at " + std::to_string(note.from_s) + " s");
+        const auto begin = at(note.from_s + 0.02);
+        const auto end = at(note.to_s - 0.02);
+        for (std::size_t line = 0; line < 2; ++line) {
+            const auto duties = clean_period_duties(states, line, period_s, begin, end);
+            ASSERT_GE(duties.size(), 10u) << "line " << line << listing(states, 200);
+            EXPECT_NEAR(median(duties), note.duty_per_line, 0.1) << "line " << line;
+            std::size_t rises = 0;
+            for (std::size_t i = 1; i < states.size(); ++i) {
+                rises += states[i].seen >= begin && states[i].seen < end &&
+                                 states[i].values[line] == 1 && states[i - 1].values[line] == 0
+                             ? 1
+                             : 0;
+            }
+            // One pulse per period of 155 Hz at most (late wake-ups only take pulses away).
+            const double periods = (note.to_s - note.from_s - 0.04) * 155.0;
+            EXPECT_LE(static_cast<double>(rises), periods + 1) << "line " << line;
+        }
+    }
+}
+
+TEST(DaemonGpio, TheMaximumOnTimeCutsALongNoteShort) {
+    GpioSimChip sim({1});
+    DaemonFixture daemon(driver_config(
+        "gpio-erm", "chip = " + sim.chip_name() + "\nline = 0\nmax-on-time-ms = 200"));
+    GpioLinesSampler sampler(sim, {0});
+    auto client = daemon.client();
+    // Full strength for 1 s: two tied notes make one drive.
+    const auto score =
+        one_bar_score(kPhoneClef,
+                      "<Note length=\"whole\" number=\"9\" string=\"1\" legato=\"1\"/>"
+                      "<Note length=\"quarter\" number=\"9\" string=\"1\" legato=\"1\"/>");
+    render::CueAdaptation adaptation;
+    adaptation.frequency = false;
+    const auto drives = expected_drives(score, adaptation);
+    ASSERT_EQ(drives.size(), 2u);
+    ASSERT_EQ(drives[0].amplitude, 1.0);
+    ASSERT_DOUBLE_EQ(drives[1].at, 1.0);
+
+    const auto id = client->Play(score, {});
+    std::string reason;
+    ASSERT_TRUE(client->wait_finished(id, &reason)) << daemon.daemon_log();
+    EXPECT_EQ(reason, "completed");
+    const auto states = sampler.changes();
+    const auto motor = driven(states, 0);
+    EXPECT_EQ(motor.rises, 1u) << listing(states);
+    EXPECT_NEAR(seconds_between(motor.first_rise, motor.last_fall), 0.2, kOnsetTolerance_s)
+        << listing(states);
+    EXPECT_EQ(sim.value(0), 0);
+    EXPECT_NE(daemon.daemon_log().find("maximum on-time"), std::string::npos)
+        << daemon.daemon_log();
+}
+
+}  // namespace
+}  // namespace vibscore::hil
