@@ -4,6 +4,8 @@
 #include <iostream>
 
 #include "client/bus_verbs.hpp"
+#include "client/editor/editor_app.hpp"
+#include "client/editor/verbs.hpp"
 #include "client/offline_verbs.hpp"
 #include "config.h"
 
@@ -83,6 +85,31 @@ int main(int argc, char** argv) {
                            "vibscore; its settings come from vibscored.conf).");
     driver_verb->add_option("NAME", driver_name, "backend to switch to (see 'vibscore drivers')");
 
+    vibscore::editor::ShowRequest show_request;
+    auto* show_verb =
+        app.add_subcommand("show", "Draw a registry score or a score file as staff notation.");
+    show_verb->add_option("SCORE", show_request.score, "registry name or VibScore file")
+        ->required();
+    show_verb->add_option("--width", show_request.width, "columns (default: the terminal's)")
+        ->check(CLI::Range(20, 10000));
+    show_verb->add_flag("--colour,--color", show_request.colour,
+                        "ANSI colours even when not writing to a terminal");
+
+    vibscore::editor::EditOptions edit_options;
+    auto* edit_verb = app.add_subcommand(
+        "edit", "Compose in the terminal, by keyboard or six buttons (docs/editor.md).");
+    edit_verb->add_option("SCORE", edit_options.target,
+                          "registry name or VibScore file (default: a new score)");
+    edit_verb->add_option("--clef", edit_options.clef,
+                          "a new score's clef: registry clef or clef file (default lra-phone)");
+    edit_verb->add_option("--buttons", edit_options.buttons,
+                          "evdev device whose keys are the six buttons (repeatable)");
+    edit_verb->add_option("--keymap,--button-map", edit_options.button_map,
+                          "keys for the buttons, e.g. up=KEY_UP,select=KEY_ENTER,back=long:KEY_"
+                          "POWER (default: phone volume and power keys)");
+    edit_verb->add_flag("--grab", edit_options.grab,
+                        "take the button devices' keys for the editor alone");
+
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {
@@ -125,6 +152,12 @@ int main(int argc, char** argv) {
     }
     if (driver_verb->parsed()) {
         return driver(driver_name, std::cout, std::cerr);
+    }
+    if (show_verb->parsed()) {
+        return vibscore::editor::show_score(show_request, std::cout, std::cerr);
+    }
+    if (edit_verb->parsed()) {
+        return vibscore::editor::run_editor(edit_options, std::cerr);
     }
     return describe_document(info_file, std::cout, std::cerr);
 }

@@ -335,6 +335,13 @@ TEST_F(EvdevActuatorTest, RumbleOnlyDevice) {
     EXPECT_EQ(effect.replay.length, 0);
 }
 
+TEST_F(EvdevActuatorTest, FrequencyControlCanBeDeniedForMemorylessVibras) {
+    settings.frequency_control = false;
+    const Capabilities capabilities = make()->capabilities();
+    EXPECT_FALSE(capabilities.frequency_control);
+    EXPECT_TRUE(capabilities.envelopes);  // still periodic effects with envelopes
+}
+
 TEST_F(EvdevActuatorTest, RumbleMotorSetting) {
     rumble_only();
     settings.rumble_motor = RumbleMotor::weak;

@@ -45,8 +45,8 @@ _vibscore() {
         case $verb in
             render) options+=" --rate --out --plot --width" ;;
             play) options+=" --usage --repeat --clef --intensity --wait" ;;
-            show) options+=" --width" ;;
-            edit) options+=" --buttons --keymap" ;;
+            show) options+=" --width --colour" ;;
+            edit) options+=" --buttons --keymap --grab --clef" ;;
         esac
         COMPREPLY=($(compgen -W "$options" -- "$cur"))
         return

@@ -108,7 +108,7 @@ void EvdevActuator::ensure_open() {
 
     capabilities_ = Capabilities{};
     capabilities_.amplitude_control = true;
-    capabilities_.frequency_control = periodic;
+    capabilities_.frequency_control = periodic && settings_.frequency_control;
     capabilities_.envelopes = periodic;
     capabilities_.effect_memory = slot_count_ == 2;
     capabilities_.gain_control = has_gain_;
@@ -319,6 +319,7 @@ std::unique_ptr<Actuator> make_evdev_actuator(const std::map<std::string, std::s
     evdev.rumble_motor = motor == "weak"   ? RumbleMotor::weak
                          : motor == "both" ? RumbleMotor::both
                                            : RumbleMotor::strong;
+    evdev.frequency_control = read.flag("frequency-control", evdev.frequency_control);
     read.reject_unknown();
 
     FfDeviceOpener opener;

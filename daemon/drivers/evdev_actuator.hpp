@@ -21,6 +21,9 @@ struct EvdevSettings {
     FfWaveform waveform = FfWaveform::sine;  // preferred; the device may only have the other
     double default_frequency_hz = 175.0;     // for drives with frequency 0
     RumbleMotor rumble_motor = RumbleMotor::strong;
+    // ff-memless drivers (most phone vibras) claim FF_PERIODIC but ignore the period: false
+    // stops the player from sending frequencies such a device cannot play.
+    bool frequency_control = true;
 };
 
 // Opens the device to drive: the configured node, or whatever discovery finds now. Called again

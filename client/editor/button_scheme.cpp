@@ -1,0 +1,288 @@
+#include "client/editor/button_scheme.hpp"
+
+namespace vibscore::editor {
+
+namespace {
+
+const char* kQuitChoices[] = {"save and quit", "quit without saving", "cancel"};
+
+}  // namespace
+
+void ButtonScheme::set_playing(bool playing) {
+    if (playing) {
+        mode_ = Mode::playing;
+    } else if (mode_ == Mode::playing) {
+        mode_ = Mode::browse;
+    }
+}
+
+Request ButtonScheme::press(Button button, EditorModel& model) {
+    switch (mode_) {
+        case Mode::browse:
+            return browse(button, model);
+        case Mode::entry:
+            return entry(button, model);
+        case Mode::menu:
+            return main_menu_press(button, model);
+        case Mode::clef_menu:
+        case Mode::open_menu:
+        case Mode::quit_menu:
+            return list_press(button, model);
+        case Mode::playing:
+            return {Request::Kind::stop};
+    }
+    return {};
+}
+
+Request ButtonScheme::browse(Button button, EditorModel& model) {
+    switch (button) {
+        case Button::up:
+            model.move_up();
+            break;
+        case Button::down:
+            model.move_down();
+            break;
+        case Button::left:
+            model.move_left();
+            break;
+        case Button::right:
+            model.move_right();
+            break;
+        case Button::select:
+            if (model.begin_entry()) {
+                mode_ = Mode::entry;
+            }
+            break;
+        case Button::back:
+            mode_ = Mode::menu;
+            break;
+    }
+    return {};
+}
+
+Request ButtonScheme::entry(Button button, EditorModel& model) {
+    switch (button) {
+        case Button::up:
+            model.entry_number(+1);
+            break;
+        case Button::down:
+            model.entry_number(-1);
+            break;
+        case Button::left:
+            model.entry_length(-1);
+            break;
+        case Button::right:
+            model.entry_length(+1);
+            break;
+        case Button::select:
+            model.end_entry();
+            mode_ = Mode::browse;
+            break;
+        case Button::back:
+            model.entry_toggle_rest();
+            break;
+    }
+    return {};
+}
+
+Request ButtonScheme::main_menu_press(Button button, EditorModel& model) {
+    const auto entries = main_menu(model);
+    const int size = static_cast<int>(entries.size());
+    switch (button) {
+        case Button::up:
+            main_.step(-1, size);
+            break;
+        case Button::down:
+            main_.step(+1, size);
+            break;
+        case Button::left:
+            main_.jump_group(-1, entries);
+            break;
+        case Button::right:
+            main_.jump_group(+1, entries);
+            break;
+        case Button::back:
+            mode_ = Mode::browse;
+            break;
+        case Button::select:
+            mode_ = Mode::browse;
+            return perform(entries[static_cast<std::size_t>(main_.index())].action, model);
+    }
+    return {};
+}
+
+void ButtonScheme::open_clef_menu(const EditorModel& model) {
+    const auto choices = model.clef_choices();
+    const std::string& current = model.score().bars.at(model.cursor().bar).clef;
+    int index = 0;
+    for (std::size_t i = 0; i < choices.size(); ++i) {
+        if (choices[i].id == current) {
+            index = static_cast<int>(i);
+        }
+    }
+    list_.set(index, static_cast<int>(choices.size()));
+    mode_ = Mode::clef_menu;
+}
+
+Request ButtonScheme::list_press(Button button, EditorModel& model) {
+    const int size = mode_ == Mode::clef_menu   ? static_cast<int>(model.clef_choices().size())
+                     : mode_ == Mode::open_menu ? static_cast<int>(openable_->size())
+                                                : 3;
+    switch (button) {
+        case Button::up:
+            list_.step(-1, size);
+            return {};
+        case Button::down:
+            list_.step(+1, size);
+            return {};
+        case Button::left:
+        case Button::right:
+            return {};
+        case Button::back:
+            mode_ = mode_ == Mode::quit_menu ? Mode::browse : Mode::menu;
+            return {};
+        case Button::select:
+            break;
+    }
+    const Mode was = mode_;
+    mode_ = Mode::browse;
+    if (size == 0) {
+        return {};
+    }
+    const auto chosen = static_cast<std::size_t>(list_.index());
+    switch (was) {
+        case Mode::clef_menu:
+            model.set_bar_clef(model.clef_choices()[chosen].id);
+            return {};
+        case Mode::open_menu:
+            last_open_ = list_.index();
+            return {Request::Kind::open, (*openable_)[chosen]};
+        case Mode::quit_menu:
+            if (chosen == 0) {
+                return {Request::Kind::save_and_quit};
+            }
+            if (chosen == 1) {
+                return {Request::Kind::quit};
+            }
+            return {};
+        default:
+            return {};
+    }
+}
+
+Request ButtonScheme::perform(Action action, EditorModel& model) {
+    switch (action) {
+        case Action::choose_clef:
+            open_clef_menu(model);
+            return {};
+        case Action::open:
+            if (openable_->empty()) {
+                return {};
+            }
+            list_.set(last_open_, static_cast<int>(openable_->size()));
+            mode_ = Mode::open_menu;
+            return {};
+        case Action::quit:
+            if (model.modified()) {
+                list_.set(0, 3);
+                mode_ = Mode::quit_menu;
+                return {};
+            }
+            return {Request::Kind::quit};
+        case Action::play_or_stop:
+            return {Request::Kind::play, {}, model.cursor().bar};
+        case Action::save:
+            return {Request::Kind::save};
+        case Action::new_score:
+            return {Request::Kind::new_score};
+        default:
+            model.apply({action});
+            return {};
+    }
+}
+
+void ButtonScheme::leave_layers(EditorModel& model) {
+    if (mode_ == Mode::entry) {
+        model.end_entry();
+    }
+    mode_ = Mode::browse;
+}
+
+Request ButtonScheme::command(const Command& command, EditorModel& model) {
+    if (mode_ == Mode::playing) {
+        return {Request::Kind::stop};
+    }
+    leave_layers(model);
+    switch (command.action) {
+        case Action::choose_clef:
+        case Action::open:
+        case Action::quit:
+        case Action::play_or_stop:
+        case Action::save:
+        case Action::new_score:
+            return perform(command.action, model);
+        default:
+            model.apply(command);
+            return {};
+    }
+}
+
+ButtonScheme::MenuView ButtonScheme::menu_view(const EditorModel& model) const {
+    MenuView view;
+    switch (mode_) {
+        case Mode::menu:
+            view.title = "menu";
+            for (const auto& entry : main_menu(model)) {
+                view.lines.push_back(entry.label);
+            }
+            view.highlighted = main_.index();
+            break;
+        case Mode::clef_menu:
+            view.title = "clef of bar " + std::to_string(model.cursor().bar + 1);
+            for (const auto& clef : model.clef_choices()) {
+                view.lines.push_back(clef.id + "  " + clef.href);
+            }
+            view.highlighted = list_.index();
+            break;
+        case Mode::open_menu:
+            view.title = "open";
+            view.lines = *openable_;
+            view.highlighted = list_.index();
+            break;
+        case Mode::quit_menu:
+            view.title = "unsaved changes";
+            view.lines.assign(std::begin(kQuitChoices), std::end(kQuitChoices));
+            view.highlighted = list_.index();
+            break;
+        default:
+            break;
+    }
+    return view;
+}
+
+std::string ButtonScheme::hint(const EditorModel& model) const {
+    // Short enough to share a 40-column status line with what is being entered.
+    switch (mode_) {
+        case Mode::browse:
+            return is_empty_position(model.score(), model.cursor()) ? "Sel:new note  Back:menu"
+                                                                    : "Sel:change  Back:menu";
+        case Mode::entry:
+            return "\u2191\u2193num \u2190\u2192len Sel:ok Back:rest";
+        case Mode::menu:
+            return "\u2191\u2193choose \u2190\u2192group Sel:ok Back:close";
+        case Mode::clef_menu:
+        case Mode::open_menu:
+        case Mode::quit_menu:
+            return "\u2191\u2193choose  Sel:ok  Back:close";
+        case Mode::playing:
+            return "playing: any button stops";
+    }
+    return {};
+}
+
+std::string ButtonScheme::fingerprint() const {
+    return std::to_string(static_cast<int>(mode_)) + ',' + std::to_string(main_.index()) + ',' +
+           std::to_string(list_.index());
+}
+
+}  // namespace vibscore::editor

@@ -1,0 +1,80 @@
+#pragma once
+
+#include <cstddef>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "client/editor/buttons.hpp"
+#include "client/editor/commands.hpp"
+#include "client/editor/editor_model.hpp"
+#include "client/editor/menu.hpp"
+
+namespace vibscore::editor {
+
+// What the editor asks of the world around the model after a key or button.
+struct Request {
+    enum class Kind { none, play, stop, save, open, new_score, quit, save_and_quit };
+    Kind kind = Kind::none;
+    std::string name;     // open: the registry name or file
+    std::size_t bar = 0;  // play: the first bar
+    bool operator==(const Request&) const = default;
+};
+
+// The six-button scheme (docs/editor.md has its table). With nothing open:
+//   Up/Down       the active string          Left/Right  the cursor
+//   Select        on an empty position: enter a note there (the proposed note);
+//                 on a note or rest: change it (a note moves to the active string)
+//   Back          the menu
+// Entering or changing a symbol:
+//   Up/Down       its number                 Left/Right  shorter / longer
+//   Select        done: on to the next position        Back  note <-> rest
+// In a menu: Up/Down choose (wrapping), Left/Right jump between groups, Select does it,
+// Back closes. Menus reopen on the last choice. While playing, any button stops.
+// Keyboard commands (thesis Fig. 4.3) go through command(): they finish an open entry or
+// close a menu first.
+class ButtonScheme {
+  public:
+    enum class Mode { browse, entry, menu, clef_menu, open_menu, quit_menu, playing };
+
+    Request press(Button button, EditorModel& model);
+    Request command(const Command& command, EditorModel& model);
+
+    Mode mode() const { return mode_; }
+    // Playback started or ended (the editor is read-only in between).
+    void set_playing(bool playing);
+    // The scores "open..." offers.
+    void set_openable(std::vector<std::string> names) {
+        openable_ = std::make_shared<const std::vector<std::string>>(std::move(names));
+    }
+
+    // What to draw for an open menu: its title, lines and the highlighted one.
+    struct MenuView {
+        std::string title;
+        std::vector<std::string> lines;
+        int highlighted = 0;
+    };
+    MenuView menu_view(const EditorModel& model) const;
+    // One line saying what the buttons do now.
+    std::string hint(const EditorModel& model) const;
+
+    std::string fingerprint() const;
+
+  private:
+    Request browse(Button button, EditorModel& model);
+    Request entry(Button button, EditorModel& model);
+    Request main_menu_press(Button button, EditorModel& model);
+    Request list_press(Button button, EditorModel& model);
+    Request perform(Action action, EditorModel& model);
+    void open_clef_menu(const EditorModel& model);
+    void leave_layers(EditorModel& model);
+
+    Mode mode_ = Mode::browse;
+    MenuCursor main_;
+    MenuCursor list_;  // the open list menu's highlight
+    int last_open_ = 0;
+    std::shared_ptr<const std::vector<std::string>> openable_ =
+        std::make_shared<const std::vector<std::string>>();
+};
+
+}  // namespace vibscore::editor

@@ -1,0 +1,145 @@
+#include "client/editor/daemon_link.hpp"
+
+#include <sdbus-c++/sdbus-c++.h>
+
+#include <algorithm>
+#include <map>
+
+#include "haptics1-proxy.h"
+
+namespace vibscore::editor {
+
+namespace {
+
+constexpr const char* kService = "org.vibscore.Haptics1";
+constexpr const char* kPath = "/org/vibscore/Haptics1";
+
+DaemonError explain(const sdbus::Error& error) {
+    const std::string name = error.getName();
+    if (name == "org.freedesktop.DBus.Error.ServiceUnknown" ||
+        name == "org.freedesktop.DBus.Error.NameHasNoOwner") {
+        return {name, "vibscored is not running"};
+    }
+    const std::string prefix = "org.vibscore.Haptics1.Error.";
+    if (name.rfind(prefix, 0) == 0) {
+        return {name, error.getMessage()};
+    }
+    return {name, error.getMessage() + " (" + name + ")"};
+}
+
+template <typename Call>
+auto guarded(Call&& call) {
+    try {
+        return call();
+    } catch (const sdbus::Error& error) {
+        throw explain(error);
+    }
+}
+
+}  // namespace
+
+bool DaemonError::not_found() const {
+    return name_ == "org.vibscore.Haptics1.Error.NotFound";
+}
+
+class DaemonLink::Proxy : public sdbus::ProxyInterfaces<org::vibscore::Haptics1_proxy> {
+  public:
+    explicit Proxy(std::unique_ptr<sdbus::IConnection> connection)
+        : ProxyInterfaces(*connection, kService, kPath), connection_(std::move(connection)) {
+        registerProxy();
+    }
+    ~Proxy() { unregisterProxy(); }
+
+    sdbus::IConnection& connection() { return *connection_; }
+    std::vector<PlaybackEvent> take() { return std::exchange(events_, {}); }
+
+  private:
+    void onPlaybackStarted(const uint64_t&, const std::string&) override {}
+    void onPlaybackPosition(const uint64_t& id, const uint32_t& bar,
+                            const uint32_t& symbol) override {
+        events_.push_back({PlaybackEvent::Kind::position, id, bar, symbol, {}});
+    }
+    void onPlaybackFinished(const uint64_t& id, const std::string& reason) override {
+        events_.push_back({PlaybackEvent::Kind::finished, id, 0, 0, reason});
+    }
+    void onRegistryChanged(const std::string&, const std::string&) override {}
+
+    std::unique_ptr<sdbus::IConnection> connection_;
+    std::vector<PlaybackEvent> events_;
+};
+
+DaemonLink::DaemonLink() {
+    try {
+        proxy_ = std::make_unique<Proxy>(sdbus::createSystemBusConnection());
+    } catch (const sdbus::Error& error) {
+        throw DaemonError(error.getName(), "cannot reach the system bus: " + error.getMessage());
+    }
+}
+
+DaemonLink::~DaemonLink() = default;
+
+std::uint64_t DaemonLink::play(const std::string& document, std::size_t start_bar) {
+    return guarded([&] {
+        std::map<std::string, sdbus::Variant> options;
+        options["start-bar"] = sdbus::Variant(static_cast<std::uint32_t>(start_bar));
+        return proxy_->Play(document, options);
+    });
+}
+
+void DaemonLink::stop(std::uint64_t id) {
+    guarded([&] {
+        proxy_->Stop(id);
+        return 0;
+    });
+}
+
+void DaemonLink::compose(const std::string& name, const std::string& document) {
+    guarded([&] {
+        proxy_->Compose(name, document);
+        return 0;
+    });
+}
+
+std::string DaemonLink::get(const std::string& kind, const std::string& name) {
+    return guarded([&] { return proxy_->Get(kind, name); });
+}
+
+std::vector<std::string> DaemonLink::list(const std::string& kind) {
+    return guarded([&] {
+        std::vector<std::string> names;
+        for (const auto& entry : proxy_->List(kind)) {
+            names.push_back(entry.get<0>());
+        }
+        return names;
+    });
+}
+
+int DaemonLink::fd() const {
+    return proxy_->connection().getEventLoopPollData().fd;
+}
+
+short DaemonLink::events() const {
+    return proxy_->connection().getEventLoopPollData().events;
+}
+
+int DaemonLink::timeout_ms() const {
+    const auto relative = proxy_->connection().getEventLoopPollData().getRelativeTimeout();
+    if (!relative) {
+        return -1;
+    }
+    // Rounded up, so poll does not wake just before the bus wants serving.
+    const auto ms = (relative->count() + 999) / 1000;
+    return static_cast<int>(std::min<long long>(ms, 60'000));
+}
+
+std::vector<PlaybackEvent> DaemonLink::process() {
+    try {
+        while (proxy_->connection().processPendingRequest()) {
+        }
+    } catch (const sdbus::Error& error) {
+        throw explain(error);
+    }
+    return proxy_->take();
+}
+
+}  // namespace vibscore::editor

@@ -1,0 +1,369 @@
+#include "client/editor/editor_app.hpp"
+
+#include <poll.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <ctime>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <set>
+
+#include "client/editor/daemon_link.hpp"
+#include "client/editor/documents.hpp"
+#include "client/editor/editor.hpp"
+#include "client/editor/evdev_buttons.hpp"
+#include "client/editor/ncurses_view.hpp"
+#include "daemon/drivers/actuator.hpp"
+#include "score/document_error.hpp"
+#include "score/score_xml.hpp"
+
+namespace vibscore::editor {
+
+namespace {
+
+std::chrono::microseconds monotonic_now() {
+    timespec now{};
+    clock_gettime(CLOCK_MONOTONIC, &now);
+    return std::chrono::seconds(now.tv_sec) + std::chrono::microseconds(now.tv_nsec / 1000);
+}
+
+std::string stem(const std::string& path) {
+    std::string name = std::filesystem::path(path).filename().string();
+    for (const std::string suffix : {".score.xml", ".xml"}) {
+        if (name.ends_with(suffix)) {
+            return name.substr(0, name.size() - suffix.size());
+        }
+    }
+    return name;
+}
+
+struct ButtonDevice {
+    std::unique_ptr<EvdevDevice> device;
+    std::unique_ptr<ButtonReader> reader;
+};
+
+// One editing session: the editor, where it saves, the daemon, the buttons and the screen.
+class Session {
+  public:
+    explicit Session(const EditOptions& options) : options_(options) {
+        try {
+            daemon_ = std::make_unique<DaemonLink>();
+            registry_scores_ = daemon_->list("score");
+            registry_clefs_ = daemon_->list("clef");
+        } catch (const DaemonError& error) {
+            // Files can still be edited; playing and the registry wait for the daemon.
+            daemon_.reset();
+            daemon_problem_ = error.what();
+        }
+        load(options.target.empty() ? std::optional<std::string>() : options.target);
+        if (!daemon_) {
+            message_ = "no daemon: " + daemon_problem_;
+        }
+        const ButtonMap map = ButtonMap::parse(options.button_map);
+        for (const auto& path : options.buttons) {
+            ButtonDevice device;
+            device.device = std::make_unique<EvdevDevice>(path, options.grab);
+            device.reader = std::make_unique<ButtonReader>(*device.device, map, path);
+            buttons_.push_back(std::move(device));
+        }
+    }
+
+    void run() {
+        Screen screen;
+        while (running_) {
+            screen.draw(editor_->model, editor_->scheme, {source_.name, message_, playing_at_});
+            wait_for_input();
+            while (const auto code = screen.key()) {
+                handle(editor_->key(*code));
+            }
+            read_buttons();
+            serve_bus();
+        }
+    }
+
+  private:
+    // Opens a score: a file, a registry name, or (nullopt) a new one. Nothing changes unless
+    // it succeeds, so a failed open cannot leave the session saving to the wrong place.
+    void load(const std::optional<std::string>& target) {
+        std::vector<ClefDeclaration> available = registry_clefs(registry_clefs_);
+        std::optional<Score> score;
+        const ScoreSource source =
+            target ? classify_source(*target)
+                   : ScoreSource{daemon_ ? ScoreSource::Kind::registry : ScoreSource::Kind::file,
+                                 fresh_name()};
+        if (source.kind == ScoreSource::Kind::file) {
+            auto beside = clefs_beside(source.name);
+            beside.insert(beside.end(), available.begin(), available.end());
+            available = std::move(beside);
+            if (std::filesystem::exists(source.name)) {
+                score = read_score_file(source.name);
+            }
+        } else if (target) {
+            if (!daemon_) {
+                throw DaemonError(
+                    "", "cannot open registry score \"" + source.name + "\": " + message_);
+            }
+            try {
+                score = read_score(daemon_->get("score", source.name), source.name).score;
+            } catch (const DaemonError& error) {
+                if (!error.not_found()) {
+                    throw;
+                }
+            }
+        }
+        const bool is_new = !score;
+        if (is_new) {
+            const std::string title =
+                source.kind == ScoreSource::Kind::file ? stem(source.name) : source.name;
+            score = EditorModel::blank_score(title, default_clef(available));
+        }
+        auto editor =
+            std::make_unique<Editor>(Editor{EditorModel(std::move(*score), available), {}});
+        editor->scheme.set_openable(registry_scores_);
+        editor_ = std::move(editor);
+        source_ = source;
+        message_ = is_new ? "new score " + source_.name : "";
+    }
+
+    // A registry name no score has yet: tacton-1, tacton-2, ...
+    std::string fresh_name() const {
+        const std::set<std::string> taken(registry_scores_.begin(), registry_scores_.end());
+        for (int n = 1;; ++n) {
+            const std::string name = "tacton-" + std::to_string(n);
+            if (!taken.contains(name) &&
+                (daemon_ || !std::filesystem::exists(name + ".score.xml"))) {
+                return daemon_ ? name : name + ".score.xml";
+            }
+        }
+    }
+
+    ClefDeclaration default_clef(const std::vector<ClefDeclaration>& available) const {
+        if (!options_.clef.empty()) {
+            const auto chosen = classify_source(options_.clef);
+            if (chosen.kind == ScoreSource::Kind::file) {
+                const std::string href = std::filesystem::path(options_.clef).filename().string();
+                return {stem(href).substr(0, stem(href).find(".clef")), href};
+            }
+            return {options_.clef, options_.clef + ".clef.xml"};
+        }
+        for (const auto& clef : available) {
+            if (clef.id == "lra-phone") {
+                return clef;
+            }
+        }
+        return available.empty() ? ClefDeclaration{"lra-phone", "lra-phone.clef.xml"}
+                                 : available.front();
+    }
+
+    void wait_for_input() {
+        std::vector<pollfd> fds{{STDIN_FILENO, POLLIN, 0}};
+        for (const auto& device : buttons_) {
+            fds.push_back({device.device->fd(), POLLIN, 0});
+        }
+        int timeout = -1;
+        if (daemon_) {
+            fds.push_back({daemon_->fd(), daemon_->events(), 0});
+            timeout = daemon_->timeout_ms();
+        }
+        const auto now = monotonic_now();
+        for (const auto& device : buttons_) {
+            if (const auto left = device.reader->until_long(now)) {
+                const int ms = static_cast<int>(left->count() / 1000 + 1);
+                timeout = timeout < 0 ? ms : std::min(timeout, ms);
+            }
+        }
+        ::poll(fds.data(), fds.size(), timeout);
+    }
+
+    void read_buttons() {
+        for (auto it = buttons_.begin(); it != buttons_.end();) {
+            try {
+                for (const Button button : it->reader->read()) {
+                    handle(editor_->press(button));
+                }
+                if (const auto held = it->reader->expire(monotonic_now())) {
+                    handle(editor_->press(*held));
+                }
+                ++it;
+            } catch (const drivers::DeviceError& error) {
+                message_ = error.what();  // the keyboard still works
+                it = buttons_.erase(it);
+            }
+        }
+    }
+
+    void serve_bus() {
+        if (!daemon_) {
+            return;
+        }
+        try {
+            for (const auto& event : daemon_->process()) {
+                if (!playback_ || event.id != *playback_) {
+                    continue;
+                }
+                if (event.kind == PlaybackEvent::Kind::position) {
+                    playing_at_ = Position{event.bar, event.symbol};
+                } else {
+                    end_playback("playback " + event.reason);
+                }
+            }
+        } catch (const DaemonError& error) {
+            message_ = error.what();
+        }
+    }
+
+    void end_playback(const std::string& why) {
+        playback_.reset();
+        playing_at_.reset();
+        editor_->scheme.set_playing(false);
+        message_ = why;
+    }
+
+    void handle(const Request& request) {
+        message_.clear();  // news last until the next key or button
+        switch (request.kind) {
+            case Request::Kind::none:
+                return;
+            case Request::Kind::play:
+                play(request.bar);
+                return;
+            case Request::Kind::stop:
+                stop();
+                return;
+            case Request::Kind::save:
+                save();
+                return;
+            case Request::Kind::save_and_quit:
+                if (save()) {
+                    running_ = false;
+                }
+                return;
+            case Request::Kind::quit:
+                running_ = false;
+                return;
+            case Request::Kind::open:
+                replace(request.name);
+                return;
+            case Request::Kind::new_score:
+                replace(std::nullopt);
+                return;
+        }
+    }
+
+    void play(std::size_t bar) {
+        if (!daemon_) {
+            message_ = "cannot play: no daemon";
+            return;
+        }
+        try {
+            playback_ = daemon_->play(registry_document(editor_->model.score()), bar);
+            editor_->scheme.set_playing(true);
+            playing_at_ = Position{bar, 0};
+            message_ = "playing bar " + std::to_string(bar + 1) + " on: any button stops";
+        } catch (const DaemonError& error) {
+            message_ = "cannot play: " + std::string(error.what());
+        }
+    }
+
+    void stop() {
+        if (playback_ && daemon_) {
+            try {
+                daemon_->stop(*playback_);
+            } catch (const DaemonError& error) {
+                message_ = error.what();
+            }
+        }
+        end_playback("stopped");
+    }
+
+    bool save() {
+        auto& model = editor_->model;
+        try {
+            if (model.score().title.empty()) {
+                model.set_title(source_.kind == ScoreSource::Kind::file ? stem(source_.name)
+                                                                        : source_.name);
+            }
+            if (source_.kind == ScoreSource::Kind::file) {
+                write_score_file(source_.name, model.score());
+                message_ = "saved " + source_.name;
+            } else {
+                if (!daemon_) {
+                    message_ = "cannot save: no daemon";
+                    return false;
+                }
+                daemon_->compose(source_.name, registry_document(model.score()));
+                message_ = "saved as " + source_.name;
+                if (std::find(registry_scores_.begin(), registry_scores_.end(), source_.name) ==
+                    registry_scores_.end()) {
+                    registry_scores_.push_back(source_.name);
+                    std::sort(registry_scores_.begin(), registry_scores_.end());
+                    editor_->scheme.set_openable(registry_scores_);
+                }
+            }
+            model.mark_saved();
+            return true;
+        } catch (const std::exception& error) {
+            message_ = "not saved: " + std::string(error.what());
+            return false;
+        }
+    }
+
+    // Opens another score or a new one; unsaved changes need the request twice.
+    void replace(const std::optional<std::string>& target) {
+        const std::string wanted = target ? *target : "<new>";
+        if (editor_->model.modified() && pending_replace_ != wanted) {
+            pending_replace_ = wanted;
+            message_ = "unsaved changes: do it again to discard them";
+            return;
+        }
+        pending_replace_.clear();
+        try {
+            load(target);
+        } catch (const std::exception& error) {
+            message_ = error.what();
+        }
+    }
+
+    EditOptions options_;
+    std::unique_ptr<DaemonLink> daemon_;
+    std::vector<std::string> registry_scores_;
+    std::vector<std::string> registry_clefs_;
+    std::unique_ptr<Editor> editor_;
+    ScoreSource source_;
+    std::vector<ButtonDevice> buttons_;
+    std::optional<std::uint64_t> playback_;
+    std::optional<Position> playing_at_;
+    std::string message_;
+    std::string daemon_problem_;  // why there is no daemon, when there is none
+    std::string pending_replace_;
+    bool running_ = true;
+};
+
+}  // namespace
+
+int run_editor(const EditOptions& options, std::ostream& err) {
+    if (!isatty(STDIN_FILENO) || !isatty(STDOUT_FILENO)) {
+        err << "vibscore edit: needs a terminal\n";
+        return 1;
+    }
+    try {
+        Session session(options);
+        session.run();
+        return 0;
+    } catch (const DocumentError& error) {
+        err << error.what() << "\n";
+    } catch (const drivers::DeviceError& error) {
+        err << "vibscore edit: " << error.what() << "\n";
+    } catch (const std::invalid_argument& error) {
+        err << "vibscore edit: " << error.what() << "\n";
+        return 2;
+    } catch (const std::exception& error) {
+        err << "vibscore edit: " << error.what() << "\n";
+    }
+    return 1;
+}
+
+}  // namespace vibscore::editor

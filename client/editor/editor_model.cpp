@@ -1,0 +1,825 @@
+#include "client/editor/editor_model.hpp"
+
+#include <algorithm>
+#include <set>
+
+namespace vibscore::editor {
+
+namespace {
+
+std::set<std::string> clefs_in_use(const Score& score) {
+    std::set<std::string> ids;
+    for (const auto& bar : score.bars) {
+        ids.insert(bar.clef);
+    }
+    return ids;
+}
+
+// Removes the declarations of clefs the edit took the last bars from; others stay as read.
+void drop_clefs_no_longer_used(Score& score, const std::set<std::string>& used_before) {
+    const auto used_now = clefs_in_use(score);
+    std::erase_if(score.clefs, [&](const ClefDeclaration& clef) {
+        return used_before.contains(clef.id) && !used_now.contains(clef.id);
+    });
+}
+
+Length length_of(const Symbol& symbol) {
+    if (const auto* note = std::get_if<Note>(&symbol)) {
+        return note->length;
+    }
+    if (const auto* rest = std::get_if<Rest>(&symbol)) {
+        return rest->length;
+    }
+    return Length::quarter;
+}
+
+void set_length_of(Symbol& symbol, Length length) {
+    if (auto* note = std::get_if<Note>(&symbol)) {
+        note->length = length;
+    } else if (auto* rest = std::get_if<Rest>(&symbol)) {
+        rest->length = length;
+    }
+}
+
+}  // namespace
+
+EditorModel::EditorModel(Score score, std::vector<ClefDeclaration> available_clefs)
+    : score_(std::make_shared<const Score>(std::move(score))),
+      saved_(score_),
+      available_clefs_(
+          std::make_shared<const std::vector<ClefDeclaration>>(std::move(available_clefs))) {
+    if (score_->bars.empty()) {
+        // The editor needs a bar to stand in; a score with none gets one with its first clef.
+        auto fresh = std::make_shared<Score>(*score_);
+        const auto& available = *available_clefs_;
+        const std::string clef = !fresh->clefs.empty() ? fresh->clefs.front().id
+                                 : !available.empty()  ? available.front().id
+                                                       : std::string();
+        if (fresh->clefs.empty() && !available.empty()) {
+            fresh->clefs.push_back(available.front());
+        }
+        fresh->bars.push_back(Bar{clef, {}});
+        score_ = fresh;
+        saved_ = score_;
+    }
+    land();
+    message_.clear();
+}
+
+Score EditorModel::blank_score(std::string title, const ClefDeclaration& clef) {
+    Score score;
+    score.title = std::move(title);
+    score.clefs.push_back(clef);
+    score.bars.push_back(Bar{clef.id, {}});
+    return score;
+}
+
+void EditorModel::set_title(std::string title) {
+    if (title != score_->title) {
+        edit().title = std::move(title);
+    }
+}
+
+std::vector<ClefDeclaration> EditorModel::clef_choices() const {
+    std::vector<ClefDeclaration> choices = score_->clefs;
+    for (const auto& clef : *available_clefs_) {
+        const bool declared = std::any_of(choices.begin(), choices.end(), [&](const auto& c) {
+            return c.id == clef.id || c.href == clef.href;
+        });
+        if (!declared) {
+            choices.push_back(clef);
+        }
+    }
+    return choices;
+}
+
+std::optional<Block> EditorModel::block() const {
+    if (!anchor_ || *anchor_ == cursor_) {
+        return std::nullopt;
+    }
+    return Block{std::min(*anchor_, cursor_), std::max(*anchor_, cursor_)};
+}
+
+Note EditorModel::proposed_note() const {
+    Note note;
+    note.length = length_;
+    note.number = number_;
+    note.string = string_;
+    const auto before = symbol_before(*score_, cursor_);
+    if (const Note* previous = before ? note_at(*score_, *before) : nullptr) {
+        note.dynamics = previous->dynamics;
+        note.legato = previous->legato;
+        note.portamento = previous->portamento;
+    }
+    return note;
+}
+
+std::optional<Position> EditorModel::at_hand() const {
+    if (!is_empty_position(*score_, cursor_)) {
+        return cursor_;
+    }
+    return symbol_before(*score_, cursor_);
+}
+
+std::vector<Position> EditorModel::targets() const {
+    if (const auto marked = block()) {
+        std::vector<Position> found;
+        for (const auto at : symbols_in(*score_, *marked)) {
+            if (!std::holds_alternative<Blank>(*symbol_at(*score_, at))) {
+                found.push_back(at);
+            }
+        }
+        return found;
+    }
+    if (const auto at = at_hand()) {
+        return {*at};
+    }
+    return {};
+}
+
+std::vector<Position> EditorModel::target_notes() const {
+    std::vector<Position> notes;
+    for (const auto at : targets()) {
+        if (note_at(*score_, at) != nullptr) {
+            notes.push_back(at);
+        }
+    }
+    return notes;
+}
+
+Snapshot EditorModel::snapshot() const {
+    return {score_, cursor_, string_};
+}
+
+Score& EditorModel::edit() {
+    if (!in_entry_) {
+        history_.record(snapshot());
+    }
+    auto copy = std::make_shared<Score>(*score_);
+    Score& score = *copy;
+    score_ = std::move(copy);
+    return score;
+}
+
+void EditorModel::restore(const Snapshot& snapshot) {
+    score_ = snapshot.score;
+    cursor_ = snapshot.cursor;
+    string_ = snapshot.string;
+    anchor_.reset();
+    in_entry_ = false;
+    land();
+}
+
+void EditorModel::land() {
+    const auto& bars = score_->bars;
+    cursor_.bar = std::min(cursor_.bar, bars.size() - 1);
+    cursor_.slot = std::min(cursor_.slot, bars[cursor_.bar].symbols.size());
+    if (const Note* note = note_at(*score_, cursor_)) {
+        string_ = note->string;
+    }
+}
+
+bool EditorModel::refuse(std::string why) {
+    message_ = std::move(why);
+    return false;
+}
+
+bool EditorModel::done(std::string what) {
+    message_ = std::move(what);
+    return true;
+}
+
+// --- moving -------------------------------------------------------------------------------
+
+void EditorModel::step_left() {
+    if (cursor_.slot > 0) {
+        --cursor_.slot;
+    } else if (cursor_.bar > 0) {
+        --cursor_.bar;
+        cursor_.slot = score_->bars[cursor_.bar].symbols.size();
+    }
+    land();
+}
+
+bool EditorModel::step_right() {
+    const auto& bars = score_->bars;
+    if (cursor_.slot < bars[cursor_.bar].symbols.size()) {
+        ++cursor_.slot;
+    } else if (cursor_.bar + 1 < bars.size()) {
+        ++cursor_.bar;
+        cursor_.slot = 0;
+    } else {
+        return false;
+    }
+    land();
+    return true;
+}
+
+void EditorModel::move_left() {
+    if (anchor_ && !anchor_sticky_) {
+        anchor_.reset();
+    }
+    message_.clear();
+    step_left();
+}
+
+void EditorModel::move_right() {
+    if (anchor_ && !anchor_sticky_) {
+        anchor_.reset();
+    }
+    message_.clear();
+    if (!step_right() && !anchor_ && !score_->bars[cursor_.bar].symbols.empty()) {
+        split_bar();  // past the end of the score: a new bar, as a bar line is the way on
+    }
+}
+
+// The active string wraps around: from the highest string Up goes to the lowest, so any
+// string is at most three presses away.
+void EditorModel::move_up() {
+    string_ = string_ == highest_string ? lowest_string : string_ + 1;
+    message_.clear();
+}
+
+void EditorModel::move_down() {
+    string_ = string_ == lowest_string ? highest_string : string_ - 1;
+    message_.clear();
+}
+
+void EditorModel::extend(int direction) {
+    if (!anchor_) {
+        anchor_ = cursor_;
+        anchor_sticky_ = false;
+    }
+    message_.clear();
+    if (direction < 0) {
+        step_left();
+    } else {
+        step_right();
+    }
+}
+
+void EditorModel::mark_block() {
+    anchor_ = cursor_;
+    anchor_sticky_ = true;
+    message_ = "block marked here: move to its other end";
+}
+
+void EditorModel::clear_block() {
+    anchor_.reset();
+    message_.clear();
+}
+
+// --- entering -----------------------------------------------------------------------------
+
+bool EditorModel::insert_note(int number) {
+    if (number < lowest_number || number > highest_number) {
+        return refuse("numbers are 1 to 9");
+    }
+    anchor_.reset();
+    Note note;
+    note.length = length_;
+    note.number = number;
+    note.string = string_;
+    number_ = number;
+    insert_symbol(edit(), cursor_, note);
+    ++cursor_.slot;
+    land();
+    return done("");
+}
+
+bool EditorModel::insert_rest() {
+    anchor_.reset();
+    insert_symbol(edit(), cursor_, Rest{length_});
+    ++cursor_.slot;
+    land();
+    return done("");
+}
+
+bool EditorModel::insert_blank() {
+    anchor_.reset();
+    auto& symbols = edit().bars[cursor_.bar].symbols;
+    symbols.insert(symbols.begin() + static_cast<std::ptrdiff_t>(cursor_.slot), Blank{});
+    return done("");
+}
+
+bool EditorModel::begin_entry() {
+    if (in_entry_) {
+        return true;
+    }
+    anchor_.reset();
+    const Symbol* symbol = symbol_at(*score_, cursor_);
+    const bool empty = is_empty_position(*score_, cursor_);
+    const Note note = proposed_note();
+    history_.record(snapshot());
+    in_entry_ = true;
+    if (empty) {
+        insert_symbol(edit(), cursor_, note);
+    } else if (const auto* existing = std::get_if<Note>(symbol); existing) {
+        if (existing->string != string_) {
+            note_at(edit(), cursor_)->string = string_;
+        }
+    }
+    message_.clear();
+    return true;
+}
+
+void EditorModel::entry_number(int delta) {
+    if (!in_entry_ || note_at(*score_, cursor_) == nullptr) {
+        return;
+    }
+    // Numbers wrap around like the strings: 9 up is 1.
+    const int span = highest_number - lowest_number + 1;
+    const int number =
+        lowest_number +
+        ((note_at(*score_, cursor_)->number - lowest_number + delta) % span + span) % span;
+    number_ = number;
+    if (number != note_at(*score_, cursor_)->number) {
+        note_at(edit(), cursor_)->number = number;
+    }
+}
+
+void EditorModel::entry_length(int delta) {
+    const Symbol* symbol = in_entry_ ? symbol_at(*score_, cursor_) : nullptr;
+    if (symbol == nullptr || std::holds_alternative<Blank>(*symbol)) {
+        return;
+    }
+    const Length now = length_of(*symbol);
+    const Length next = delta > 0 ? longer(now) : shorter(now);
+    length_ = next;
+    if (next != now) {
+        set_length_of(*symbol_at(edit(), cursor_), next);
+    }
+}
+
+// Back changes the shape of the symbol being entered, round the four shapes a length can
+// take: note, rest, dotted rest, dotted note (lengths with no dotted form skip the dotted ones).
+void EditorModel::entry_toggle_rest() {
+    const Symbol* symbol = in_entry_ ? symbol_at(*score_, cursor_) : nullptr;
+    if (symbol == nullptr || std::holds_alternative<Blank>(*symbol)) {
+        return;
+    }
+    const Length length = length_of(*symbol);
+    const auto dot = toggled_dot(length);
+    Symbol next = *symbol;
+    if (const auto* note = std::get_if<Note>(symbol)) {
+        if (is_dotted(length)) {
+            Note plain = *note;
+            plain.length = *dot;
+            next = plain;  // dotted note -> note
+        } else {
+            next = Rest{length};  // note -> rest
+        }
+    } else if (!is_dotted(length) && dot) {
+        next = Rest{*dot};  // rest -> dotted rest
+    } else {
+        Note note = proposed_note();  // dotted rest -> dotted note; or rest -> note
+        note.length = length;
+        next = note;
+    }
+    length_ = length_of(next);
+    *symbol_at(edit(), cursor_) = next;
+}
+
+void EditorModel::end_entry() {
+    if (!in_entry_) {
+        return;
+    }
+    in_entry_ = false;
+    if (const Snapshot* before = history_.last(); before && *before->score == *score_) {
+        history_.drop_last();  // opened and closed without a change
+    }
+    ++cursor_.slot;
+    land();
+}
+
+// --- bars and deleting --------------------------------------------------------------------
+
+bool EditorModel::split_bar() {
+    anchor_.reset();
+    vibscore::editor::split_bar(edit(), cursor_);
+    cursor_ = {cursor_.bar + 1, 0};
+    land();
+    return done("new bar");
+}
+
+bool EditorModel::delete_at_cursor() {
+    const auto used_before = clefs_in_use(*score_);
+    if (const auto marked = block()) {
+        Score& score = edit();
+        erase(score, *marked);
+        drop_clefs_no_longer_used(score, used_before);
+        cursor_ = marked->first;
+        anchor_.reset();
+        land();
+        return done("block deleted");
+    }
+    anchor_.reset();
+    if (symbol_at(*score_, cursor_) != nullptr) {
+        Score& score = edit();
+        if (const Note* note = note_at(score, cursor_)) {
+            for (const Tie tie : {Tie::legato, Tie::portamento}) {
+                const auto before = symbol_before(score, cursor_);
+                const auto after = symbol_after(score, cursor_);
+                const Note* previous = before ? note_at(score, *before) : nullptr;
+                const Note* next = after ? note_at(score, *after) : nullptr;
+                const bool inside_run = serial(*note, tie) != 0 && previous && next &&
+                                        serial(*previous, tie) == serial(*note, tie) &&
+                                        serial(*next, tie) == serial(*note, tie);
+                if (!inside_run) {
+                    vibscore::editor::untie(score, cursor_, tie);
+                }
+            }
+        }
+        auto& symbols = score.bars[cursor_.bar].symbols;
+        symbols.erase(symbols.begin() + static_cast<std::ptrdiff_t>(cursor_.slot));
+        land();
+        return done("");
+    }
+    if (cursor_.bar + 1 < score_->bars.size()) {
+        Score& score = edit();
+        join_with_next(score, cursor_.bar);
+        drop_clefs_no_longer_used(score, used_before);
+        land();
+        return done("bar line removed");
+    }
+    if (score_->bars.size() > 1 && score_->bars[cursor_.bar].symbols.empty()) {
+        Score& score = edit();
+        score.bars.erase(score.bars.begin() + static_cast<std::ptrdiff_t>(cursor_.bar));
+        drop_clefs_no_longer_used(score, used_before);
+        cursor_ = {cursor_.bar - 1, score.bars[cursor_.bar - 1].symbols.size()};
+        land();
+        return done("empty bar removed");
+    }
+    return refuse("nothing to delete here");
+}
+
+// --- symbol functions ---------------------------------------------------------------------
+
+bool EditorModel::set_dynamics(Dynamics dynamics) {
+    const auto notes = target_notes();
+    if (notes.empty()) {
+        return refuse("no note here");
+    }
+    Score& score = edit();
+    for (const auto at : notes) {
+        note_at(score, at)->dynamics = dynamics;
+    }
+    return done(std::string(to_string(dynamics)));
+}
+
+bool EditorModel::tie(Tie tie) {
+    const char* name = tie == Tie::legato ? "legato" : "portamento";
+    const auto notes = target_notes();
+    if (block() && notes.size() >= 2) {
+        tie_together(edit(), notes, tie);
+        return done(name);
+    }
+    if (notes.empty()) {
+        return refuse("no note here");
+    }
+    const auto before = symbol_before(*score_, notes.front());
+    if (!before || note_at(*score_, *before) == nullptr) {
+        return refuse(std::string("no note just before to tie with ") + name);
+    }
+    Score changed = *score_;
+    tie_to_previous(changed, notes.front(), tie);
+    if (changed == *score_) {
+        return done(std::string("already ") + name);
+    }
+    edit() = std::move(changed);
+    return done(name);
+}
+
+bool EditorModel::untie(Tie tie) {
+    const auto notes = target_notes();
+    const bool tied = std::any_of(notes.begin(), notes.end(), [&](Position at) {
+        return serial(*note_at(*score_, at), tie) != 0;
+    });
+    if (!tied) {
+        return refuse(tie == Tie::legato ? "no legato here" : "no portamento here");
+    }
+    Score& score = edit();
+    for (const auto at : notes) {
+        vibscore::editor::untie(score, at, tie);
+    }
+    return done(tie == Tie::legato ? "legato removed" : "portamento removed");
+}
+
+bool EditorModel::set_length(Length length) {
+    length_ = length;
+    const auto marked = block();
+    if (!marked) {
+        return done("length " + std::string(to_string(length)));
+    }
+    const auto symbols = targets();
+    Score& score = edit();
+    for (const auto at : symbols) {
+        set_length_of(*symbol_at(score, at), length);
+    }
+    return done("block length " + std::string(to_string(length)));
+}
+
+bool EditorModel::toggle_dot() {
+    const auto symbols = targets();
+    if (symbols.empty()) {
+        return refuse("nothing here to dot");
+    }
+    // One way for the whole block: dotted unless every symbol already is.
+    const bool undot = std::all_of(symbols.begin(), symbols.end(), [&](Position at) {
+        return is_dotted(length_of(*symbol_at(*score_, at)));
+    });
+    Score changed = *score_;
+    for (const auto at : symbols) {
+        Symbol& symbol = *symbol_at(changed, at);
+        const Length now = length_of(symbol);
+        if (is_dotted(now) == undot) {
+            if (const auto toggled = toggled_dot(now)) {
+                set_length_of(symbol, *toggled);
+            }
+        }
+    }
+    if (changed == *score_) {
+        return refuse("whole notes and 32nd notes have no dotted form");
+    }
+    edit() = std::move(changed);
+    if (symbols.size() == 1) {
+        length_ = length_of(*symbol_at(*score_, symbols.front()));
+    }
+    return done(undot ? "not dotted" : "dotted");
+}
+
+bool EditorModel::shift_strings(int delta) {
+    const auto notes = target_notes();
+    if (notes.empty()) {
+        return refuse("no note here");
+    }
+    for (const auto at : notes) {
+        const int moved = note_at(*score_, at)->string + delta;
+        if (moved < lowest_string || moved > highest_string) {
+            return refuse(delta > 0 ? "a note is already on the highest string"
+                                    : "a note is already on the lowest string");
+        }
+    }
+    Score& score = edit();
+    for (const auto at : notes) {
+        note_at(score, at)->string += delta;
+    }
+    land();
+    return done(delta > 0 ? "strings up" : "strings down");
+}
+
+bool EditorModel::shift_numbers(int delta) {
+    const auto notes = target_notes();
+    if (notes.empty()) {
+        return refuse("no note here");
+    }
+    for (const auto at : notes) {
+        const int changed = note_at(*score_, at)->number + delta;
+        if (changed < lowest_number || changed > highest_number) {
+            return refuse(delta > 0 ? "a number is already 9" : "a number is already 1");
+        }
+    }
+    Score& score = edit();
+    for (const auto at : notes) {
+        note_at(score, at)->number += delta;
+    }
+    if (notes.size() == 1) {
+        number_ = note_at(*score_, notes.front())->number;
+    }
+    return done(delta > 0 ? "numbers +1" : "numbers -1");
+}
+
+// --- clipboard, undo, clefs ---------------------------------------------------------------
+
+bool EditorModel::copy() {
+    if (const auto marked = block()) {
+        clipboard_ = vibscore::editor::copy(*score_, *marked);
+        return done("block copied");
+    }
+    const auto at = at_hand();
+    if (!at) {
+        return refuse("nothing here to copy");
+    }
+    clipboard_ = vibscore::editor::copy(*score_, Block{*at, {at->bar, at->slot + 1}});
+    return done("copied");
+}
+
+bool EditorModel::cut() {
+    if (!block()) {
+        const auto at = at_hand();
+        if (!at) {
+            return refuse("nothing here to cut");
+        }
+        anchor_ = *at;
+        cursor_ = {at->bar, at->slot + 1};
+    }
+    copy();
+    delete_at_cursor();
+    return done("cut");
+}
+
+bool EditorModel::paste() {
+    if (clipboard_.empty()) {
+        return refuse("nothing copied yet");
+    }
+    Score& score = edit();
+    if (const auto marked = block()) {
+        erase(score, *marked);
+        cursor_ = marked->first;
+    }
+    anchor_.reset();
+    cursor_ = vibscore::editor::paste(score, cursor_, clipboard_);
+    land();
+    return done("pasted");
+}
+
+bool EditorModel::undo() {
+    const auto previous = history_.undo(snapshot());
+    if (!previous) {
+        return refuse("nothing to undo");
+    }
+    restore(*previous);
+    return done("undone");
+}
+
+bool EditorModel::redo() {
+    const auto next = history_.redo(snapshot());
+    if (!next) {
+        return refuse("nothing to redo");
+    }
+    restore(*next);
+    return done("redone");
+}
+
+bool EditorModel::set_bar_clef(const std::string& id) {
+    const auto choices = clef_choices();
+    const auto chosen = std::find_if(choices.begin(), choices.end(),
+                                     [&](const ClefDeclaration& clef) { return clef.id == id; });
+    if (chosen == choices.end()) {
+        return refuse("no clef \"" + id + "\"");
+    }
+    std::size_t first = cursor_.bar;
+    std::size_t last = cursor_.bar;
+    if (const auto marked = block()) {
+        first = marked->first.bar;
+        last = marked->end.slot == 0 && marked->end.bar > first ? marked->end.bar - 1
+                                                                : marked->end.bar;
+    }
+    const auto used_before = clefs_in_use(*score_);
+    Score changed = *score_;
+    if (changed.find_clef(id) == nullptr) {
+        changed.clefs.push_back(*chosen);
+    }
+    for (std::size_t b = first; b <= last; ++b) {
+        changed.bars[b].clef = id;
+    }
+    drop_clefs_no_longer_used(changed, used_before);
+    if (changed == *score_) {
+        return done("clef " + id);
+    }
+    edit() = std::move(changed);
+    return done("clef " + id);
+}
+
+// --- keyboard commands --------------------------------------------------------------------
+
+bool EditorModel::apply(const Command& command) {
+    switch (command.action) {
+        case Action::move_left:
+            move_left();
+            return true;
+        case Action::move_right:
+            move_right();
+            return true;
+        case Action::move_up:
+            move_up();
+            return true;
+        case Action::move_down:
+            move_down();
+            return true;
+        case Action::extend_left:
+            extend(-1);
+            return true;
+        case Action::extend_right:
+            extend(+1);
+            return true;
+        case Action::insert_note:
+            return insert_note(command.value);
+        case Action::insert_rest:
+            return insert_rest();
+        case Action::insert_blank:
+            return insert_blank();
+        case Action::split_bar:
+            return split_bar();
+        case Action::delete_symbol:
+            return delete_at_cursor();
+        case Action::crescendo:
+            return set_dynamics(Dynamics::crescendo);
+        case Action::decrescendo:
+            return set_dynamics(Dynamics::decrescendo);
+        case Action::no_dynamics:
+            return set_dynamics(Dynamics::none);
+        case Action::legato:
+            return tie(Tie::legato);
+        case Action::remove_legato:
+            return untie(Tie::legato);
+        case Action::portamento:
+            return tie(Tie::portamento);
+        case Action::remove_portamento:
+            return untie(Tie::portamento);
+        case Action::set_length:
+            if (command.value < 0 || command.value >= length_count) {
+                return refuse("no such length");
+            }
+            return set_length(static_cast<Length>(command.value));
+        case Action::toggle_dot:
+            return toggle_dot();
+        case Action::strings_up:
+            return shift_strings(+1);
+        case Action::strings_down:
+            return shift_strings(-1);
+        case Action::numbers_up:
+            return shift_numbers(+1);
+        case Action::numbers_down:
+            return shift_numbers(-1);
+        case Action::mark_block:
+            mark_block();
+            return true;
+        case Action::clear_block:
+            clear_block();
+            return true;
+        case Action::copy:
+            return copy();
+        case Action::cut:
+            return cut();
+        case Action::paste:
+            return paste();
+        case Action::undo:
+            return undo();
+        case Action::redo:
+            return redo();
+        case Action::choose_clef:
+        case Action::play_or_stop:
+        case Action::save:
+        case Action::open:
+        case Action::new_score:
+        case Action::quit:
+            break;
+    }
+    return refuse(std::string(to_string(command.action)) + " is not an editing function");
+}
+
+std::string EditorModel::fingerprint() const {
+    std::string text;
+    const auto number = [&](long long value) {
+        text += std::to_string(value);
+        text += ',';
+    };
+    for (const auto& clef : score_->clefs) {
+        text += clef.id + '=' + clef.href + ';';
+    }
+    const auto add_symbols = [&](const std::vector<Symbol>& symbols) {
+        for (const auto& symbol : symbols) {
+            if (const auto* note = std::get_if<Note>(&symbol)) {
+                text += 'N';
+                number(static_cast<int>(note->length));
+                number(note->number);
+                number(note->string);
+                number(static_cast<int>(note->dynamics));
+                number(note->legato);
+                number(note->portamento);
+            } else if (const auto* rest = std::get_if<Rest>(&symbol)) {
+                text += 'R';
+                number(static_cast<int>(rest->length));
+            } else {
+                text += 'B';
+            }
+        }
+    };
+    text += score_->title + '/';
+    for (const auto& bar : score_->bars) {
+        text += '|' + bar.clef + ':';
+        add_symbols(bar.symbols);
+    }
+    text += '#';
+    number(static_cast<long long>(cursor_.bar));
+    number(static_cast<long long>(cursor_.slot));
+    number(string_);
+    number(static_cast<int>(length_));
+    number(number_);
+    number(in_entry_);
+    if (anchor_) {
+        text += 'A';
+        number(static_cast<long long>(anchor_->bar));
+        number(static_cast<long long>(anchor_->slot));
+        number(anchor_sticky_);
+    }
+    text += 'C';
+    for (const auto& bar : clipboard_.bars) {
+        text += '|' + bar.clef + ':';
+        add_symbols(bar.symbols);
+    }
+    return text;
+}
+
+}  // namespace vibscore::editor

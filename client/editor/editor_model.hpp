@@ -1,0 +1,120 @@
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "client/editor/commands.hpp"
+#include "client/editor/position.hpp"
+#include "client/editor/score_edits.hpp"
+#include "client/editor/undo_history.hpp"
+#include "score/score.hpp"
+
+namespace vibscore::editor {
+
+// The score being edited, the editing cursor (a position and the active string, thesis §4.2),
+// the block, the clipboard and undo. Every editing function of thesis Fig. 4.3 is a method here;
+// keys and buttons only choose which. A refused edit changes nothing and says why in message().
+// A value type: the press planner copies whole editors.
+class EditorModel {
+  public:
+    // `available_clefs` are the clefs a bar may be given besides those the score declares.
+    explicit EditorModel(Score score, std::vector<ClefDeclaration> available_clefs = {});
+
+    // A score with one empty bar played with `clef`.
+    static Score blank_score(std::string title, const ClefDeclaration& clef);
+
+    const Score& score() const { return *score_; }
+    Position cursor() const { return cursor_; }
+    int string() const { return string_; }
+    Length current_length() const { return length_; }
+    int current_number() const { return number_; }
+    // The marked block, when it holds at least one position.
+    std::optional<Block> block() const;
+    bool marking() const { return anchor_.has_value(); }
+    const std::vector<ClefDeclaration>& available_clefs() const { return *available_clefs_; }
+    // Every clef a bar may use: the declared ones, then the available ones not declared.
+    std::vector<ClefDeclaration> clef_choices() const;
+    const std::string& message() const { return message_; }
+    bool modified() const { return *score_ != *saved_; }
+    void mark_saved() { saved_ = score_; }
+    void set_title(std::string title);
+
+    // The note the six-button entry puts on an empty position: the last-used number and
+    // length on the active string, continuing the hairpin and ties of a note directly before.
+    Note proposed_note() const;
+    // The note or rest the symbol functions act on: the one under the cursor, or on an empty
+    // position the one just before it.
+    std::optional<Position> at_hand() const;
+
+    // Keyboard-level commands (Fig. 4.3). Returns false, with message(), when refused.
+    bool apply(const Command& command);
+
+    void move_left();
+    void move_right();
+    void move_up();
+    void move_down();
+    void extend(int direction);
+    bool insert_note(int number);
+    bool insert_rest();
+    bool insert_blank();
+    bool split_bar();
+    bool delete_at_cursor();
+    bool set_dynamics(Dynamics dynamics);
+    bool tie(Tie tie);
+    bool untie(Tie tie);
+    bool set_length(Length length);
+    bool toggle_dot();
+    bool shift_strings(int delta);
+    bool shift_numbers(int delta);
+    void mark_block();
+    void clear_block();
+    bool copy();
+    bool cut();
+    bool paste();
+    bool undo();
+    bool redo();
+    bool set_bar_clef(const std::string& id);
+
+    // The six-button entry of one symbol, undone as one step: begin_entry puts the proposed
+    // note on an empty position (or takes the symbol under the cursor, moving a note to the
+    // active string); the entry_ functions change it; end_entry moves the cursor past it.
+    bool begin_entry();
+    bool in_entry() const { return in_entry_; }
+    void entry_number(int delta);
+    void entry_length(int delta);
+    void entry_toggle_rest();  // note -> rest -> dotted rest -> dotted note -> note
+    void end_entry();
+
+    // A compact text of everything that decides what the next key or button does (not the
+    // undo history), for the press planner to recognise states it has seen.
+    std::string fingerprint() const;
+
+  private:
+    Score& edit();  // records the state for undo, then gives the score to change
+    Snapshot snapshot() const;
+    void restore(const Snapshot& snapshot);
+    std::vector<Position> targets() const;  // the block's notes and rests, or the one at hand
+    std::vector<Position> target_notes() const;
+    void step_left();
+    bool step_right();  // false at the end of the score
+    void land();        // keeps the cursor valid and lets the active string follow a note under it
+    bool refuse(std::string why);
+    bool done(std::string what);
+
+    std::shared_ptr<const Score> score_;
+    std::shared_ptr<const Score> saved_;
+    std::shared_ptr<const std::vector<ClefDeclaration>> available_clefs_;
+    UndoHistory history_;
+    Position cursor_;
+    int string_ = 3;
+    Length length_ = Length::quarter;
+    int number_ = 5;
+    std::optional<Position> anchor_;
+    bool anchor_sticky_ = false;  // marked from a menu: moving grows the block
+    Clip clipboard_;
+    bool in_entry_ = false;
+    std::string message_;
+};
+
+}  // namespace vibscore::editor

@@ -1,0 +1,73 @@
+#include "client/editor/menu.hpp"
+
+#include "client/editor/editor_model.hpp"
+
+namespace vibscore::editor {
+
+std::vector<MenuEntry> main_menu(const EditorModel& model) {
+    std::vector<MenuEntry> entries{
+        {"decrescendo  >", Action::decrescendo, 0},
+        {"crescendo  <", Action::crescendo, 0},
+        {"no dynamics", Action::no_dynamics, 0},
+        {"legato with previous", Action::legato, 1},
+        {"portamento with previous", Action::portamento, 1},
+        {"remove legato", Action::remove_legato, 1},
+        {"remove portamento", Action::remove_portamento, 1},
+        {"dotted / not dotted", Action::toggle_dot, 2},
+        {"new bar here", Action::split_bar, 2},
+        {"delete", Action::delete_symbol, 2},
+        {"bar clef...", Action::choose_clef, 2},
+        {"strings up", Action::strings_up, 3},
+        {"strings down", Action::strings_down, 3},
+        {"numbers +1", Action::numbers_up, 3},
+        {"numbers -1", Action::numbers_down, 3},
+        {model.marking() ? "unmark block" : "mark block",
+         model.marking() ? Action::clear_block : Action::mark_block, 4},
+        {"copy", Action::copy, 4},
+        {"cut", Action::cut, 4},
+        {"paste", Action::paste, 4},
+        {"play from this bar", Action::play_or_stop, 5},
+        {"undo", Action::undo, 5},
+        {"redo", Action::redo, 5},
+        {"save", Action::save, 6},
+        {"open...", Action::open, 6},
+        {"new score", Action::new_score, 6},
+        {"quit", Action::quit, 6},
+    };
+    return entries;
+}
+
+void MenuCursor::set(int index, int size) {
+    index_ = size <= 0 ? 0 : ((index % size) + size) % size;
+}
+
+void MenuCursor::step(int delta, int size) {
+    set(index_ + delta, size);
+}
+
+void MenuCursor::jump_group(int delta, const std::vector<MenuEntry>& entries) {
+    const int size = static_cast<int>(entries.size());
+    if (size == 0) {
+        return;
+    }
+    const auto group_start = [&](int i) {
+        while (i > 0 && entries[static_cast<std::size_t>(i - 1)].group ==
+                            entries[static_cast<std::size_t>(i)].group) {
+            --i;
+        }
+        return i;
+    };
+    if (delta > 0) {
+        int i = index_;
+        const int group = entries[static_cast<std::size_t>(i)].group;
+        while (i < size && entries[static_cast<std::size_t>(i)].group == group) {
+            ++i;
+        }
+        set(i, size);
+    } else {
+        const int start = group_start(index_);
+        set(start == index_ ? group_start((start - 1 + size) % size) : start, size);
+    }
+}
+
+}  // namespace vibscore::editor

@@ -1,0 +1,30 @@
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "client/editor/editor.hpp"
+#include "score/score.hpp"
+
+namespace vibscore::editor {
+
+struct PressPlan {
+    std::vector<Button> presses;
+    bool reached = false;         // the editor's score equals the target after the presses
+    std::size_t states_seen = 0;  // editor states the search looked at
+};
+
+// Finds six-button presses that turn the start editor's score into `target` (title aside), by
+// driving copies of the real editor: a breadth-first search over the editor's own transitions
+// to the nearest state that has entered more of the target, repeated from there. Each step is
+// the fewest presses for what it adds; the whole is greedy. Gives up (reached = false) when a
+// step would look at more than `state_limit` states.
+PressPlan plan_presses(const Editor& start, const Score& target,
+                       std::size_t state_limit = 2'000'000);
+
+// How much of `target` the score has entered: the number of leading bars-and-symbols that
+// agree (ties compared as which neighbours they join), or -1 when the score holds something
+// the target does not have at that point.
+int entered_prefix(const Score& score, const Score& target);
+
+}  // namespace vibscore::editor

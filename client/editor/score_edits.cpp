@@ -1,0 +1,367 @@
+#include "client/editor/score_edits.hpp"
+
+#include <algorithm>
+#include <map>
+
+namespace vibscore::editor {
+
+std::int64_t& serial(Note& note, Tie tie) {
+    return tie == Tie::legato ? note.legato : note.portamento;
+}
+
+std::int64_t serial(const Note& note, Tie tie) {
+    return tie == Tie::legato ? note.legato : note.portamento;
+}
+
+bool is_end(const Score& score, Position at) {
+    return at.slot >= score.bars.at(at.bar).symbols.size();
+}
+
+bool is_empty_position(const Score& score, Position at) {
+    const Symbol* symbol = symbol_at(score, at);
+    return symbol == nullptr || std::holds_alternative<Blank>(*symbol);
+}
+
+const Symbol* symbol_at(const Score& score, Position at) {
+    const auto& symbols = score.bars.at(at.bar).symbols;
+    return at.slot < symbols.size() ? &symbols[at.slot] : nullptr;
+}
+
+Symbol* symbol_at(Score& score, Position at) {
+    auto& symbols = score.bars.at(at.bar).symbols;
+    return at.slot < symbols.size() ? &symbols[at.slot] : nullptr;
+}
+
+Note* note_at(Score& score, Position at) {
+    Symbol* symbol = symbol_at(score, at);
+    return symbol == nullptr ? nullptr : std::get_if<Note>(symbol);
+}
+
+const Note* note_at(const Score& score, Position at) {
+    const Symbol* symbol = symbol_at(score, at);
+    return symbol == nullptr ? nullptr : std::get_if<Note>(symbol);
+}
+
+std::optional<Position> symbol_before(const Score& score, Position at) {
+    Position p = at;
+    while (true) {
+        if (p.slot == 0) {
+            if (p.bar == 0) {
+                return std::nullopt;
+            }
+            --p.bar;
+            p.slot = score.bars[p.bar].symbols.size();
+            continue;
+        }
+        --p.slot;
+        if (!std::holds_alternative<Blank>(score.bars[p.bar].symbols[p.slot])) {
+            return p;
+        }
+    }
+}
+
+std::optional<Position> symbol_after(const Score& score, Position at) {
+    Position p = at;
+    while (true) {
+        ++p.slot;
+        while (p.slot >= score.bars[p.bar].symbols.size()) {
+            if (p.bar + 1 >= score.bars.size()) {
+                return std::nullopt;
+            }
+            ++p.bar;
+            p.slot = 0;
+        }
+        if (!std::holds_alternative<Blank>(score.bars[p.bar].symbols[p.slot])) {
+            return p;
+        }
+    }
+}
+
+std::vector<Position> symbols_in(const Score& score, const Block& block) {
+    std::vector<Position> found;
+    for (std::size_t b = block.first.bar; b <= block.end.bar && b < score.bars.size(); ++b) {
+        const std::size_t from = b == block.first.bar ? block.first.slot : 0;
+        const std::size_t to = b == block.end.bar ? block.end.slot : score.bars[b].symbols.size();
+        for (std::size_t s = from; s < to && s < score.bars[b].symbols.size(); ++s) {
+            found.push_back({b, s});
+        }
+    }
+    return found;
+}
+
+std::vector<Position> notes_in(const Score& score, const Block& block) {
+    std::vector<Position> notes;
+    for (const auto at : symbols_in(score, block)) {
+        if (note_at(score, at) != nullptr) {
+            notes.push_back(at);
+        }
+    }
+    return notes;
+}
+
+std::int64_t unused_serial(const Score& score, Tie tie) {
+    std::int64_t largest = 0;
+    for (const auto& bar : score.bars) {
+        for (const auto& symbol : bar.symbols) {
+            if (const auto* note = std::get_if<Note>(&symbol)) {
+                largest = std::max(largest, serial(*note, tie));
+            }
+        }
+    }
+    return largest + 1;
+}
+
+namespace {
+
+// Gives every note of the run tied with `old_serial` that starts at `from` the serial `value`.
+void retie_run(Score& score, Position from, Tie tie, std::int64_t old_serial, std::int64_t value) {
+    std::optional<Position> at = from;
+    while (at) {
+        Note* note = note_at(score, *at);
+        if (note == nullptr || serial(*note, tie) != old_serial) {
+            return;
+        }
+        serial(*note, tie) = value;
+        at = symbol_after(score, *at);
+    }
+}
+
+}  // namespace
+
+bool tie_to_previous(Score& score, Position at, Tie tie) {
+    const auto before = symbol_before(score, at);
+    Note* note = note_at(score, at);
+    if (!before || note == nullptr) {
+        return false;
+    }
+    Note* previous = note_at(score, *before);
+    if (previous == nullptr) {
+        return false;
+    }
+    std::int64_t value = serial(*previous, tie);
+    if (value == 0) {
+        value = serial(*note, tie) != 0 ? serial(*note, tie) : unused_serial(score, tie);
+        serial(*previous, tie) = value;
+    }
+    const std::int64_t old = serial(*note, tie);
+    if (old != 0 && old != value) {
+        retie_run(score, at, tie, old, value);  // the notes tied after it come along
+    }
+    serial(*note, tie) = value;
+    return true;
+}
+
+void tie_together(Score& score, const std::vector<Position>& notes, Tie tie) {
+    const std::int64_t value = unused_serial(score, tie);
+    for (const auto at : notes) {
+        serial(*note_at(score, at), tie) = value;
+    }
+}
+
+void untie(Score& score, Position at, Tie tie) {
+    Note* note = note_at(score, at);
+    if (note == nullptr || serial(*note, tie) == 0) {
+        return;
+    }
+    const std::int64_t value = serial(*note, tie);
+    serial(*note, tie) = 0;
+    // A neighbour whose only partner was this note would keep a serial that ties nothing.
+    const auto tied_to = [&](std::optional<Position> p) {
+        const Note* other = p ? note_at(score, *p) : nullptr;
+        return other != nullptr && serial(*other, tie) == value;
+    };
+    if (const auto before = symbol_before(score, at); tied_to(before)) {
+        if (!tied_to(symbol_before(score, *before))) {
+            serial(*note_at(score, *before), tie) = 0;
+        }
+    }
+    if (const auto after = symbol_after(score, at); tied_to(after)) {
+        if (!tied_to(symbol_after(score, *after))) {
+            serial(*note_at(score, *after), tie) = 0;
+        }
+    }
+}
+
+void insert_symbol(Score& score, Position at, Symbol symbol) {
+    auto& symbols = score.bars.at(at.bar).symbols;
+    if (at.slot < symbols.size() && std::holds_alternative<Blank>(symbols[at.slot])) {
+        symbols[at.slot] = std::move(symbol);
+        return;
+    }
+    symbols.insert(symbols.begin() + static_cast<std::ptrdiff_t>(at.slot), std::move(symbol));
+}
+
+void split_bar(Score& score, Position at) {
+    auto& bar = score.bars.at(at.bar);
+    Bar tail{bar.clef, {}};
+    const auto cut = bar.symbols.begin() + static_cast<std::ptrdiff_t>(at.slot);
+    tail.symbols.assign(std::make_move_iterator(cut), std::make_move_iterator(bar.symbols.end()));
+    bar.symbols.erase(cut, bar.symbols.end());
+    score.bars.insert(score.bars.begin() + static_cast<std::ptrdiff_t>(at.bar) + 1,
+                      std::move(tail));
+}
+
+void join_with_next(Score& score, std::size_t bar) {
+    auto next = std::move(score.bars.at(bar + 1).symbols);
+    auto& symbols = score.bars[bar].symbols;
+    symbols.insert(symbols.end(), std::make_move_iterator(next.begin()),
+                   std::make_move_iterator(next.end()));
+    score.bars.erase(score.bars.begin() + static_cast<std::ptrdiff_t>(bar) + 1);
+}
+
+void erase(Score& score, const Block& block) {
+    if (block.first >= block.end) {
+        return;
+    }
+    auto& first = score.bars.at(block.first.bar).symbols;
+    if (block.first.bar == block.end.bar) {
+        first.erase(first.begin() + static_cast<std::ptrdiff_t>(block.first.slot),
+                    first.begin() + static_cast<std::ptrdiff_t>(block.end.slot));
+        return;
+    }
+    auto& last = score.bars.at(block.end.bar).symbols;
+    std::vector<Symbol> kept(
+        std::make_move_iterator(last.begin() + static_cast<std::ptrdiff_t>(block.end.slot)),
+        std::make_move_iterator(last.end()));
+    first.erase(first.begin() + static_cast<std::ptrdiff_t>(block.first.slot), first.end());
+    first.insert(first.end(), std::make_move_iterator(kept.begin()),
+                 std::make_move_iterator(kept.end()));
+    score.bars.erase(score.bars.begin() + static_cast<std::ptrdiff_t>(block.first.bar) + 1,
+                     score.bars.begin() + static_cast<std::ptrdiff_t>(block.end.bar) + 1);
+}
+
+bool Clip::empty() const {
+    return std::all_of(bars.begin(), bars.end(),
+                       [](const Bar& bar) { return bar.symbols.empty(); }) &&
+           bars.size() <= 1;
+}
+
+Clip copy(const Score& score, const Block& block) {
+    Clip clip;
+    if (block.first >= block.end) {
+        return clip;
+    }
+    for (std::size_t b = block.first.bar; b <= block.end.bar; ++b) {
+        const auto& bar = score.bars.at(b);
+        const std::size_t from = b == block.first.bar ? block.first.slot : 0;
+        const std::size_t to = b == block.end.bar ? block.end.slot : bar.symbols.size();
+        Bar part{bar.clef, {}};
+        part.symbols.assign(bar.symbols.begin() + static_cast<std::ptrdiff_t>(from),
+                            bar.symbols.begin() + static_cast<std::ptrdiff_t>(to));
+        clip.bars.push_back(std::move(part));
+    }
+    return clip;
+}
+
+Position paste(Score& score, Position at, const Clip& clip) {
+    if (clip.bars.empty()) {
+        return at;
+    }
+    Clip fresh = clip;
+    for (const Tie tie : {Tie::legato, Tie::portamento}) {
+        std::map<std::int64_t, std::int64_t> renamed;
+        std::int64_t next = unused_serial(score, tie);
+        for (auto& bar : fresh.bars) {
+            for (auto& symbol : bar.symbols) {
+                if (auto* note = std::get_if<Note>(&symbol); note && serial(*note, tie) != 0) {
+                    auto [entry, added] = renamed.try_emplace(serial(*note, tie), next);
+                    next += added ? 1 : 0;
+                    serial(*note, tie) = entry->second;
+                }
+            }
+        }
+    }
+    const std::string& here_clef = score.bars.at(at.bar).clef;
+    for (auto& bar : fresh.bars) {
+        if (score.find_clef(bar.clef) == nullptr) {
+            bar.clef = here_clef;  // copied from a score that declared other clefs
+        }
+    }
+    split_bar(score, at);
+    Position end{at.bar, at.slot};
+    for (std::size_t i = 0; i < fresh.bars.size(); ++i) {
+        if (i > 0) {
+            split_bar(score, end);
+            score.bars[end.bar + 1].clef = fresh.bars[i].clef;
+            end = {end.bar + 1, 0};
+        }
+        auto& symbols = score.bars[end.bar].symbols;
+        symbols.insert(symbols.end(), fresh.bars[i].symbols.begin(), fresh.bars[i].symbols.end());
+        end.slot = symbols.size();
+    }
+    join_with_next(score, end.bar);  // the symbols that stood after `at`
+    return end;
+}
+
+namespace {
+
+constexpr Length kPlain[] = {Length::thirty_second, Length::sixteenth, Length::eighth,
+                             Length::quarter,       Length::half,      Length::whole};
+constexpr Length kDotted[] = {Length::sixteenth_dot, Length::eighth_dot, Length::quarter_dot,
+                              Length::half_dot};
+
+template <std::size_t N>
+int index_in(const Length (&list)[N], Length length) {
+    for (std::size_t i = 0; i < N; ++i) {
+        if (list[i] == length) {
+            return static_cast<int>(i);
+        }
+    }
+    return -1;
+}
+
+}  // namespace
+
+bool is_dotted(Length length) {
+    return index_in(kDotted, length) >= 0;
+}
+
+Length shorter(Length length) {
+    if (const int i = index_in(kPlain, length); i >= 0) {
+        return kPlain[std::max(i - 1, 0)];
+    }
+    const int i = index_in(kDotted, length);
+    return i == 0 ? Length::thirty_second : kDotted[i - 1];
+}
+
+Length longer(Length length) {
+    if (const int i = index_in(kPlain, length); i >= 0) {
+        return kPlain[std::min(i + 1, 5)];
+    }
+    const int i = index_in(kDotted, length);
+    return i == 3 ? Length::whole : kDotted[i + 1];
+}
+
+std::optional<Length> toggled_dot(Length length) {
+    switch (length) {
+        case Length::half:
+            return Length::half_dot;
+        case Length::half_dot:
+            return Length::half;
+        case Length::quarter:
+            return Length::quarter_dot;
+        case Length::quarter_dot:
+            return Length::quarter;
+        case Length::eighth:
+            return Length::eighth_dot;
+        case Length::eighth_dot:
+            return Length::eighth;
+        case Length::sixteenth:
+            return Length::sixteenth_dot;
+        case Length::sixteenth_dot:
+            return Length::sixteenth;
+        case Length::whole:
+        case Length::thirty_second:
+            break;
+    }
+    return std::nullopt;
+}
+
+void drop_unused_clefs(Score& score) {
+    std::erase_if(score.clefs, [&](const ClefDeclaration& clef) {
+        return std::none_of(score.bars.begin(), score.bars.end(),
+                            [&](const Bar& bar) { return bar.clef == clef.id; });
+    });
+}
+
+}  // namespace vibscore::editor

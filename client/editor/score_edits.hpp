@@ -1,0 +1,82 @@
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "client/editor/position.hpp"
+#include "score/score.hpp"
+
+// The edits the editor makes to a score, as plain functions of the score. Every function takes
+// positions that are valid in the score it is given.
+namespace vibscore::editor {
+
+inline constexpr int lowest_string = 1;
+inline constexpr int highest_string = 6;
+inline constexpr int lowest_number = 1;
+inline constexpr int highest_number = 9;
+
+enum class Tie { legato, portamento };
+
+std::int64_t& serial(Note& note, Tie tie);
+std::int64_t serial(const Note& note, Tie tie);
+
+bool is_end(const Score& score, Position at);
+// The end of a bar or a Blank: where a new symbol can go without moving another.
+bool is_empty_position(const Score& score, Position at);
+const Symbol* symbol_at(const Score& score, Position at);
+Symbol* symbol_at(Score& score, Position at);
+Note* note_at(Score& score, Position at);
+const Note* note_at(const Score& score, Position at);
+
+// The nearest note or rest before / after `at`, skipping Blanks and crossing bar lines.
+std::optional<Position> symbol_before(const Score& score, Position at);
+std::optional<Position> symbol_after(const Score& score, Position at);
+
+// The positions of the symbols (Blanks included) in a block.
+std::vector<Position> symbols_in(const Score& score, const Block& block);
+std::vector<Position> notes_in(const Score& score, const Block& block);
+
+// One past the largest serial of this kind in the score: a serial no note uses yet.
+std::int64_t unused_serial(const Score& score, Tie tie);
+
+// Ties the note at `at` to the note directly before it (a rest breaks ties). The pair joins the
+// earlier note's tie run if it has one. Returns false when there is no note directly before.
+bool tie_to_previous(Score& score, Position at, Tie tie);
+// Ties every note of the list together with one new serial.
+void tie_together(Score& score, const std::vector<Position>& notes, Tie tie);
+// Unties the note at `at`; a neighbour left tied to nothing is untied too.
+void untie(Score& score, Position at, Tie tie);
+
+// Inserts before the symbol at `at` (replacing it when it is a Blank).
+void insert_symbol(Score& score, Position at, Symbol symbol);
+// Ends the bar at `at`: the symbols from `at` on move into a new bar with the same clef.
+void split_bar(Score& score, Position at);
+// Removes the bar line after bar `bar`, joining the next bar into it.
+void join_with_next(Score& score, std::size_t bar);
+// Removes a block's symbols and the bar lines inside it.
+void erase(Score& score, const Block& block);
+
+// Copied symbols: bars[0] continues the bar pasted into; each further bar starts a new bar.
+struct Clip {
+    std::vector<Bar> bars;
+    bool empty() const;
+    bool operator==(const Clip&) const = default;
+};
+Clip copy(const Score& score, const Block& block);
+// Pastes before `at`, giving the clip's ties fresh serials so they tie only among themselves.
+// Returns the position just after the pasted symbols.
+Position paste(Score& score, Position at, const Clip& clip);
+
+// Lengths in the order a user steps through them with Left/Right: plain lengths from 32th to
+// whole; a dotted length steps to the next dotted one (or the plain one where none exists).
+Length shorter(Length length);
+Length longer(Length length);
+bool is_dotted(Length length);
+// The dotted form of a plain length and back; nullopt when the thesis has no such length.
+std::optional<Length> toggled_dot(Length length);
+
+// Removes declarations no bar uses any more.
+void drop_unused_clefs(Score& score);
+
+}  // namespace vibscore::editor

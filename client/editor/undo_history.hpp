@@ -1,0 +1,53 @@
+#pragma once
+
+#include <cstddef>
+#include <memory>
+#include <optional>
+
+#include "client/editor/position.hpp"
+#include "score/score.hpp"
+
+namespace vibscore::editor {
+
+// What undo brings back: the score and where the cursor stood.
+struct Snapshot {
+    std::shared_ptr<const Score> score;
+    Position cursor;
+    int string = 1;
+};
+
+// Undo and redo stacks of snapshots, the oldest dropped beyond `limit` steps. The stacks are
+// shared lists and snapshots share their scores, so copying a history (the press planner
+// copies whole editors by the million) costs two pointers.
+class UndoHistory {
+  public:
+    explicit UndoHistory(std::size_t limit = 500) : limit_(limit) {}
+
+    // Records the state before a change; a new change forgets what could be redone.
+    void record(Snapshot before);
+    // Forgets the last record (a change that turned out to change nothing).
+    void drop_last();
+    // The state to go back to, given the current one (which redo will bring back).
+    std::optional<Snapshot> undo(Snapshot current);
+    std::optional<Snapshot> redo(Snapshot current);
+
+    bool can_undo() const { return undo_ != nullptr; }
+    bool can_redo() const { return redo_ != nullptr; }
+    const Snapshot* last() const { return undo_ ? &undo_->snapshot : nullptr; }
+
+  private:
+    struct Entry {
+        Snapshot snapshot;
+        std::shared_ptr<const Entry> below;
+        std::size_t depth;
+    };
+    using Stack = std::shared_ptr<const Entry>;
+    static Stack push(Stack stack, Snapshot snapshot);
+    static Stack without_bottom(const Stack& stack);
+
+    std::size_t limit_;
+    Stack undo_;
+    Stack redo_;
+};
+
+}  // namespace vibscore::editor

@@ -1,0 +1,67 @@
+#pragma once
+
+#include <curses.h>
+
+#include <initializer_list>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "client/editor/editor.hpp"
+#include "score/score_xml.hpp"
+
+namespace vibscore {
+// Bars and scores in failure messages, as their XML.
+inline void PrintTo(const Bar& bar, std::ostream* out) {
+    Score score;
+    score.bars = {bar};
+    *out << write_score(score);
+}
+inline void PrintTo(const Score& score, std::ostream* out) {
+    *out << write_score(score);
+}
+}  // namespace vibscore
+
+// Shared by the editor tests: editors on a fresh score, and scores written as XML.
+namespace vibscore::testing {
+
+inline const ClefDeclaration kLra{"lra", "lra-phone.clef.xml"};
+inline const ClefDeclaration kErm{"erm", "erm-phone.clef.xml"};
+
+// A new score on clef "lra", with "erm" available for bars too.
+inline editor::Editor fresh_editor() {
+    return {editor::EditorModel(editor::EditorModel::blank_score("t", kLra), {kLra, kErm}), {}};
+}
+
+// The bars of a score whose bars (XML) all use clef "lra".
+inline std::vector<Bar> bars(const std::string& bars_xml) {
+    const std::string text =
+        "<VibScore><Title>t</Title><Clef id=\"lra\" href=\"lra-phone.clef.xml\"/>"
+        "<Clef id=\"erm\" href=\"erm-phone.clef.xml\"/>" +
+        bars_xml + "</VibScore>";
+    return read_score(text, "expected.xml").score.bars;
+}
+
+// Types keys (ncurses codes; characters as themselves) into the editor.
+inline void type(editor::Editor& editor, std::initializer_list<int> keys) {
+    for (const int key : keys) {
+        editor.key(key);
+    }
+}
+inline void type(editor::Editor& editor, const std::string& characters) {
+    for (const char c : characters) {
+        editor.key(static_cast<unsigned char>(c));
+    }
+}
+
+inline void press(editor::Editor& editor, std::initializer_list<editor::Button> buttons) {
+    for (const auto button : buttons) {
+        editor.press(button);
+    }
+}
+
+inline int ctrl(char letter) {
+    return letter & 0x1f;
+}
+
+}  // namespace vibscore::testing
