@@ -23,6 +23,7 @@
 #include <thread>
 #include <vector>
 
+#include "bench/summary.hpp"
 #include "daemon/render/cue_schedule.hpp"
 #include "daemon/render/performance.hpp"
 #include "score/bundle.hpp"
@@ -61,28 +62,8 @@ void sleep_ms(double ms) {
     std::this_thread::sleep_for(std::chrono::duration<double, std::milli>(ms));
 }
 
-// Percentiles by nearest rank, in the unit of the samples.
-struct Summary {
-    std::size_t n = 0;
-    double p50 = 0, p99 = 0, max = 0;
-};
-
-Summary summarize(std::vector<double> samples) {
-    Summary summary;
-    summary.n = samples.size();
-    if (samples.empty()) {
-        return summary;
-    }
-    std::sort(samples.begin(), samples.end());
-    const auto rank = [&](double p) {
-        const auto index = static_cast<std::size_t>(std::ceil(p * static_cast<double>(summary.n)));
-        return samples[std::clamp<std::size_t>(index, 1, summary.n) - 1];
-    };
-    summary.p50 = rank(0.50);
-    summary.p99 = rank(0.99);
-    summary.max = samples.back();
-    return summary;
-}
+using vibscore::bench::summarize;
+using vibscore::bench::Summary;
 
 const char* verdict(bool ok) {
     return ok ? "ok" : "MISSED";

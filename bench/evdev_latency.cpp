@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/summary.hpp"
 #include "tests/daemon_fixture.hpp"
 #include "tests/hil/uinput_vibrator.hpp"
 
@@ -29,28 +30,8 @@ using vibscore::hil::UinputVibrator;
 using vibscore::testing::DaemonFixture;
 using Clock = std::chrono::steady_clock;
 
-struct Summary {
-    std::size_t n = 0;
-    double p50 = 0, p99 = 0, max = 0;
-};
-
-// Percentiles by nearest rank.
-Summary summarize(std::vector<double> samples) {
-    Summary summary;
-    summary.n = samples.size();
-    if (samples.empty()) {
-        return summary;
-    }
-    std::sort(samples.begin(), samples.end());
-    const auto rank = [&](double p) {
-        const auto index = static_cast<std::size_t>(std::ceil(p * static_cast<double>(summary.n)));
-        return samples[std::clamp<std::size_t>(index, 1, summary.n) - 1];
-    };
-    summary.p50 = rank(0.50);
-    summary.p99 = rank(0.99);
-    summary.max = samples.back();
-    return summary;
-}
+using vibscore::bench::summarize;
+using vibscore::bench::Summary;
 
 double ms_between(Clock::time_point from, Clock::time_point to) {
     return std::chrono::duration<double, std::milli>(to - from).count();

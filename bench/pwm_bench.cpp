@@ -22,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/summary.hpp"
 #include "daemon/drivers/gpio_lines.hpp"
 #include "daemon/drivers/gpio_pwm_actuator.hpp"
 
@@ -140,32 +141,8 @@ class RecordingLines final : public GpioLines {
     std::shared_ptr<Recording> recording_;
 };
 
-struct Summary {
-    std::size_t n = 0;
-    double mean = 0, p50 = 0, p99 = 0, max = 0;
-};
-
-Summary summarize(std::vector<double> samples) {
-    Summary summary;
-    summary.n = samples.size();
-    if (samples.empty()) {
-        return summary;
-    }
-    std::sort(samples.begin(), samples.end());
-    const auto rank = [&](double p) {
-        const auto index = static_cast<std::size_t>(std::ceil(p * static_cast<double>(summary.n)));
-        return samples[std::clamp<std::size_t>(index, 1, summary.n) - 1];
-    };
-    double sum = 0;
-    for (const double sample : samples) {
-        sum += sample;
-    }
-    summary.mean = sum / static_cast<double>(summary.n);
-    summary.p50 = rank(0.50);
-    summary.p99 = rank(0.99);
-    summary.max = samples.back();
-    return summary;
-}
+using vibscore::bench::summarize;
+using vibscore::bench::Summary;
 
 struct Segment {
     double duty = 0;
