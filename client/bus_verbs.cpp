@@ -10,6 +10,7 @@
 #include <mutex>
 #include <thread>
 
+#include "client/daemon_errors.hpp"
 #include "client/offline_verbs.hpp"
 #include "haptics1-proxy.h"
 #include "score/bundle.hpp"
@@ -66,27 +67,8 @@ class Haptics : public sdbus::ProxyInterfaces<org::vibscore::Haptics1_proxy> {
     std::map<std::uint64_t, std::pair<std::uint32_t, std::uint32_t>> positions_;
 };
 
-// The daemon's error names, in words.
 std::string explain(const sdbus::Error& error) {
-    const std::string name = error.getName();
-    const std::string prefix = "org.vibscore.Haptics1.Error.";
-    if (name.rfind(prefix, 0) == 0) {
-        static const std::map<std::string, std::string> kWords{
-            {"InvalidDocument", "invalid"},
-            {"NotFound", "not found"},
-            {"PermissionDenied", "not permitted"},
-            {"LimitExceeded", "over a limit"},
-            {"Busy", "busy"},
-            {"Device", "actuator failed"},
-        };
-        const auto words = kWords.find(name.substr(prefix.size()));
-        return (words == kWords.end() ? name : words->second) + ": " + error.getMessage();
-    }
-    if (name == "org.freedesktop.DBus.Error.ServiceUnknown" ||
-        name == "org.freedesktop.DBus.Error.NameHasNoOwner") {
-        return "vibscored is not running on the system bus (" + error.getMessage() + ")";
-    }
-    return error.getMessage() + " (" + name + ")";
+    return describe_daemon_error(error.getName(), error.getMessage());
 }
 
 template <typename Body>

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <map>
 
+#include "client/daemon_errors.hpp"
 #include "haptics1-proxy.h"
 
 namespace vibscore::editor {
@@ -15,16 +16,7 @@ constexpr const char* kService = "org.vibscore.Haptics1";
 constexpr const char* kPath = "/org/vibscore/Haptics1";
 
 DaemonError explain(const sdbus::Error& error) {
-    const std::string name = error.getName();
-    if (name == "org.freedesktop.DBus.Error.ServiceUnknown" ||
-        name == "org.freedesktop.DBus.Error.NameHasNoOwner") {
-        return {name, "vibscored is not running"};
-    }
-    const std::string prefix = "org.vibscore.Haptics1.Error.";
-    if (name.rfind(prefix, 0) == 0) {
-        return {name, error.getMessage()};
-    }
-    return {name, error.getMessage() + " (" + name + ")"};
+    return {error.getName(), client::describe_daemon_error(error.getName(), error.getMessage())};
 }
 
 template <typename Call>
