@@ -63,9 +63,6 @@ std::uint64_t Player::play(PlaybackRequest request) {
     current_ = Playback{id, std::move(request), monotonic_now_us(), 0, 0, capabilities};
     // The first drive goes out before anything else: it is what the user feels.
     auto& cues = current_->request.cues;
-    const bool starts_silent = cues.empty() || cues.front().at > 0.0 ||
-                               cues.front().kind != render::Cue::Kind::drive ||
-                               cues.front().amplitude == 0.0;
     while (current_->next_cue < cues.size() && cues[current_->next_cue].at <= 0.0 &&
            cues[current_->next_cue].kind == render::Cue::Kind::drive) {
         if (!execute(cues[current_->next_cue++])) {
@@ -73,8 +70,8 @@ std::uint64_t Player::play(PlaybackRequest request) {
         }
     }
     listener_.playback_started(id, label);
-    if (starts_silent) {
-        prepare_next_drive();  // otherwise the first drive's apply has prepared the second
+    if (!on_since_us_) {
+        prepare_next_drive();  // a score that starts vibrating has prepared its second drive
     }
     run_due();
     return id;
@@ -134,13 +131,12 @@ void Player::prepare_next_drive() {
     }
 }
 
-bool Player::on_time_exceeded(std::uint64_t now_us) {
+std::optional<std::uint64_t> Player::on_time_deadline_us() const {
     const double limit_s = current_->capabilities.max_on_time_s;
     if (limit_s <= 0.0 || !on_since_us_) {
-        return false;
+        return std::nullopt;
     }
-    const auto limit_us = static_cast<std::uint64_t>(std::llround(limit_s * 1e6));
-    return now_us >= *on_since_us_ + limit_us;
+    return *on_since_us_ + static_cast<std::uint64_t>(std::llround(limit_s * 1e6));
 }
 
 bool Player::execute(const render::Cue& cue) {
@@ -193,7 +189,8 @@ void Player::run_due() {
         const auto& cue = cues[playback.next_cue];
         const std::uint64_t due = due_us(playback, cue);
         const std::uint64_t now = monotonic_now_us();
-        if (on_time_exceeded(now)) {
+        const auto on_time_deadline = on_time_deadline_us();
+        if (on_time_deadline && now >= *on_time_deadline) {
             log::warning("actuator " + std::string(actuator_->driver_name()) + " was on for its " +
                          "maximum on-time; held off until the score pauses (playback " +
                          std::to_string(playback.id) + ")");
@@ -203,10 +200,8 @@ void Player::run_due() {
         }
         if (due > now) {
             std::uint64_t wake = due;
-            if (on_since_us_ && playback.capabilities.max_on_time_s > 0.0) {
-                wake =
-                    std::min(wake, *on_since_us_ + static_cast<std::uint64_t>(std::llround(
-                                                       playback.capabilities.max_on_time_s * 1e6)));
+            if (on_since_us_ && on_time_deadline) {
+                wake = std::min(wake, *on_time_deadline);
             }
             timer_.arm(wake);
             return;

@@ -88,8 +88,8 @@ class Player {
     bool execute(const render::Cue& cue);
     drivers::Drive drive_for(const render::Cue& cue) const;
     void prepare_next_drive();
-    // Thermal protection: true when the actuator has been on for its maximum on-time.
-    bool on_time_exceeded(std::uint64_t now_us);
+    // Thermal protection: when the actuator, on without a break, reaches its maximum on-time.
+    std::optional<std::uint64_t> on_time_deadline_us() const;
     void finish(const std::string& reason);
 
     EventLoop::Timer timer_;
