@@ -1,5 +1,7 @@
 #pragma once
 
+#include <gtest/gtest.h>
+
 #include <cerrno>
 #include <charconv>
 #include <cstdint>
@@ -16,6 +18,7 @@
 
 #include "daemon/drivers/actuator.hpp"
 #include "daemon/drivers/sysfs_attributes.hpp"
+#include "tests/support.hpp"
 
 namespace vibscore::testing {
 
@@ -255,5 +258,27 @@ class FakeSysfs::Attributes final : public drivers::SysfsAttributes {
 inline std::unique_ptr<drivers::SysfsAttributes> FakeSysfs::attributes() {
     return std::make_unique<Attributes>(shared_from_this());
 }
+
+// The fixture of a sysfs backend's tests: a fake kernel tree the backend is opened on.
+class SysfsTreeTest : public ::testing::Test {
+  protected:
+    std::string path(const std::string& relative) const {
+        return (tree.path() / relative).string();
+    }
+
+    // The message of whatever `open` throws (DeviceError or invalid_argument).
+    template <typename Open>
+    static std::string error_of(Open&& open) {
+        try {
+            open();
+        } catch (const std::exception& error) {
+            return error.what();
+        }
+        return "<no error>";
+    }
+
+    TempDir tree;
+    std::shared_ptr<FakeSysfs> sysfs = std::make_shared<FakeSysfs>(tree.path());
+};
 
 }  // namespace vibscore::testing

@@ -21,7 +21,7 @@ using ::testing::IsEmpty;
 using vibscore::testing::FakeSysfs;
 using vibscore::testing::TempDir;
 
-class SysfsVibratorTest : public ::testing::Test {
+class SysfsVibratorTest : public vibscore::testing::SysfsTreeTest {
   protected:
     std::unique_ptr<Actuator> led(std::map<std::string, std::string> settings = {}) {
         settings["sysfs-root"] = tree.path().string();
@@ -31,21 +31,6 @@ class SysfsVibratorTest : public ::testing::Test {
         settings["sysfs-root"] = tree.path().string();
         return make_timed_output_actuator(settings, sysfs->attributes());
     }
-    template <typename Open>
-    std::string error_of(Open&& open) {
-        try {
-            open();
-        } catch (const std::exception& error) {
-            return error.what();
-        }
-        return "<no error>";
-    }
-    std::string path(const std::string& relative) const {
-        return (tree.path() / relative).string();
-    }
-
-    TempDir tree;
-    std::shared_ptr<FakeSysfs> sysfs = std::make_shared<FakeSysfs>(tree.path());
 };
 
 // ----- led-vibrator -----

@@ -41,7 +41,7 @@ TEST(KernelSysfsAttributes, WritesReplaceReadsTrimAndErrorsNameThePath) {
                     HasSubstr((tree.path() / "duty_cycle").string() + ": cannot read")));
 }
 
-class SysfsPwmTest : public ::testing::Test {
+class SysfsPwmTest : public vibscore::testing::SysfsTreeTest {
   protected:
     SysfsPwmTest() { sysfs->add_pwm_chip(0); }
 
@@ -50,22 +50,9 @@ class SysfsPwmTest : public ::testing::Test {
         return make_sysfs_pwm_actuator(settings, sysfs->attributes());
     }
 
-    // The message of the DeviceError (or invalid_argument) that opening throws.
     std::string open_error(std::map<std::string, std::string> settings) {
-        try {
-            open(std::move(settings));
-        } catch (const std::exception& error) {
-            return error.what();
-        }
-        return "<no error>";
+        return error_of([&] { open(std::move(settings)); });
     }
-
-    std::string path(const std::string& relative) const {
-        return (tree.path() / relative).string();
-    }
-
-    TempDir tree;
-    std::shared_ptr<FakeSysfs> sysfs = std::make_shared<FakeSysfs>(tree.path());
 };
 
 TEST_F(SysfsPwmTest, ExportsTheChannelThenSetsThePeriodAndEnables) {
