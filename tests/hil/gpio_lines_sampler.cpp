@@ -1,5 +1,7 @@
 #include "tests/hil/gpio_lines_sampler.hpp"
 
+#include <algorithm>
+
 #include <fcntl.h>
 #include <unistd.h>
 
@@ -91,6 +93,24 @@ void GpioLinesSampler::fail(int error) {
 std::vector<LinesState> GpioLinesSampler::changes() const {
     std::lock_guard lock(mutex_);
     return changes_;
+}
+
+std::chrono::nanoseconds GpioLinesSampler::high_time(
+    std::size_t index, std::chrono::steady_clock::time_point begin,
+    std::chrono::steady_clock::time_point end) const {
+    const auto states = changes();
+    std::chrono::nanoseconds high{0};
+    for (std::size_t i = 0; i < states.size(); ++i) {
+        if (states[i].values.at(index) != 1) {
+            continue;
+        }
+        const auto from = std::max(states[i].seen, begin);
+        const auto to = std::min(i + 1 < states.size() ? states[i + 1].seen : end, end);
+        if (to > from) {
+            high += to - from;
+        }
+    }
+    return high;
 }
 
 }  // namespace vibscore::hil

@@ -27,7 +27,9 @@ struct LinesState {
 // values held together at that instant. (A line changing twice between its two reads would
 // escape this; at the millisecond periods tested here it cannot.) Records each change of the
 // whole state; the first is the state found at the start (the constructor returns once it is
-// recorded). Resolution as for GpioLineSampler: tens of microseconds per read under TCG.
+// recorded). Its resolution is the sampling interval actually achieved (a sysfs read under TCG
+// costs tens of microseconds): good for on/off and duty cycles over many periods, not for
+// edge timing.
 class GpioLinesSampler {
   public:
     GpioLinesSampler(const GpioSimChip& chip, std::vector<unsigned> lines,
@@ -38,6 +40,11 @@ class GpioLinesSampler {
 
     std::vector<LinesState> changes() const;
     std::uint64_t samples() const { return samples_; }
+    // How long line `index` (in the order given) was high within [begin, end), by the `seen`
+    // times of its changes.
+    std::chrono::nanoseconds high_time(std::size_t index,
+                                       std::chrono::steady_clock::time_point begin,
+                                       std::chrono::steady_clock::time_point end) const;
     // Samples thrown away because a line changed while they were read.
     std::uint64_t torn_samples() const { return torn_; }
 

@@ -3,8 +3,7 @@
 #include <fcntl.h>
 #include <unistd.h>
 
-#include <algorithm>
-#include <cerrno>
+#include <atomic>
 #include <stdexcept>
 #include <system_error>
 
@@ -84,82 +83,6 @@ int GpioSimChip::value(unsigned line) const {
 
 void GpioSimChip::set_pull(unsigned line, bool up) const {
     write_attribute(value_file(line).parent_path() / "pull", up ? "pull-up" : "pull-down");
-}
-
-GpioLineSampler::GpioLineSampler(const GpioSimChip& chip, unsigned line,
-                                 std::chrono::microseconds period) {
-    const auto file = chip.value_file(line);
-    thread_ = std::thread([this, file, period] { run(file, period); });
-    std::unique_lock lock(mutex_);
-    first_sample_.wait(lock, [this] { return !transitions_.empty() || error_ != 0; });
-    if (error_ != 0) {
-        lock.unlock();
-        thread_.join();
-        throw std::system_error(error_, std::generic_category(), "cannot sample " + file.string());
-    }
-}
-
-GpioLineSampler::~GpioLineSampler() {
-    stop_ = true;
-    thread_.join();
-}
-
-void GpioLineSampler::run(const std::filesystem::path& file, std::chrono::microseconds period) {
-    const UniqueFd fd(::open(file.c_str(), O_RDONLY | O_CLOEXEC));
-    if (fd.get() < 0) {
-        fail(errno);
-        return;
-    }
-    int last = -1;
-    auto before = std::chrono::steady_clock::now();
-    while (!stop_) {
-        char text[8];
-        // sysfs regenerates an attribute's text on every read from offset 0.
-        const auto got = ::pread(fd.get(), text, sizeof text, 0);
-        const auto now = std::chrono::steady_clock::now();
-        if (got <= 0) {
-            fail(got < 0 ? errno : EIO);
-            return;
-        }
-        const int value = text[0] == '1' ? 1 : 0;
-        ++samples_;
-        if (value != last) {
-            std::lock_guard lock(mutex_);
-            transitions_.push_back({before, now, value});
-            last = value;
-            first_sample_.notify_all();
-        }
-        before = now;
-        std::this_thread::sleep_for(period);
-    }
-}
-
-void GpioLineSampler::fail(int error) {
-    std::lock_guard lock(mutex_);
-    error_ = error;
-    first_sample_.notify_all();
-}
-
-std::vector<GpioTransition> GpioLineSampler::transitions() const {
-    std::lock_guard lock(mutex_);
-    return transitions_;
-}
-
-std::chrono::nanoseconds GpioLineSampler::high_time(
-    std::chrono::steady_clock::time_point begin, std::chrono::steady_clock::time_point end) const {
-    const auto changes = transitions();
-    std::chrono::nanoseconds high{0};
-    for (std::size_t i = 0; i < changes.size(); ++i) {
-        if (changes[i].value != 1) {
-            continue;
-        }
-        const auto from = std::max(changes[i].seen, begin);
-        const auto to = std::min(i + 1 < changes.size() ? changes[i + 1].seen : end, end);
-        if (to > from) {
-            high += to - from;
-        }
-    }
-    return high;
 }
 
 }  // namespace vibscore::hil

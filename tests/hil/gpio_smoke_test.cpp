@@ -5,6 +5,7 @@
 #include <gpiod.hpp>
 #include <thread>
 
+#include "tests/hil/gpio_lines_sampler.hpp"
 #include "tests/hil/gpio_sim_chip.hpp"
 
 namespace vibscore::hil {
@@ -62,21 +63,21 @@ TEST(GpioSmoke, TheSamplerRecordsEveryEdgeOfALineInOrder) {
     gpiod::chip chip(sim.chip_path().string(), gpiod::chip::OPEN_BY_PATH);
     auto line = chip.get_line(0);
     line.request({"vibscore-hil", gpiod::line_request::DIRECTION_OUTPUT, 0}, 0);
-    GpioLineSampler sampler(sim, 0);
+    GpioLinesSampler sampler(sim, {0});
     // Each level is held until the sampler has seen it: no timing involved.
     for (int i = 0; i < 6; ++i) {
         const int value = (i + 1) % 2;
         line.set_value(value);
         const auto deadline = Clock::now() + 5s;
-        while (sampler.transitions().size() < static_cast<std::size_t>(i) + 2 &&
+        while (sampler.changes().size() < static_cast<std::size_t>(i) + 2 &&
                Clock::now() < deadline) {
             std::this_thread::sleep_for(1ms);
         }
     }
-    const auto transitions = sampler.transitions();
+    const auto transitions = sampler.changes();
     ASSERT_EQ(transitions.size(), 7u);
     for (std::size_t i = 0; i < transitions.size(); ++i) {
-        EXPECT_EQ(transitions[i].value, static_cast<int>(i % 2)) << "transition " << i;
+        EXPECT_EQ(transitions[i].values.at(0), static_cast<int>(i % 2)) << "transition " << i;
         EXPECT_LE(transitions[i].before, transitions[i].seen);
         if (i > 0) {
             EXPECT_LE(transitions[i - 1].seen, transitions[i].before);
@@ -89,7 +90,7 @@ TEST(GpioSmoke, TheSamplerMeasuresTheDutyCycleOfASoftwarePwm) {
     gpiod::chip chip(sim.chip_path().string(), gpiod::chip::OPEN_BY_PATH);
     auto line = chip.get_line(0);
     line.request({"vibscore-hil", gpiod::line_request::DIRECTION_OUTPUT, 0}, 0);
-    GpioLineSampler sampler(sim, 0);
+    GpioLinesSampler sampler(sim, {0});
     std::this_thread::sleep_for(5ms);
 
     // 8 Hz at 33 %: the driver's own clock says how long the line was really high. Pulses are
@@ -106,15 +107,15 @@ TEST(GpioSmoke, TheSamplerMeasuresTheDutyCycleOfASoftwarePwm) {
     }
     const auto end = Clock::now();
 
-    const auto measured = sampler.high_time(begin, end);
+    const auto measured = sampler.high_time(0, begin, end);
     const auto tolerance = std::max<Clock::duration>(10ms, driven_high / 5);
     EXPECT_NEAR(std::chrono::duration<double>(measured).count(),
                 std::chrono::duration<double>(driven_high).count(),
                 std::chrono::duration<double>(tolerance).count())
         << sampler.samples() << " samples";
     std::size_t rises = 0;
-    for (const auto& transition : sampler.transitions()) {
-        rises += transition.value == 1 ? 1 : 0;
+    for (const auto& transition : sampler.changes()) {
+        rises += transition.values.at(0) == 1 ? 1 : 0;
     }
     EXPECT_EQ(rises, 6u);
 }
