@@ -49,9 +49,7 @@ Request ButtonScheme::browse(Button button, EditorModel& model) {
             model.move_right();
             break;
         case Button::select:
-            if (model.begin_entry()) {
-                mode_ = Mode::entry;
-            }
+            begin_entry(model);
             break;
         case Button::back:
             mode_ = Mode::menu;
@@ -61,28 +59,37 @@ Request ButtonScheme::browse(Button button, EditorModel& model) {
 }
 
 Request ButtonScheme::entry(Button button, EditorModel& model) {
-    switch (button) {
-        case Button::up:
-            model.entry_number(+1);
+    switch (steps_.press(button, model)) {
+        case EntrySteps::Outcome::choosing:
             break;
-        case Button::down:
-            model.entry_number(-1);
-            break;
-        case Button::left:
-            model.entry_length(-1);
-            break;
-        case Button::right:
-            model.entry_length(+1);
-            break;
-        case Button::select:
+        case EntrySteps::Outcome::done:
             model.end_entry();
-            mode_ = Mode::browse;
+            begin_entry(model);
             break;
-        case Button::back:
-            model.entry_toggle_rest();
+        case EntrySteps::Outcome::new_bar:
+            model.cancel_entry();
+            model.split_bar();
+            if (model.clef_choices().size() > 1) {
+                // A new bar is where the clef changes, so its clef is asked for at once.
+                open_clef_menu(model);
+                enter_after_list_ = true;
+            } else {
+                begin_entry(model);
+            }
+            break;
+        case EntrySteps::Outcome::leave:
+            model.cancel_entry();
+            mode_ = Mode::browse;
             break;
     }
     return {};
+}
+
+void ButtonScheme::begin_entry(EditorModel& model) {
+    if (model.begin_entry()) {
+        steps_.start();
+        mode_ = Mode::entry;
+    }
 }
 
 Request ButtonScheme::main_menu_press(Button button, EditorModel& model) {
@@ -139,6 +146,11 @@ Request ButtonScheme::list_press(Button button, EditorModel& model) {
         case Button::right:
             return {};
         case Button::back:
+            if (enter_after_list_) {
+                enter_after_list_ = false;
+                begin_entry(model);
+                return {};
+            }
             mode_ = mode_ == Mode::quit_menu ? Mode::browse : Mode::menu;
             return {};
         case Button::select:
@@ -146,6 +158,12 @@ Request ButtonScheme::list_press(Button button, EditorModel& model) {
     }
     const Mode was = mode_;
     mode_ = Mode::browse;
+    if (enter_after_list_) {
+        enter_after_list_ = false;
+        model.set_bar_clef(model.clef_choices()[static_cast<std::size_t>(list_.index())].id);
+        begin_entry(model);
+        return {};
+    }
     if (size == 0) {
         return {};
     }
@@ -203,9 +221,10 @@ Request ButtonScheme::perform(Action action, EditorModel& model) {
 
 void ButtonScheme::leave_layers(EditorModel& model) {
     if (mode_ == Mode::entry) {
-        model.end_entry();
+        model.cancel_entry();
     }
     mode_ = Mode::browse;
+    enter_after_list_ = false;
 }
 
 Request ButtonScheme::command(const Command& command, EditorModel& model) {
@@ -267,7 +286,7 @@ std::string ButtonScheme::hint(const EditorModel& model) const {
             return is_empty_position(model.score(), model.cursor()) ? "Sel:new note  Back:menu"
                                                                     : "Sel:change  Back:menu";
         case Mode::entry:
-            return "\u2191\u2193num \u2190\u2192len Sel:ok Back:rest";
+            return steps_.hint(model);
         case Mode::menu:
             return "\u2191\u2193choose \u2190\u2192group Sel:ok Back:close";
         case Mode::clef_menu:
@@ -281,8 +300,9 @@ std::string ButtonScheme::hint(const EditorModel& model) const {
 }
 
 std::string ButtonScheme::fingerprint() const {
-    return std::to_string(static_cast<int>(mode_)) + ',' + std::to_string(main_.index()) + ',' +
-           std::to_string(list_.index());
+    return std::to_string(static_cast<int>(mode_)) + ',' +
+           std::to_string(static_cast<int>(steps_.step())) + ',' + std::to_string(main_.index()) +
+           ',' + std::to_string(list_.index()) + (enter_after_list_ ? ",e" : "");
 }
 
 }  // namespace vibscore::editor

@@ -8,6 +8,7 @@
 #include "client/editor/buttons.hpp"
 #include "client/editor/commands.hpp"
 #include "client/editor/editor_model.hpp"
+#include "client/editor/entry_steps.hpp"
 #include "client/editor/menu.hpp"
 
 namespace vibscore::editor {
@@ -23,16 +24,15 @@ struct Request {
 
 // The six-button scheme (docs/editor.md has its table). With nothing open:
 //   Up/Down       the active string          Left/Right  the cursor
-//   Select        on an empty position: enter a note there (the proposed note);
-//                 on a note or rest: change it (a note moves to the active string)
+//   Select        on an empty position: enter notes from there, starting with the proposed
+//                 one; on a note or rest: change it, and go on from there
 //   Back          the menu
-// Entering or changing a symbol:
-//   Up/Down       its number                 Left/Right  shorter / longer
-//   Select        done: on to the next position        Back  note <-> rest
+// Entering (EntrySteps): each symbol in up to three steps, string, number and length; when one
+// is done the next position's proposal opens. Back, Back leaves.
 // In a menu: Up/Down choose (wrapping), Left/Right jump between groups, Select does it,
 // Back closes. Menus reopen on the last choice. While playing, any button stops.
-// Keyboard commands (thesis Fig. 4.3) go through command(): they finish an open entry or
-// close a menu first.
+// Keyboard commands (thesis Fig. 4.3) go through command(): they drop the symbol being
+// entered or close a menu first.
 class ButtonScheme {
   public:
     enum class Mode { browse, entry, menu, clef_menu, open_menu, quit_menu, playing };
@@ -68,8 +68,11 @@ class ButtonScheme {
     Request perform(Action action, EditorModel& model);
     void open_clef_menu(const EditorModel& model);
     void leave_layers(EditorModel& model);
+    void begin_entry(EditorModel& model);
 
     Mode mode_ = Mode::browse;
+    EntrySteps steps_;
+    bool enter_after_list_ = false;  // the clef list of a bar begun while entering
     MenuCursor main_;
     MenuCursor list_;  // the open list menu's highlight
     int last_open_ = 0;

@@ -1,6 +1,7 @@
 #include "client/editor/editor_model.hpp"
 
 #include <algorithm>
+#include <cstdlib>
 #include <set>
 
 namespace vibscore::editor {
@@ -110,6 +111,13 @@ Note EditorModel::proposed_note() const {
         note.dynamics = previous->dynamics;
         note.legato = previous->legato;
         note.portamento = previous->portamento;
+        // A strength that stepped from the note before keeps stepping: fades and swells are
+        // runs of notes a step apart.
+        const auto two_before = symbol_before(*score_, *before);
+        if (const Note* earlier = two_before ? note_at(*score_, *two_before) : nullptr) {
+            note.number =
+                std::clamp(2 * previous->number - earlier->number, lowest_number, highest_number);
+        }
     }
     return note;
 }
@@ -307,34 +315,54 @@ bool EditorModel::begin_entry() {
         return true;
     }
     anchor_.reset();
-    const Symbol* symbol = symbol_at(*score_, cursor_);
     const bool empty = is_empty_position(*score_, cursor_);
     const Note note = proposed_note();
     history_.record(snapshot());
     in_entry_ = true;
     if (empty) {
         insert_symbol(edit(), cursor_, note);
-    } else if (const auto* existing = std::get_if<Note>(symbol); existing) {
-        if (existing->string != string_) {
-            note_at(edit(), cursor_)->string = string_;
-        }
     }
     message_.clear();
     return true;
 }
 
-void EditorModel::entry_number(int delta) {
-    if (!in_entry_ || note_at(*score_, cursor_) == nullptr) {
+namespace {
+
+int wrapped(int value, int delta, int lowest, int highest) {
+    const int span = highest - lowest + 1;
+    return lowest + ((value - lowest + delta) % span + span) % span;
+}
+
+}  // namespace
+
+void EditorModel::entry_string(int delta) {
+    const Symbol* symbol = in_entry_ ? symbol_at(*score_, cursor_) : nullptr;
+    if (symbol == nullptr || std::holds_alternative<Blank>(*symbol)) {
         return;
     }
-    // Numbers wrap around like the strings: 9 up is 1.
-    const int span = highest_number - lowest_number + 1;
-    const int number =
-        lowest_number +
-        ((note_at(*score_, cursor_)->number - lowest_number + delta) % span + span) % span;
-    number_ = number;
-    if (number != note_at(*score_, cursor_)->number) {
-        note_at(edit(), cursor_)->number = number;
+    if (const auto* rest = std::get_if<Rest>(symbol)) {
+        Note note = proposed_note();
+        note.length = rest->length;
+        note.string = wrapped(string_, delta, lowest_string, highest_string);
+        string_ = note.string;
+        *symbol_at(edit(), cursor_) = note;
+        return;
+    }
+    const Note& note = *std::get_if<Note>(symbol);
+    string_ = wrapped(note.string, delta, lowest_string, highest_string);
+    if (string_ != note.string) {
+        note_at(edit(), cursor_)->string = string_;
+    }
+}
+
+void EditorModel::entry_number(int delta) {
+    const Note* note = in_entry_ ? note_at(*score_, cursor_) : nullptr;
+    if (note == nullptr) {
+        return;
+    }
+    number_ = wrapped(note->number, delta, lowest_number, highest_number);
+    if (number_ != note->number) {
+        note_at(edit(), cursor_)->number = number_;
     }
 }
 
@@ -344,40 +372,70 @@ void EditorModel::entry_length(int delta) {
         return;
     }
     const Length now = length_of(*symbol);
-    const Length next = delta > 0 ? longer(now) : shorter(now);
-    length_ = next;
+    Length next = now;
+    for (int step = 0; step < std::abs(delta); ++step) {
+        next = delta > 0 ? longer(next) : shorter(next);
+    }
+    remember_length(*symbol, next);
     if (next != now) {
         set_length_of(*symbol_at(edit(), cursor_), next);
     }
 }
 
-// Back changes the shape of the symbol being entered, round the four shapes a length can
-// take: note, rest, dotted rest, dotted note (lengths with no dotted form skip the dotted ones).
-void EditorModel::entry_toggle_rest() {
+void EditorModel::remember_length(const Symbol& entered, Length length) {
+    if (std::holds_alternative<Rest>(entered)) {
+        rest_length_ = length;
+    } else {
+        length_ = length;
+    }
+}
+
+void EditorModel::entry_rest() {
     const Symbol* symbol = in_entry_ ? symbol_at(*score_, cursor_) : nullptr;
     if (symbol == nullptr || std::holds_alternative<Blank>(*symbol)) {
         return;
     }
-    const Length length = length_of(*symbol);
-    const auto dot = toggled_dot(length);
-    Symbol next = *symbol;
-    if (const auto* note = std::get_if<Note>(symbol)) {
-        if (is_dotted(length)) {
-            Note plain = *note;
-            plain.length = *dot;
-            next = plain;  // dotted note -> note
-        } else {
-            next = Rest{length};  // note -> rest
-        }
-    } else if (!is_dotted(length) && dot) {
-        next = Rest{*dot};  // rest -> dotted rest
-    } else {
-        Note note = proposed_note();  // dotted rest -> dotted note; or rest -> note
-        note.length = length;
-        next = note;
+    const Length length = rest_length_.value_or(length_);
+    if (const auto* rest = std::get_if<Rest>(symbol); rest == nullptr || rest->length != length) {
+        *symbol_at(edit(), cursor_) = Rest{length};
     }
-    length_ = length_of(next);
-    *symbol_at(edit(), cursor_) = next;
+    rest_length_ = length;
+}
+
+void EditorModel::entry_toggle_dot() {
+    const Symbol* symbol = in_entry_ ? symbol_at(*score_, cursor_) : nullptr;
+    if (symbol == nullptr || std::holds_alternative<Blank>(*symbol)) {
+        return;
+    }
+    const auto toggled = toggled_dot(length_of(*symbol));
+    if (!toggled) {
+        refuse("whole notes and 32nd notes have no dotted form");
+        return;
+    }
+    remember_length(*symbol, *toggled);
+    set_length_of(*symbol_at(edit(), cursor_), *toggled);
+}
+
+void EditorModel::entry_dynamics(Dynamics dynamics) {
+    const Note* note = in_entry_ ? note_at(*score_, cursor_) : nullptr;
+    if (note != nullptr) {
+        set_dynamics(note->dynamics == dynamics ? Dynamics::none : dynamics);
+    }
+}
+
+void EditorModel::entry_tie(Tie tie) {
+    const Note* note = in_entry_ ? note_at(*score_, cursor_) : nullptr;
+    if (note == nullptr) {
+        return;
+    }
+    const auto before = symbol_before(*score_, cursor_);
+    const Note* previous = before ? note_at(*score_, *before) : nullptr;
+    const auto serial_here = serial(*note, tie);
+    if (previous != nullptr && serial_here != 0 && serial(*previous, tie) == serial_here) {
+        untie(tie);
+    } else {
+        this->tie(tie);
+    }
 }
 
 void EditorModel::end_entry() {
@@ -388,8 +446,25 @@ void EditorModel::end_entry() {
     if (const Snapshot* before = history_.last(); before && *before->score == *score_) {
         history_.drop_last();  // opened and closed without a change
     }
+    // What was entered, kept as proposed or not, is what the next proposal starts from.
+    if (const Note* note = note_at(*score_, cursor_)) {
+        number_ = note->number;
+        length_ = note->length;
+    } else if (const auto* rest = std::get_if<Rest>(symbol_at(*score_, cursor_))) {
+        rest_length_ = rest->length;
+    }
     ++cursor_.slot;
     land();
+}
+
+void EditorModel::cancel_entry() {
+    if (!in_entry_) {
+        return;
+    }
+    const Snapshot before = *history_.last();
+    history_.drop_last();
+    restore(before);
+    message_.clear();
 }
 
 // --- bars and deleting --------------------------------------------------------------------
@@ -807,6 +882,7 @@ std::string EditorModel::fingerprint() const {
     number(string_);
     number(static_cast<int>(length_));
     number(number_);
+    number(rest_length_ ? static_cast<int>(*rest_length_) : -1);
     number(in_entry_);
     if (anchor_) {
         text += 'A';

@@ -41,7 +41,8 @@ class EditorModel {
     void set_title(std::string title);
 
     // The note the six-button entry puts on an empty position: the last-used number and
-    // length on the active string, continuing the hairpin and ties of a note directly before.
+    // length on the active string, continuing the hairpin and ties of a note directly before,
+    // and the step in number between the two notes before (a fade goes on fading).
     Note proposed_note() const;
     // The note or rest the symbol functions act on: the one under the cursor, or on an empty
     // position the one just before it.
@@ -77,14 +78,22 @@ class EditorModel {
     bool set_bar_clef(const std::string& id);
 
     // The six-button entry of one symbol, undone as one step: begin_entry puts the proposed
-    // note on an empty position (or takes the symbol under the cursor, moving a note to the
-    // active string); the entry_ functions change it; end_entry moves the cursor past it.
+    // note on an empty position (or takes the symbol under the cursor); the entry_ functions
+    // change it; end_entry keeps it and moves the cursor past it, cancel_entry takes it back.
     bool begin_entry();
     bool in_entry() const { return in_entry_; }
-    void entry_number(int delta);
-    void entry_length(int delta);
-    void entry_toggle_rest();  // note -> rest -> dotted rest -> dotted note -> note
+    // Moves the note `delta` strings up, wrapping round the six; a rest becomes the proposed
+    // note there. The active string follows.
+    void entry_string(int delta);
+    void entry_number(int delta);  // wraps round 1..9
+    void entry_length(int delta);  // > 0 longer, < 0 shorter, one length per step
+    // Makes it a rest, as long as the last rest entered (or the current length before any).
+    void entry_rest();
+    void entry_toggle_dot();
+    void entry_dynamics(Dynamics dynamics);  // this hairpin, or none if it already has it
+    void entry_tie(Tie tie);                 // tied to the note before, or untied if it was
     void end_entry();
+    void cancel_entry();
 
     // A compact text of everything that decides what the next key or button does (not the
     // undo history), for the press planner to recognise states it has seen.
@@ -99,6 +108,8 @@ class EditorModel {
     void step_left();
     bool step_right();  // false at the end of the score
     void land();        // keeps the cursor valid and lets the active string follow a note under it
+    // The next proposal's length: a note's for notes, a rest's for rests.
+    void remember_length(const Symbol& entered, Length length);
     bool refuse(std::string why);
     bool done(std::string what);
 
@@ -110,6 +121,7 @@ class EditorModel {
     int string_ = 3;
     Length length_ = Length::quarter;
     int number_ = 5;
+    std::optional<Length> rest_length_;  // the last rest the buttons entered
     std::optional<Position> anchor_;
     bool anchor_sticky_ = false;  // marked from a menu: moving grows the block
     Clip clipboard_;

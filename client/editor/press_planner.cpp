@@ -61,12 +61,6 @@ std::string state_key(const Editor& editor) {
     return editor.model.fingerprint() + '@' + editor.scheme.fingerprint();
 }
 
-// Two notes agree but for their dynamics and ties: entered, with the marks still to set.
-bool same_but_marks(const Token& have, const Token& want) {
-    return have.kind == 'N' && want.kind == 'N' && have.length == want.length &&
-           have.number == want.number && have.string == want.string;
-}
-
 }  // namespace
 
 int entered_prefix(const Score& score, const Score& target) {
@@ -81,46 +75,96 @@ int entered_prefix(const Score& score, const Score& target) {
 
 namespace {
 
-// Progress in eighths of a token, so that each search step is short:
-//   8 per bar or symbol entered as the target has it;
-//   +5 for a note entered but for its hairpin or ties (set from the menu next);
-//   +1..4 while a symbol is being entered on the right string: one for the string, and one
-//   each for its number, its length and its shape (note or rest) once they are right.
-// -1: the score holds something off the target's path.
+// Progress: the bars and symbols entered as the target has them, or -1 when the score holds
+// something off the target's path. A symbol still being chosen does not count, so a search
+// step is the fewest presses for one whole symbol (or bar).
+int progress(const Editor& editor, const Score& target) {
+    const Score* score = &editor.model.score();
+    Score without_open;
+    if (editor.scheme.mode() == ButtonScheme::Mode::entry) {
+        without_open = *score;
+        const Position open = editor.model.cursor();
+        auto& symbols = without_open.bars.at(open.bar).symbols;
+        if (open.slot < symbols.size()) {
+            symbols.erase(symbols.begin() + static_cast<std::ptrdiff_t>(open.slot));
+        }
+        score = &without_open;
+    }
+    return entered_prefix(*score, target);
+}
+
+// Finer progress, for symbols too far from their proposal for a whole-symbol search: eight
+// per symbol entered, and one for each thing the symbol being chosen already has right.
 constexpr int kUnits = 8;
 
-int progress(const Editor& editor, const Score& target) {
+int fine_progress(const Editor& editor, const Score& target) {
+    const int entered = progress(editor, target);
+    if (entered < 0 || editor.scheme.mode() != ButtonScheme::Mode::entry) {
+        return entered < 0 ? entered : kUnits * entered;
+    }
     const auto have = tokens(editor.model.score());
     const auto want = tokens(target);
-    std::size_t agree = 0;
-    while (agree < have.size() && agree < want.size() && have[agree] == want[agree]) {
-        ++agree;
+    const auto at = static_cast<std::size_t>(entered);
+    if (at >= have.size() || at >= want.size()) {
+        return kUnits * entered;
     }
-    const int entered = kUnits * static_cast<int>(agree);
-    if (agree == have.size()) {
-        return entered;
+    const Token& open = have[at];
+    const Token& wanted = want[at];
+    int right = open.kind == wanted.kind ? 1 : 0;
+    right += open.length == wanted.length ? 1 : 0;
+    if (open.kind == 'N' && wanted.kind == 'N') {
+        right += (open.string == wanted.string ? 1 : 0) + (open.number == wanted.number ? 1 : 0) +
+                 (open.dynamics == wanted.dynamics ? 1 : 0) +
+                 (open.legato_to_previous == wanted.legato_to_previous &&
+                          open.portamento_to_previous == wanted.portamento_to_previous
+                      ? 1
+                      : 0);
     }
-    if (agree + 1 != have.size() || agree >= want.size()) {
-        return -1;
+    return kUnits * entered + right;
+}
+
+struct Node {
+    Editor editor;
+    std::vector<Button> presses;
+};
+
+bool finished(const Editor& editor, const Score& target) {
+    return editor.scheme.mode() == ButtonScheme::Mode::browse &&
+           same_music(editor.model.score(), target);
+}
+
+// Breadth-first from `from` to the nearest state that `measure` puts further on, or that is
+// the finished target. nullopt when there is none within `state_limit` states.
+template <typename Measure>
+std::optional<Node> next_step(const Editor& from, const Score& target, Measure measure,
+                              std::size_t state_limit, std::size_t& states_seen) {
+    const int reached = measure(from, target);
+    std::deque<Node> queue;
+    std::unordered_set<std::string> seen{state_key(from)};
+    queue.push_back({from, {}});
+    while (!queue.empty()) {
+        Node node = std::move(queue.front());
+        queue.pop_front();
+        for (const Button button : all_buttons) {
+            Node next{node.editor, node.presses};
+            if (next.editor.press(button).kind != Request::Kind::none) {
+                continue;  // files, playback and quitting are not entering
+            }
+            next.presses.push_back(button);
+            if (!seen.insert(state_key(next.editor)).second) {
+                continue;
+            }
+            ++states_seen;
+            if (seen.size() > state_limit) {
+                return std::nullopt;
+            }
+            if (measure(next.editor, target) > reached || finished(next.editor, target)) {
+                return next;
+            }
+            queue.push_back(std::move(next));
+        }
     }
-    const Token& partial = have[agree];
-    const Token& wanted = want[agree];
-    if (editor.scheme.mode() == ButtonScheme::Mode::browse) {
-        return same_but_marks(partial, wanted) ? entered + 5 : -1;
-    }
-    if (editor.scheme.mode() != ButtonScheme::Mode::entry || partial.kind == 'b' ||
-        wanted.kind == 'b') {
-        return -1;
-    }
-    const bool on_string =
-        wanted.kind == 'R' || (partial.kind == 'N' && partial.string == wanted.string);
-    if (!on_string) {
-        return -1;
-    }
-    const bool number_right =
-        partial.kind == wanted.kind && (wanted.kind == 'R' || partial.number == wanted.number);
-    return entered + 1 + (number_right ? 1 : 0) + (partial.length == wanted.length ? 1 : 0) +
-           (partial.kind == wanted.kind ? 1 : 0);
+    return std::nullopt;
 }
 
 }  // namespace
@@ -128,45 +172,13 @@ int progress(const Editor& editor, const Score& target) {
 PressPlan plan_presses(const Editor& start, const Score& target, std::size_t state_limit) {
     PressPlan plan;
     Editor current = start;
-    const int total = kUnits * static_cast<int>(tokens(target).size());
-    int reached = std::max(progress(current, target), 0);
-    const auto finished = [&](const Editor& editor) {
-        return editor.scheme.mode() == ButtonScheme::Mode::browse &&
-               same_music(editor.model.score(), target);
-    };
-    struct Node {
-        Editor editor;
-        std::vector<Button> presses;
-    };
-    while (!finished(current)) {
-        std::deque<Node> queue;
-        std::unordered_set<std::string> seen{state_key(current)};
-        queue.push_back({current, {}});
-        std::optional<Node> step;
-        while (!queue.empty() && !step) {
-            Node node = std::move(queue.front());
-            queue.pop_front();
-            for (const Button button : all_buttons) {
-                Node next{node.editor, node.presses};
-                if (next.editor.press(button).kind != Request::Kind::none) {
-                    continue;  // files, playback and quitting are not entering
-                }
-                next.presses.push_back(button);
-                if (!seen.insert(state_key(next.editor)).second) {
-                    continue;
-                }
-                ++plan.states_seen;
-                if (seen.size() > state_limit) {
-                    return plan;
-                }
-                const int now = progress(next.editor, target);
-                if (now > reached || (now == total && finished(next.editor))) {
-                    reached = now;
-                    step = std::move(next);
-                    break;
-                }
-                queue.push_back(std::move(next));
-            }
+    // A whole symbol is searched for first; one that lies deeper (a new bar with another
+    // clef, a note far from its proposal) is reached through its parts.
+    const std::size_t whole_limit = std::min<std::size_t>(state_limit, 200'000);
+    while (!finished(current, target)) {
+        auto step = next_step(current, target, progress, whole_limit, plan.states_seen);
+        if (!step) {
+            step = next_step(current, target, fine_progress, state_limit, plan.states_seen);
         }
         if (!step) {
             return plan;
