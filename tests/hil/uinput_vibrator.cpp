@@ -1,8 +1,6 @@
 #include "tests/hil/uinput_vibrator.hpp"
 
-#include <fcntl.h>
 #include <linux/uinput.h>
-#include <sys/ioctl.h>
 #include <sys/stat.h>
 #include <sys/sysmacros.h>
 #include <unistd.h>
@@ -14,22 +12,15 @@
 #include <stdexcept>
 
 #include "tests/hil/kernel_files.hpp"
+#include "tests/hil/uinput_device.hpp"
 
 namespace vibscore::hil {
 
 namespace {
 
-const std::filesystem::path kUinput = "/dev/uinput";
-
 std::chrono::steady_clock::time_point kernel_time(const input_event& event) {
     return std::chrono::steady_clock::time_point(std::chrono::seconds(event.input_event_sec) +
                                                  std::chrono::microseconds(event.input_event_usec));
-}
-
-void uinput_ioctl(int fd, unsigned long request, const char* name, unsigned long argument) {
-    if (::ioctl(fd, request, argument) < 0) {
-        throw_errno(std::string(name) + " failed on", kUinput);
-    }
 }
 
 const char* waveform_name(int waveform) {
@@ -144,10 +135,7 @@ UinputVibrator::~UinputVibrator() {
 }
 
 void UinputVibrator::create() {
-    UniqueFd fd(::open(kUinput.c_str(), O_RDWR | O_NONBLOCK | O_CLOEXEC));
-    if (fd.get() < 0) {
-        throw_errno("cannot open", kUinput);
-    }
+    UniqueFd fd = open_uinput();
     uinput_ioctl(fd.get(), UI_SET_EVBIT, "UI_SET_EVBIT EV_FF", EV_FF);
     for (const int bit : options_.ff_bits) {
         uinput_ioctl(fd.get(), UI_SET_FFBIT, "UI_SET_FFBIT", static_cast<unsigned long>(bit));
@@ -160,26 +148,9 @@ void UinputVibrator::create() {
     setup.id = options_.id;
     std::strncpy(setup.name, options_.name.c_str(), UINPUT_MAX_NAME_SIZE - 1);
     setup.ff_effects_max = options_.effects_max;
-    uinput_ioctl(fd.get(), UI_DEV_SETUP, "UI_DEV_SETUP", reinterpret_cast<unsigned long>(&setup));
-    uinput_ioctl(fd.get(), UI_DEV_CREATE, "UI_DEV_CREATE", 0);
-
-    char sysname[64] = {};
-    uinput_ioctl(fd.get(), UI_GET_SYSNAME(sizeof sysname - 1), "UI_GET_SYSNAME",
-                 reinterpret_cast<unsigned long>(sysname));
-    input_name_ = sysname;
-    // The evdev handler names the node: /sys/devices/virtual/input/inputN/eventM.
-    const auto device = std::filesystem::path("/sys/devices/virtual/input") / input_name_;
-    event_node_.clear();
-    for (const auto& entry : std::filesystem::directory_iterator(device)) {
-        const auto name = entry.path().filename().string();
-        if (name.rfind("event", 0) == 0) {
-            event_node_ = std::filesystem::path("/dev/input") / name;
-        }
-    }
-    if (event_node_.empty()) {
-        throw std::runtime_error(device.string() + " has no eventN: is the evdev module loaded?");
-    }
-    wait_for_path(event_node_);
+    auto nodes = create_uinput_device(fd.get(), setup);
+    input_name_ = std::move(nodes.input_name);
+    event_node_ = std::move(nodes.event_node);
     if (options_.mark_as_vibra) {
         write_udev_entry();
     }
