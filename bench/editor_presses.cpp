@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -56,7 +57,37 @@ struct Result {
     bool verified = false;
     double seconds = 0.0;
     std::string sequence;
+    std::map<std::string, std::size_t> spent;  // presses by what they were pressed in
 };
+
+// What a press is spent on: the editor's state when it is pressed.
+std::string spent_on(const Editor& editor) {
+    using Mode = ButtonScheme::Mode;
+    using Step = EntrySteps::Step;
+    switch (editor.scheme.mode()) {
+        case Mode::browse:
+            return "browsing (string, cursor, start)";
+        case Mode::entry:
+            switch (editor.scheme.entry_step()) {
+                case Step::string:
+                    return "string step";
+                case Step::string_more:
+                    return "string step, other choices (rests, bars, leave)";
+                case Step::number:
+                case Step::number_more:
+                    return "number step (and its other choices)";
+                case Step::length:
+                    return "length step";
+                case Step::length_more:
+                case Step::marks:
+                    return "length step, other choices (dots, marks)";
+            }
+            break;
+        default:
+            break;
+    }
+    return "menus and lists (bar clefs)";
+}
 
 char letter(Button button) {
     switch (button) {
@@ -96,6 +127,7 @@ Result measure(const std::string& name, const std::string& group, const Score& t
     // Replay the presses on a fresh editor: the plan must stand on its own.
     Editor replay = start;
     for (const Button button : plan.presses) {
+        ++result.spent[spent_on(replay)];
         replay.press(button);
         result.sequence += letter(button);
     }
@@ -163,6 +195,18 @@ int main(int argc, char** argv) {
                 sum->ratio_sum += per(r.presses, r.notes);
             }
         }
+    }
+    std::map<std::string, std::size_t> spent;
+    for (const auto& r : results) {
+        if (r.group == "notification" || r.name == "fig-2.3-measure-1") {
+            for (const auto& [what, count] : r.spent) {
+                spent[what] += count;
+            }
+        }
+    }
+    std::printf("\nFig. 2.3 + notification set, presses by what they were pressed in:\n");
+    for (const auto& [what, count] : spent) {
+        std::printf("  %-50s %4zu\n", what.c_str(), count);
     }
     std::printf(
         "\nFig. 2.3 + notification set: %zu presses for %d notes (%d symbols): "

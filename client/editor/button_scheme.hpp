@@ -41,6 +41,8 @@ class ButtonScheme {
     Request command(const Command& command, EditorModel& model);
 
     Mode mode() const { return mode_; }
+    // While entering: which step of the symbol.
+    EntrySteps::Step entry_step() const { return steps_.step(); }
     // Playback started or ended (the editor is read-only in between).
     void set_playing(bool playing);
     // The scores "open..." offers.
