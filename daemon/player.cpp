@@ -48,9 +48,6 @@ std::uint64_t Player::play(PlaybackRequest request) {
     const std::uint64_t id = next_id_++;
     const std::string label = request.label;
     const drivers::Capabilities capabilities = actuator_->capabilities();
-    if (capabilities.gain_control) {
-        actuator_->set_gain(master_intensity_);
-    }
     render::CueAdaptation adaptation;
     adaptation.frequency = capabilities.frequency_control;
     adaptation.amplitude = capabilities.amplitude_control;
@@ -61,6 +58,14 @@ std::uint64_t Player::play(PlaybackRequest request) {
     on_since_us_.reset();
     held_off_ = false;
     current_ = Playback{id, std::move(request), monotonic_now_us(), 0, 0, capabilities};
+    if (capabilities.gain_control) {
+        try {
+            actuator_->set_gain(master_intensity_);
+        } catch (const drivers::DeviceError& error) {
+            fail(error);  // like a failing first drive: the playback ends, the call succeeds
+            return id;
+        }
+    }
     // The first drive goes out before anything else: it is what the user feels.
     auto& cues = current_->request.cues;
     while (current_->next_cue < cues.size() && cues[current_->next_cue].at <= 0.0 &&
@@ -126,9 +131,13 @@ void Player::prepare_next_drive() {
     try {
         actuator_->prepare(drive_for(*next));
     } catch (const drivers::DeviceError& error) {
-        log::error(std::string("actuator failed: ") + error.what());
-        finish(std::string("device-error: ") + error.what());
+        fail(error);
     }
+}
+
+void Player::fail(const drivers::DeviceError& error) {
+    log::error(std::string("actuator failed: ") + error.what());
+    finish(std::string("device-error: ") + error.what());
 }
 
 std::optional<std::uint64_t> Player::on_time_deadline_us() const {
@@ -162,8 +171,7 @@ bool Player::execute(const render::Cue& cue) {
         prepare_next_drive();
         return current_.has_value();
     } catch (const drivers::DeviceError& error) {
-        log::error(std::string("actuator failed: ") + error.what());
-        finish(std::string("device-error: ") + error.what());
+        fail(error);
         return false;
     }
 }

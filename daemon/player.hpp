@@ -91,6 +91,8 @@ class Player {
     // Thermal protection: when the actuator, on without a break, reaches its maximum on-time.
     std::optional<std::uint64_t> on_time_deadline_us() const;
     void finish(const std::string& reason);
+    // Ends the playback with "device-error: ...": the actuator failed under it.
+    void fail(const drivers::DeviceError& error);
 
     EventLoop::Timer timer_;
     drivers::Actuator* actuator_;

@@ -24,11 +24,17 @@ class RecordingActuator : public drivers::Actuator {
     }
     void off() noexcept override { applied.push_back({monotonic_now_us(), {}}); }
     void prepare(const drivers::Drive& next) override { prepared.push_back(next); }
-    void set_gain(double gain) override { gains.push_back(gain); }
+    void set_gain(double gain) override {
+        if (fail_gain) {
+            throw drivers::DeviceError("/dev/fake: gain: No such device");
+        }
+        gains.push_back(gain);
+    }
     std::vector<Applied> applied;
     std::vector<drivers::Drive> prepared;
     std::vector<double> gains;
     int fail_after = -1;
+    bool fail_gain = false;
     drivers::Capabilities capabilities_{.frequency_control = true};
 };
 
@@ -216,6 +222,19 @@ TEST_F(PlayerTest, ADeviceErrorEndsThePlaybackWithItsReason) {
     loop.run();
     EXPECT_EQ(listener.events.back(), "finished 1 device-error: /dev/fake: No such device");
     EXPECT_EQ(actuator.applied.back().drive.amplitude, 0.0);
+}
+
+TEST_F(PlayerTest, AGainTheDeviceRefusesAtPlayEndsThePlaybackNotTheCall) {
+    actuator.capabilities_ = {.frequency_control = true, .gain_control = true};
+    actuator.fail_gain = true;
+    actuator.applied.clear();
+    const auto id = player.play(request());
+    EXPECT_EQ(id, 1u);
+    EXPECT_FALSE(player.current_id());
+    EXPECT_EQ(listener.events.back(), "finished 1 device-error: /dev/fake: gain: No such device");
+    for (const auto& applied : actuator.applied) {
+        EXPECT_EQ(applied.drive.amplitude, 0.0);  // nothing but off
+    }
 }
 
 TEST_F(PlayerTest, ReplacingTheActuatorStopsPlaybackAndSwitchesBothOff) {
