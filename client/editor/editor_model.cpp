@@ -1,7 +1,6 @@
 #include "client/editor/editor_model.hpp"
 
 #include <algorithm>
-#include <cstdlib>
 #include <set>
 
 namespace vibscore::editor {
@@ -244,12 +243,12 @@ void EditorModel::move_right() {
 // The active string wraps around: from the highest string Up goes to the lowest, so any
 // string is at most three presses away.
 void EditorModel::move_up() {
-    string_ = string_ == highest_string ? lowest_string : string_ + 1;
+    string_ = wrapped(string_, +1, lowest_string, highest_string);
     message_.clear();
 }
 
 void EditorModel::move_down() {
-    string_ = string_ == lowest_string ? highest_string : string_ - 1;
+    string_ = wrapped(string_, -1, lowest_string, highest_string);
     message_.clear();
 }
 
@@ -326,15 +325,6 @@ bool EditorModel::begin_entry() {
     return true;
 }
 
-namespace {
-
-int wrapped(int value, int delta, int lowest, int highest) {
-    const int span = highest - lowest + 1;
-    return lowest + ((value - lowest + delta) % span + span) % span;
-}
-
-}  // namespace
-
 void EditorModel::entry_string(int delta) {
     const Symbol* symbol = in_entry_ ? symbol_at(*score_, cursor_) : nullptr;
     if (symbol == nullptr || std::holds_alternative<Blank>(*symbol)) {
@@ -372,10 +362,7 @@ void EditorModel::entry_length(int delta) {
         return;
     }
     const Length now = length_of(*symbol);
-    Length next = now;
-    for (int step = 0; step < std::abs(delta); ++step) {
-        next = delta > 0 ? longer(next) : shorter(next);
-    }
+    const Length next = stepped(now, delta);
     remember_length(*symbol, next);
     if (next != now) {
         set_length_of(*symbol_at(edit(), cursor_), next);

@@ -1,7 +1,5 @@
 #include "client/editor/entry_steps.hpp"
 
-#include <cstdlib>
-
 #include "client/editor/score_edits.hpp"
 
 namespace vibscore::editor {
@@ -22,18 +20,6 @@ int delta_of(Button button) {
         default:
             return 0;
     }
-}
-
-int wrapped(int value, int delta, int lowest, int highest) {
-    const int span = highest - lowest + 1;
-    return lowest + ((value - lowest + delta) % span + span) % span;
-}
-
-Length stepped(Length length, int delta) {
-    for (int step = 0; step < std::abs(delta); ++step) {
-        length = delta > 0 ? longer(length) : shorter(length);
-    }
-    return length;
 }
 
 const Note* note_entered(const EditorModel& model) {

@@ -1,6 +1,7 @@
 #include "client/editor/score_edits.hpp"
 
 #include <algorithm>
+#include <cstdlib>
 #include <map>
 
 namespace vibscore::editor {
@@ -330,6 +331,18 @@ Length longer(Length length) {
     }
     const int i = index_in(kDotted, length);
     return i == 3 ? Length::whole : kDotted[i + 1];
+}
+
+Length stepped(Length length, int steps) {
+    for (int step = 0; step < std::abs(steps); ++step) {
+        length = steps > 0 ? longer(length) : shorter(length);
+    }
+    return length;
+}
+
+int wrapped(int value, int delta, int lowest, int highest) {
+    const int span = highest - lowest + 1;
+    return lowest + ((value - lowest + delta) % span + span) % span;
 }
 
 std::optional<Length> toggled_dot(Length length) {

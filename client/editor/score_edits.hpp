@@ -72,6 +72,10 @@ Position paste(Score& score, Position at, const Clip& clip);
 // whole; a dotted length steps to the next dotted one (or the plain one where none exists).
 Length shorter(Length length);
 Length longer(Length length);
+// `steps` lengths longer (> 0) or shorter (< 0), stopping at whole and 32nd.
+Length stepped(Length length, int steps);
+// value + delta, wrapping round lowest..highest (strings and numbers).
+int wrapped(int value, int delta, int lowest, int highest);
 bool is_dotted(Length length);
 // The dotted form of a plain length and back; nullopt when the thesis has no such length.
 std::optional<Length> toggled_dot(Length length);
