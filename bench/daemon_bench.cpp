@@ -23,6 +23,7 @@
 #include <thread>
 #include <vector>
 
+#include "bench/report.hpp"
 #include "bench/summary.hpp"
 #include "daemon/render/cue_schedule.hpp"
 #include "daemon/render/performance.hpp"
@@ -62,38 +63,13 @@ void sleep_ms(double ms) {
     std::this_thread::sleep_for(std::chrono::duration<double, std::milli>(ms));
 }
 
+using vibscore::bench::cpu_model;
+using vibscore::bench::json_escape;
 using vibscore::bench::summarize;
 using vibscore::bench::Summary;
 
 const char* verdict(bool ok) {
     return ok ? "ok" : "MISSED";
-}
-
-std::string json_escape(const std::string& text) {
-    std::string out;
-    for (const char c : text) {
-        if (c == '"' || c == '\\') {
-            out += '\\';
-        }
-        if (static_cast<unsigned char>(c) >= 0x20) {
-            out += c;
-        }
-    }
-    return out;
-}
-
-std::string cpu_model() {
-    std::ifstream in("/proc/cpuinfo");
-    std::string line;
-    while (std::getline(in, line)) {
-        if (line.rfind("model name", 0) == 0) {
-            const auto colon = line.find(':');
-            if (colon != std::string::npos) {
-                return line.substr(line.find_first_not_of(" \t", colon + 1));
-            }
-        }
-    }
-    return "unknown";
 }
 
 // Rows of `rows` from `first` on whose time is in [from, until) and that satisfy `match`; the

@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/report.hpp"
 #include "bench/summary.hpp"
 #include "tests/daemon_fixture.hpp"
 #include "tests/hil/uinput_vibrator.hpp"
@@ -30,6 +31,8 @@ using vibscore::hil::UinputVibrator;
 using vibscore::testing::DaemonFixture;
 using Clock = std::chrono::steady_clock;
 
+using vibscore::bench::cpu_model;
+using vibscore::bench::json_escape;
 using vibscore::bench::summarize;
 using vibscore::bench::Summary;
 
@@ -78,29 +81,6 @@ Series measure(DaemonFixture& daemon, UinputVibrator& vibrator, int plays,
         }
     }
     return series;
-}
-
-std::string cpu_model() {
-    std::ifstream in("/proc/cpuinfo");
-    for (std::string line; std::getline(in, line);) {
-        if (line.rfind("model name", 0) == 0) {
-            return line.substr(line.find_first_not_of(" \t", line.find(':') + 1));
-        }
-    }
-    return "unknown";
-}
-
-std::string json_escape(const std::string& text) {
-    std::string out;
-    for (const char c : text) {
-        if (c == '"' || c == '\\') {
-            out += '\\';
-        }
-        if (static_cast<unsigned char>(c) >= 0x20) {
-            out += c;
-        }
-    }
-    return out;
 }
 
 void print_row(const char* name, const Summary& s) {

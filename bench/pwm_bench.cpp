@@ -22,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/report.hpp"
 #include "bench/summary.hpp"
 #include "daemon/drivers/gpio_lines.hpp"
 #include "daemon/drivers/gpio_pwm_actuator.hpp"
@@ -141,6 +142,7 @@ class RecordingLines final : public GpioLines {
     std::shared_ptr<Recording> recording_;
 };
 
+using vibscore::bench::json_escape;
 using vibscore::bench::summarize;
 using vibscore::bench::Summary;
 
@@ -207,17 +209,6 @@ SegmentFigures analyse(const std::vector<Edge>& edges, const Segment& segment,
     figures.wakeups_per_s =
         static_cast<double>(segment.wakeups_end - segment.wakeups_start) / wall_s;
     return figures;
-}
-
-std::string json_escape(const std::string& text) {
-    std::string escaped;
-    for (const char c : text) {
-        if (c == '"' || c == '\\') {
-            escaped += '\\';
-        }
-        escaped += c;
-    }
-    return escaped;
 }
 
 std::string json_number(double value) {
