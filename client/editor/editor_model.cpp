@@ -23,24 +23,6 @@ void drop_clefs_no_longer_used(Score& score, const std::set<std::string>& used_b
     });
 }
 
-Length length_of(const Symbol& symbol) {
-    if (const auto* note = std::get_if<Note>(&symbol)) {
-        return note->length;
-    }
-    if (const auto* rest = std::get_if<Rest>(&symbol)) {
-        return rest->length;
-    }
-    return Length::quarter;
-}
-
-void set_length_of(Symbol& symbol, Length length) {
-    if (auto* note = std::get_if<Note>(&symbol)) {
-        note->length = length;
-    } else if (auto* rest = std::get_if<Rest>(&symbol)) {
-        rest->length = length;
-    }
-}
-
 }  // namespace
 
 EditorModel::EditorModel(Score score, std::vector<ClefDeclaration> available_clefs)

@@ -28,13 +28,7 @@ const Note* note_entered(const EditorModel& model) {
 
 Length length_entered(const EditorModel& model) {
     const Symbol* symbol = symbol_at(model.score(), model.cursor());
-    if (const auto* note = symbol ? std::get_if<Note>(symbol) : nullptr) {
-        return note->length;
-    }
-    if (const auto* rest = symbol ? std::get_if<Rest>(symbol) : nullptr) {
-        return rest->length;
-    }
-    return model.current_length();
+    return symbol ? length_of(*symbol) : model.current_length();
 }
 
 }  // namespace

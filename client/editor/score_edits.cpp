@@ -183,6 +183,24 @@ void untie(Score& score, Position at, Tie tie) {
     }
 }
 
+Length length_of(const Symbol& symbol) {
+    if (const auto* note = std::get_if<Note>(&symbol)) {
+        return note->length;
+    }
+    if (const auto* rest = std::get_if<Rest>(&symbol)) {
+        return rest->length;
+    }
+    return Length::quarter;
+}
+
+void set_length_of(Symbol& symbol, Length length) {
+    if (auto* note = std::get_if<Note>(&symbol)) {
+        note->length = length;
+    } else if (auto* rest = std::get_if<Rest>(&symbol)) {
+        rest->length = length;
+    }
+}
+
 void insert_symbol(Score& score, Position at, Symbol symbol) {
     auto& symbols = score.bars.at(at.bar).symbols;
     if (at.slot < symbols.size() && std::holds_alternative<Blank>(symbols[at.slot])) {

@@ -48,6 +48,10 @@ void tie_together(Score& score, const std::vector<Position>& notes, Tie tie);
 // Unties the note at `at`; a neighbour left tied to nothing is untied too.
 void untie(Score& score, Position at, Tie tie);
 
+// The length of a note or rest (a Blank has none: quarter), and setting it.
+Length length_of(const Symbol& symbol);
+void set_length_of(Symbol& symbol, Length length);
+
 // Inserts before the symbol at `at` (replacing it when it is a Blank).
 void insert_symbol(Score& score, Position at, Symbol symbol);
 // Ends the bar at `at`: the symbols from `at` on move into a new bar with the same clef.

@@ -39,13 +39,6 @@ int plain_width(Length length) {
     return 3;
 }
 
-Length length_of(const Symbol& symbol) {
-    if (const auto* note = std::get_if<Note>(&symbol)) {
-        return note->length;
-    }
-    return std::get<Rest>(symbol).length;
-}
-
 class Painter {
   public:
     explicit Painter(StaffLayout& layout) : layout_(layout) {}
