@@ -158,12 +158,6 @@ Request ButtonScheme::list_press(Button button, EditorModel& model) {
     }
     const Mode was = mode_;
     mode_ = Mode::browse;
-    if (enter_after_list_) {
-        enter_after_list_ = false;
-        model.set_bar_clef(model.clef_choices()[static_cast<std::size_t>(list_.index())].id);
-        begin_entry(model);
-        return {};
-    }
     if (size == 0) {
         return {};
     }
@@ -171,6 +165,10 @@ Request ButtonScheme::list_press(Button button, EditorModel& model) {
     switch (was) {
         case Mode::clef_menu:
             model.set_bar_clef(model.clef_choices()[chosen].id);
+            if (enter_after_list_) {
+                enter_after_list_ = false;
+                begin_entry(model);
+            }
             return {};
         case Mode::open_menu:
             last_open_ = list_.index();
