@@ -31,6 +31,19 @@ const Symbol& symbol(const editor::Editor& editor, std::size_t slot, std::size_t
     return editor.model.score().bars.at(bar).symbols.at(slot);
 }
 
+// The notes and rests of every bar in order: entering runs on into a new bar as a bar fills.
+std::vector<Symbol> entered(const editor::Editor& editor) {
+    std::vector<Symbol> symbols;
+    for (const auto& bar : editor.model.score().bars) {
+        symbols.insert(symbols.end(), bar.symbols.begin(), bar.symbols.end());
+    }
+    return symbols;
+}
+
+Note nth_note(const editor::Editor& editor, std::size_t index) {
+    return std::get<Note>(entered(editor).at(index));
+}
+
 using Step = editor::EntrySteps::Step;
 
 TEST(EditorButtons, EachPressChoosesAndEnteringGoesOnToTheNextProposal) {
@@ -69,7 +82,7 @@ TEST(EditorButtons, RightAndLeftChangeByTwoAndBackOffersTheRest) {
     press(editor, {B, U});  // the opposite string: 2
     press(editor, {B, R});  // number + 4: 7
     press(editor, {B, L});  // three lengths shorter: whole -> half -> quarter -> 8th
-    EXPECT_EQ(symbol(editor, 1), (Symbol{Note{Length::eighth, 7, 2}}));
+    EXPECT_EQ(entered(editor).at(1), (Symbol{Note{Length::eighth, 7, 2}}));
     // 3 then 7: the proposal steps on to 9 (the most there is). This string; number - 3.
     press(editor, {B, S, B, D});
     EXPECT_EQ(editor.scheme.hint(editor.model),
@@ -77,7 +90,7 @@ TEST(EditorButtons, RightAndLeftChangeByTwoAndBackOffersTheRest) {
               "16th \u2192half \u2190"
               "32th S:ok B:more");
     press(editor, {S});
-    EXPECT_EQ(symbol(editor, 2), (Symbol{Note{Length::eighth, 6, 2}}));
+    EXPECT_EQ(entered(editor).at(2), (Symbol{Note{Length::eighth, 6, 2}}));
 }
 
 TEST(EditorButtons, StringsAndNumbersWrapAround) {
@@ -98,7 +111,7 @@ TEST(EditorButtons, RestsComeFromTheStringStepsOtherChoicesAndKeepTheirOwnLength
     press(editor, {B, S, S, S});     // a note: its length is still the quarter
     press(editor, {B, D});           // a rest: the 8th, the last rest's length
     press(editor, {B, L, B, U, U});  // a rest, dotted, one longer: a dotted quarter
-    EXPECT_EQ(editor.model.score().bars[0].symbols,
+    EXPECT_EQ(entered(editor),
               (std::vector<Symbol>{Note{Length::quarter, 5, 3}, Rest{Length::quarter},
                                    Rest{Length::eighth}, Note{Length::quarter, 5, 3},
                                    Rest{Length::eighth}, Rest{Length::quarter_dot},
@@ -108,20 +121,41 @@ TEST(EditorButtons, RestsComeFromTheStringStepsOtherChoicesAndKeepTheirOwnLength
 TEST(EditorButtons, TheProposalContinuesTheHairpinTiesAndTheStepInNumber) {
     auto editor = fresh_editor();
     press(editor, {S, B, S, S, B, D, L, S});  // this string and number; marks: decrescendo
-    EXPECT_EQ(std::get<Note>(symbol(editor, 0)).dynamics, Dynamics::decrescendo);
+    EXPECT_EQ(nth_note(editor, 0).dynamics, Dynamics::decrescendo);
     press(editor, {B, S, D, S});  // the same string, number 4
-    EXPECT_EQ(std::get<Note>(symbol(editor, 1)).dynamics, Dynamics::decrescendo);
+    EXPECT_EQ(nth_note(editor, 1).dynamics, Dynamics::decrescendo);
     // 5 then 4: the fade goes on, 3 is proposed.
-    EXPECT_EQ(std::get<Note>(symbol(editor, 2)).number, 3);
-    press(editor, {S, B, D});  // a rest breaks the hairpin and the fade
-    EXPECT_EQ(std::get<Note>(symbol(editor, 4)).dynamics, Dynamics::none);
-    EXPECT_EQ(std::get<Note>(symbol(editor, 4)).number, 3);
+    EXPECT_EQ(nth_note(editor, 2).number, 3);
+    press(editor, {S, B, D});  // a rest parts the fade; each note's own hairpin carries over
+    EXPECT_EQ(nth_note(editor, 4).dynamics, Dynamics::decrescendo);
+    EXPECT_EQ(nth_note(editor, 4).number, 3);
     press(editor, {S, U, S, B, D, U, S});  // string 4, legato with the note before
-    EXPECT_NE(std::get<Note>(symbol(editor, 5)).legato, 0);
-    EXPECT_EQ(std::get<Note>(symbol(editor, 4)).legato, std::get<Note>(symbol(editor, 5)).legato);
-    EXPECT_EQ(std::get<Note>(symbol(editor, 6)).legato, std::get<Note>(symbol(editor, 5)).legato);
+    EXPECT_NE(nth_note(editor, 5).legato, 0);
+    EXPECT_EQ(nth_note(editor, 4).legato, nth_note(editor, 5).legato);
+    EXPECT_EQ(nth_note(editor, 6).legato, nth_note(editor, 5).legato);
     press(editor, {U, S, B, D, U, S});  // legato again takes it off
-    EXPECT_EQ(std::get<Note>(symbol(editor, 6)).legato, 0);
+    EXPECT_EQ(nth_note(editor, 6).legato, 0);
+}
+
+TEST(EditorButtons, TheProposalRepeatsWhatFollowedBeforeAndTiesAsBefore) {
+    auto editor = fresh_editor();       // string 3, number 5, quarter
+    press(editor, {S, D, S, D});        // string 2, number 5, an 8th
+    press(editor, {U, U, B, D, U, S});  // string 3, number 6, legato with the note before
+    press(editor, {B, D});              // a rest as long
+    press(editor, {D, D, S});           // string 2, number 5: the first note again
+    // After the first note came the second, tied to it: so it comes again, tied.
+    const auto proposed = std::get<Note>(entered(editor).at(4));
+    EXPECT_EQ(proposed.string, 3);
+    EXPECT_EQ(proposed.number, 6);
+    EXPECT_EQ(proposed.length, Length::eighth);
+    press(editor, {S});  // kept as proposed
+    EXPECT_NE(nth_note(editor, 3).legato, 0);
+    EXPECT_EQ(nth_note(editor, 3).legato, nth_note(editor, 4).legato);
+    EXPECT_NE(nth_note(editor, 3).legato, nth_note(editor, 0).legato);  // a tie of its own
+    // And after it came the 8th rest: one press.
+    EXPECT_EQ(entered(editor).at(5), (Symbol{Rest{Length::eighth}}));
+    press(editor, {S, B, B});
+    EXPECT_EQ(entered(editor).size(), 6u);
 }
 
 TEST(EditorButtons, SelectOnANoteChangesItAndGoesOnThroughTheNotesAfterIt) {
@@ -168,6 +202,38 @@ TEST(EditorButtons, ANewBarWhileEnteringAsksForItsClef) {
     EXPECT_EQ(score.bars[2].clef, "erm");
     EXPECT_EQ(score.bars[1].symbols.size(), 1u);
     EXPECT_TRUE(score.bars[2].symbols.empty());
+}
+
+TEST(EditorButtons, EnteringRunsOnIntoANewBarWhenTheBarIsFull) {
+    auto editor = fresh_editor();    // quarters
+    press(editor, {S, S, S, S, S});  // four beats: the bar is full
+    EXPECT_EQ(editor.model.cursor(), (Position{1, 0}));
+    EXPECT_EQ(editor.model.score().bars.at(1).clef, "lra");
+    press(editor, {S, B, B});  // one note in the new bar, then leave
+    ASSERT_EQ(editor.model.score().bars.size(), 2u);
+    EXPECT_EQ(editor.model.score().bars[1].symbols.size(), 1u);
+}
+
+TEST(EditorButtons, LeavingAtTheStartOfARunOnBarTakesTheBarBack) {
+    auto editor = fresh_editor();
+    press(editor, {S, S, S, S, S, B, B});
+    EXPECT_EQ(editor.scheme.mode(), ButtonScheme::Mode::browse);
+    ASSERT_EQ(editor.model.score().bars.size(), 1u);
+    EXPECT_EQ(editor.model.cursor(), (Position{0, 4}));
+    // Select there goes on in the full bar: a fifth beat is the user's to choose.
+    press(editor, {S, S, B, B});
+    ASSERT_EQ(editor.model.score().bars.size(), 1u);
+    EXPECT_EQ(editor.model.score().bars[0].symbols.size(), 5u);
+}
+
+TEST(EditorButtons, ANewBarAtTheStartOfARunOnBarStillAsksForItsClef) {
+    auto editor = fresh_editor();
+    press(editor, {S, S, S, S, S, B, R});
+    EXPECT_EQ(editor.scheme.mode(), ButtonScheme::Mode::clef_menu);
+    press(editor, {D, S});
+    ASSERT_EQ(editor.model.score().bars.size(), 2u);
+    EXPECT_EQ(editor.model.score().bars[1].clef, "erm");
+    EXPECT_EQ(editor.model.cursor(), (Position{1, 0}));
 }
 
 TEST(EditorButtons, AKeyboardCommandDropsTheOpenProposal) {

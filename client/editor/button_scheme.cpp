@@ -64,7 +64,7 @@ Request ButtonScheme::entry(Button button, EditorModel& model) {
             break;
         case EntrySteps::Outcome::done:
             model.end_entry();
-            begin_entry(model);
+            begin_entry(model, EditorModel::Continuing::yes);
             break;
         case EntrySteps::Outcome::new_bar:
             model.cancel_entry();
@@ -85,8 +85,8 @@ Request ButtonScheme::entry(Button button, EditorModel& model) {
     return {};
 }
 
-void ButtonScheme::begin_entry(EditorModel& model) {
-    if (model.begin_entry()) {
+void ButtonScheme::begin_entry(EditorModel& model, EditorModel::Continuing continuing) {
+    if (model.begin_entry(continuing)) {
         steps_.start();
         mode_ = Mode::entry;
     }

@@ -70,7 +70,8 @@ class ButtonScheme {
     Request perform(Action action, EditorModel& model);
     void open_clef_menu(const EditorModel& model);
     void leave_layers(EditorModel& model);
-    void begin_entry(EditorModel& model);
+    void begin_entry(EditorModel& model,
+                     EditorModel::Continuing continuing = EditorModel::Continuing::no);
 
     Mode mode_ = Mode::browse;
     EntrySteps steps_;

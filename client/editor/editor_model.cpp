@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <set>
 
+#include "client/editor/recurrence.hpp"
+
 namespace vibscore::editor {
 
 namespace {
@@ -82,14 +84,31 @@ std::optional<Block> EditorModel::block() const {
     return Block{std::min(*anchor_, cursor_), std::max(*anchor_, cursor_)};
 }
 
+Symbol EditorModel::proposed_symbol() const {
+    const auto recurring = recurrence_at(*score_, cursor_);
+    if (!recurring || recurring->pitch_known || std::holds_alternative<Rest>(recurring->next)) {
+        return recurring ? recurring->next : Symbol{proposed_note()};
+    }
+    Note note = proposed_note();
+    note.length = length_of(recurring->next);
+    return note;
+}
+
 Note EditorModel::proposed_note() const {
     Note note;
     note.length = length_;
     note.number = number_;
     note.string = string_;
+    // Strength marks belong to each note (its own swell or fade), so they carry over rests as
+    // the number and length do; ties and fades join neighbours, which a rest parts.
+    for (auto at = symbol_before(*score_, cursor_); at; at = symbol_before(*score_, *at)) {
+        if (const Note* last = note_at(*score_, *at)) {
+            note.dynamics = last->dynamics;
+            break;
+        }
+    }
     const auto before = symbol_before(*score_, cursor_);
     if (const Note* previous = before ? note_at(*score_, *before) : nullptr) {
-        note.dynamics = previous->dynamics;
         note.legato = previous->legato;
         note.portamento = previous->portamento;
         // A strength that stepped from the note before keeps stepping: fades and swells are
@@ -291,20 +310,38 @@ bool EditorModel::insert_blank() {
     return done("");
 }
 
-bool EditorModel::begin_entry() {
+bool EditorModel::begin_entry(Continuing continuing) {
     if (in_entry_) {
         return true;
     }
     anchor_.reset();
-    const bool empty = is_empty_position(*score_, cursor_);
-    const Note note = proposed_note();
     history_.record(snapshot());
     in_entry_ = true;
-    if (empty) {
-        insert_symbol(edit(), cursor_, note);
+    if (continuing == Continuing::yes && bar_is_full_at_end()) {
+        // Entering runs on into a new bar as a bar fills (one of the last bar's clef), as in
+        // notation editors; leaving takes the bar back with the proposal.
+        vibscore::editor::split_bar(edit(), cursor_);
+        cursor_ = {cursor_.bar + 1, 0};
+    }
+    if (is_empty_position(*score_, cursor_)) {
+        insert_symbol(edit(), cursor_, proposed_symbol());
+        if (const Note* proposed = note_at(*score_, cursor_)) {
+            const Note note = *proposed;  // edit() below may copy the score
+            for (const Tie tie : {Tie::legato, Tie::portamento}) {
+                if (serial(note, tie) != 0) {
+                    tie_to_previous(edit(), cursor_, tie);  // a new tie takes the note before
+                }
+            }
+        }
     }
     message_.clear();
     return true;
+}
+
+bool EditorModel::bar_is_full_at_end() const {
+    const Bar& bar = score_->bars[cursor_.bar];
+    return cursor_.bar + 1 == score_->bars.size() && cursor_.slot == bar.symbols.size() &&
+           Score::beat_count(bar) >= beats_in_a_full_bar;
 }
 
 void EditorModel::entry_string(int delta) {
@@ -417,6 +454,7 @@ void EditorModel::end_entry() {
     }
     // What was entered, kept as proposed or not, is what the next proposal starts from.
     if (const Note* note = note_at(*score_, cursor_)) {
+        string_ = note->string;
         number_ = note->number;
         length_ = note->length;
     } else if (const auto* rest = std::get_if<Rest>(symbol_at(*score_, cursor_))) {

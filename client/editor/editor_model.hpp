@@ -40,9 +40,12 @@ class EditorModel {
     void mark_saved() { saved_ = score_; }
     void set_title(std::string title);
 
-    // The note the six-button entry puts on an empty position: the last-used number and
-    // length on the active string, continuing the hairpin and ties of a note directly before,
-    // and the step in number between the two notes before (a fade goes on fading).
+    // What the six-button entry puts on an empty position: what followed the symbol before it
+    // where it came earlier (recurrence.hpp), else proposed_note().
+    Symbol proposed_symbol() const;
+    // The note proposed when the score does not say which: the last-used number and length on
+    // the active string with the hairpin of the last note, the ties of a note directly before,
+    // and the step in number between the two notes directly before (a fade goes on fading).
     Note proposed_note() const;
     // The note or rest the symbol functions act on: the one under the cursor, or on an empty
     // position the one just before it.
@@ -78,9 +81,11 @@ class EditorModel {
     bool set_bar_clef(const std::string& id);
 
     // The six-button entry of one symbol, undone as one step: begin_entry puts the proposed
-    // note on an empty position (or takes the symbol under the cursor); the entry_ functions
+    // symbol on an empty position (or takes the symbol under the cursor); the entry_ functions
     // change it; end_entry keeps it and moves the cursor past it, cancel_entry takes it back.
-    bool begin_entry();
+    // Continuing an entry at the end of a last bar that is full starts a new bar first.
+    enum class Continuing { no, yes };
+    bool begin_entry(Continuing continuing = Continuing::no);
     bool in_entry() const { return in_entry_; }
     // Moves the note `delta` strings up, wrapping round the six; a rest becomes the proposed
     // note there. The active string follows.
@@ -110,6 +115,7 @@ class EditorModel {
     void land();        // keeps the cursor valid and lets the active string follow a note under it
     // The next proposal's length: a note's for notes, a rest's for rests.
     void remember_length(const Symbol& entered, Length length);
+    bool bar_is_full_at_end() const;
     bool refuse(std::string why);
     bool done(std::string what);
 

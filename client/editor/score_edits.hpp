@@ -15,6 +15,9 @@ inline constexpr int lowest_string = 1;
 inline constexpr int highest_string = 6;
 inline constexpr int lowest_number = 1;
 inline constexpr int highest_number = 9;
+// A bar is full at four beats: the clef box is cyan below, white at and magenta above it
+// (thesis Fig. 4.1).
+inline constexpr double beats_in_a_full_bar = 4.0;
 
 enum class Tie { legato, portamento };
 

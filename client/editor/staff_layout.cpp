@@ -217,9 +217,9 @@ StaffLayout layout_staff(const Score& score, const LayoutOptions& options) {
         layout.spans.push_back({Span::Kind::bar_line, b, 0, x, 1});
         ++x;
         const double beats = Score::beat_count(bar);
-        const Ink ink = beats < 4.0   ? Ink::clef_fewer
-                        : beats > 4.0 ? Ink::clef_more
-                                      : Ink::clef_exact;
+        const Ink ink = beats < beats_in_a_full_bar   ? Ink::clef_fewer
+                        : beats > beats_in_a_full_bar ? Ink::clef_more
+                                                      : Ink::clef_exact;
         boxes.push_back({x, "[" + bar.clef + " " + beat_label(beats) + "]", ink});
         const int start = x;
         for (std::size_t s = 0; s < bar.symbols.size(); ++s) {

@@ -1,0 +1,100 @@
+#include "client/editor/recurrence.hpp"
+
+#include <vector>
+
+#include "client/editor/score_edits.hpp"
+
+namespace vibscore::editor {
+
+namespace {
+
+constexpr int no_occurrence = 4;
+
+// A note or rest before the position asked about, with the beat of its bar it starts on.
+struct Placed {
+    const Symbol* symbol;
+    double beat;
+};
+
+std::vector<Placed> symbols_before(const Score& score, Position at) {
+    std::vector<Placed> found;
+    for (std::size_t bar = 0; bar <= at.bar && bar < score.bars.size(); ++bar) {
+        const auto& symbols = score.bars[bar].symbols;
+        const std::size_t end = bar == at.bar ? std::min(at.slot, symbols.size()) : symbols.size();
+        double beat = 0.0;
+        for (std::size_t slot = 0; slot < end; ++slot) {
+            if (std::holds_alternative<Blank>(symbols[slot])) {
+                continue;
+            }
+            found.push_back({&symbols[slot], beat});
+            beat += beats(length_of(symbols[slot]));
+        }
+    }
+    return found;
+}
+
+bool same_length(const Symbol& a, const Symbol& b) {
+    return a.index() == b.index() && length_of(a) == length_of(b);
+}
+
+bool same_symbol(const Symbol& a, const Symbol& b) {
+    const auto* note_a = std::get_if<Note>(&a);
+    const auto* note_b = std::get_if<Note>(&b);
+    if (note_a == nullptr || note_b == nullptr) {
+        return same_length(a, b);
+    }
+    return note_a->string == note_b->string && note_a->number == note_b->number &&
+           note_a->length == note_b->length;
+}
+
+// The serial that ties a note to `last` as `follower` was tied to `earlier`: `last`'s own, a
+// new one when `last` is not tied yet, or none.
+std::int64_t tie_like(const Score& score, const Note& follower, const Note& earlier,
+                      const Note& last, Tie tie) {
+    if (serial(follower, tie) == 0 || serial(follower, tie) != serial(earlier, tie)) {
+        return 0;
+    }
+    return serial(last, tie) != 0 ? serial(last, tie) : unused_serial(score, tie);
+}
+
+}  // namespace
+
+std::optional<Recurrence> recurrence_at(const Score& score, Position at) {
+    const auto placed = symbols_before(score, at);
+    if (placed.size() < 2) {
+        return std::nullopt;
+    }
+    const Placed& last = placed.back();
+    // How good an occurrence the earlier symbol is, 0 best (the order in the header).
+    const auto rank = [&](const Placed& earlier) {
+        const int elsewhere = earlier.beat == last.beat ? 0 : 2;
+        if (same_symbol(*earlier.symbol, *last.symbol)) {
+            return elsewhere;
+        }
+        return same_length(*earlier.symbol, *last.symbol) ? elsewhere + 1 : no_occurrence;
+    };
+    std::size_t best = 0;
+    int best_rank = no_occurrence;
+    for (std::size_t i = placed.size() - 1; i-- > 0;) {
+        if (const int r = rank(placed[i]); r < best_rank) {
+            best = i;
+            best_rank = r;
+        }
+    }
+    if (best_rank == no_occurrence) {
+        return std::nullopt;
+    }
+    const Symbol& next = *placed[best + 1].symbol;
+    const auto* follower = std::get_if<Note>(&next);
+    const auto* earlier = std::get_if<Note>(placed[best].symbol);
+    const auto* now = std::get_if<Note>(last.symbol);
+    if (follower == nullptr || best_rank % 2 == 1 || earlier == nullptr || now == nullptr) {
+        return Recurrence{next, false};
+    }
+    Note note = *follower;
+    note.legato = tie_like(score, *follower, *earlier, *now, Tie::legato);
+    note.portamento = tie_like(score, *follower, *earlier, *now, Tie::portamento);
+    return Recurrence{note, true};
+}
+
+}  // namespace vibscore::editor
