@@ -28,7 +28,8 @@ struct Request {
 //                 one; on a note or rest: change it, and go on from there
 //   Back          the menu
 // Entering (EntrySteps): each symbol in up to three steps, string, number and length; when one
-// is done the next position's proposal opens. Back, Back leaves.
+// is done the next position's proposal opens (in a new bar once the last bar is full).
+// Back, Back leaves.
 // In a menu: Up/Down choose (wrapping), Left/Right jump between groups, Select does it,
 // Back closes. Menus reopen on the last choice. While playing, any button stops.
 // Keyboard commands (thesis Fig. 4.3) go through command(): they drop the symbol being
