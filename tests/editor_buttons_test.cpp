@@ -214,6 +214,21 @@ TEST(EditorButtons, EnteringRunsOnIntoANewBarWhenTheBarIsFull) {
     EXPECT_EQ(editor.model.score().bars[1].symbols.size(), 1u);
 }
 
+TEST(EditorButtons, ChangingNotesRunsOnFromAFullBarIntoTheNextBarsNotes) {
+    auto editor = fresh_editor();
+    press(editor, {S, S, S, S, S, S, B, B});  // a full bar and one note in the next
+    ASSERT_EQ(editor.model.score().bars.size(), 2u);
+    press(editor, {L, L, L, L, L, L});  // back to the first note
+    EXPECT_EQ(editor.model.cursor(), (Position{0, 0}));
+    press(editor, {S, U, S, S, S, S, S});  // change the first note; keep the other three
+    // On from the end of the full bar: the note of the second bar, not a fifth beat.
+    EXPECT_EQ(editor.model.cursor(), (Position{1, 0}));
+    EXPECT_EQ(editor.model.score().bars[0].symbols.size(), 4u);
+    press(editor, {B, B});
+    EXPECT_EQ(nth_note(editor, 0).string, 4);
+    EXPECT_EQ(entered(editor).size(), 5u);
+}
+
 TEST(EditorButtons, LeavingAtTheStartOfARunOnBarTakesTheBarBack) {
     auto editor = fresh_editor();
     press(editor, {S, S, S, S, S, B, B});

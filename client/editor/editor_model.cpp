@@ -317,10 +317,12 @@ bool EditorModel::begin_entry(Continuing continuing) {
     anchor_.reset();
     history_.record(snapshot());
     in_entry_ = true;
-    if (continuing == Continuing::yes && bar_is_full_at_end()) {
-        // Entering runs on into a new bar as a bar fills (one of the last bar's clef), as in
-        // notation editors; leaving takes the bar back with the proposal.
-        vibscore::editor::split_bar(edit(), cursor_);
+    if (continuing == Continuing::yes && at_end_of_full_bar()) {
+        // Entering runs on into the next bar as a bar fills, as in notation editors: a new one
+        // (on the same clef) after the last bar. Leaving takes a new bar back with the proposal.
+        if (cursor_.bar + 1 == score_->bars.size()) {
+            vibscore::editor::split_bar(edit(), cursor_);
+        }
         cursor_ = {cursor_.bar + 1, 0};
     }
     if (is_empty_position(*score_, cursor_)) {
@@ -338,10 +340,9 @@ bool EditorModel::begin_entry(Continuing continuing) {
     return true;
 }
 
-bool EditorModel::bar_is_full_at_end() const {
+bool EditorModel::at_end_of_full_bar() const {
     const Bar& bar = score_->bars[cursor_.bar];
-    return cursor_.bar + 1 == score_->bars.size() && cursor_.slot == bar.symbols.size() &&
-           Score::beat_count(bar) >= beats_in_a_full_bar;
+    return cursor_.slot == bar.symbols.size() && Score::beat_count(bar) >= beats_in_a_full_bar;
 }
 
 void EditorModel::entry_string(int delta) {

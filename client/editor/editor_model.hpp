@@ -83,7 +83,8 @@ class EditorModel {
     // The six-button entry of one symbol, undone as one step: begin_entry puts the proposed
     // symbol on an empty position (or takes the symbol under the cursor); the entry_ functions
     // change it; end_entry keeps it and moves the cursor past it, cancel_entry takes it back.
-    // Continuing an entry at the end of a last bar that is full starts a new bar first.
+    // Continuing an entry at the end of a full bar goes on at the start of the next bar, a new
+    // one after the last bar.
     enum class Continuing { no, yes };
     bool begin_entry(Continuing continuing = Continuing::no);
     bool in_entry() const { return in_entry_; }
@@ -115,7 +116,7 @@ class EditorModel {
     void land();        // keeps the cursor valid and lets the active string follow a note under it
     // The next proposal's length: a note's for notes, a rest's for rests.
     void remember_length(const Symbol& entered, Length length);
-    bool bar_is_full_at_end() const;
+    bool at_end_of_full_bar() const;
     bool refuse(std::string why);
     bool done(std::string what);
 
