@@ -452,14 +452,6 @@ void print_latency(const char* name, const LatencyResult& r, double target_ms) {
         verdict(r.ms.n > 0 && r.ms.p99 < target_ms && r.missed == 0 && r.errors == 0));
 }
 
-std::string json_summary(const char* prefix, const Summary& s) {
-    char text[256];
-    std::snprintf(text, sizeof text,
-                  "\"%s_n\":%zu,\"%s_p50_ms\":%.4f,\"%s_p99_ms\":%.4f,\"%s_max_ms\":%.4f", prefix,
-                  s.n, prefix, s.p50, prefix, s.p99, prefix, s.max);
-    return text;
-}
-
 // Paths of a build tree, for running the benchmark straight from it.
 void default_env(const char* name, const char* value) {
     setenv(name, value, 0);

@@ -88,14 +88,6 @@ void print_row(const char* name, const Summary& s) {
                 s.max);
 }
 
-std::string json_summary(const char* prefix, const Summary& s) {
-    char text[256];
-    std::snprintf(text, sizeof text,
-                  "\"%s_n\":%zu,\"%s_p50_ms\":%.4f,\"%s_p99_ms\":%.4f,\"%s_max_ms\":%.4f", prefix,
-                  s.n, prefix, s.p50, prefix, s.p99, prefix, s.max);
-    return text;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {

@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdio>
 #include <numeric>
+#include <string>
 #include <vector>
 
 namespace vibscore::bench {
@@ -32,6 +34,15 @@ inline Summary summarize(std::vector<double> samples) {
     summary.p99 = rank(0.99);
     summary.max = samples.back();
     return summary;
+}
+
+// A summary of milliseconds as JSON members named `prefix`_n, _p50_ms, _p99_ms and _max_ms.
+inline std::string json_summary(const char* prefix, const Summary& s) {
+    char text[256];
+    std::snprintf(text, sizeof text,
+                  "\"%s_n\":%zu,\"%s_p50_ms\":%.4f,\"%s_p99_ms\":%.4f,\"%s_max_ms\":%.4f", prefix,
+                  s.n, prefix, s.p50, prefix, s.p99, prefix, s.max);
+    return text;
 }
 
 }  // namespace vibscore::bench
