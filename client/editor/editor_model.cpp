@@ -86,10 +86,13 @@ std::optional<Block> EditorModel::block() const {
 
 Symbol EditorModel::proposed_symbol() const {
     const auto recurring = recurrence_at(*score_, cursor_);
-    if (!recurring || recurring->pitch_known || std::holds_alternative<Rest>(recurring->next)) {
-        return recurring ? recurring->next : Symbol{proposed_note()};
+    if (!recurring) {
+        return proposed_note();
     }
-    Note note = proposed_note();
+    if (recurring->pitch_known || std::holds_alternative<Rest>(recurring->next)) {
+        return recurring->next;
+    }
+    Note note = proposed_note();  // the rhythm that recurs, on the note the rules propose
     note.length = length_of(recurring->next);
     return note;
 }
