@@ -12,6 +12,7 @@
 
 #include "client/daemon_errors.hpp"
 #include "client/offline_verbs.hpp"
+#include "dbus/haptics1_names.hpp"
 #include "haptics1-proxy.h"
 #include "score/bundle.hpp"
 
@@ -19,16 +20,14 @@ namespace vibscore::client {
 
 namespace {
 
-constexpr const char* kService = "org.vibscore.Haptics1";
-constexpr const char* kPath = "/org/vibscore/Haptics1";
-
 std::atomic<bool> g_interrupted{false};
 
 // A client of the daemon that remembers how each playback ended and where each one is.
 class Haptics : public sdbus::ProxyInterfaces<org::vibscore::Haptics1_proxy> {
   public:
     explicit Haptics(std::unique_ptr<sdbus::IConnection> connection)
-        : ProxyInterfaces(*connection, kService, kPath), connection_(std::move(connection)) {
+        : ProxyInterfaces(*connection, haptics1::kBusName, haptics1::kObjectPath),
+          connection_(std::move(connection)) {
         registerProxy();
     }
     ~Haptics() {

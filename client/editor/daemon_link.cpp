@@ -6,14 +6,12 @@
 #include <map>
 
 #include "client/daemon_errors.hpp"
+#include "dbus/haptics1_names.hpp"
 #include "haptics1-proxy.h"
 
 namespace vibscore::editor {
 
 namespace {
-
-constexpr const char* kService = "org.vibscore.Haptics1";
-constexpr const char* kPath = "/org/vibscore/Haptics1";
 
 DaemonError explain(const sdbus::Error& error) {
     return {error.getName(), client::describe_daemon_error(error.getName(), error.getMessage())};
@@ -31,13 +29,14 @@ auto guarded(Call&& call) {
 }  // namespace
 
 bool DaemonError::not_found() const {
-    return name_ == "org.vibscore.Haptics1.Error.NotFound";
+    return name_ == haptics1::errors::kNotFound;
 }
 
 class DaemonLink::Proxy : public sdbus::ProxyInterfaces<org::vibscore::Haptics1_proxy> {
   public:
     explicit Proxy(std::unique_ptr<sdbus::IConnection> connection)
-        : ProxyInterfaces(*connection, kService, kPath), connection_(std::move(connection)) {
+        : ProxyInterfaces(*connection, haptics1::kBusName, haptics1::kObjectPath),
+          connection_(std::move(connection)) {
         registerProxy();
     }
     ~Proxy() { unregisterProxy(); }

@@ -1,0 +1,29 @@
+#pragma once
+
+#include <string_view>
+
+// The names of org.vibscore.Haptics1 on the bus, as org.vibscore.Haptics1.xml documents them:
+// the one spelling of each, for the daemon that owns them and the clients that call it.
+namespace vibscore::haptics1 {
+
+inline constexpr const char* kBusName = "org.vibscore.Haptics1";
+inline constexpr const char* kObjectPath = "/org/vibscore/Haptics1";
+
+// The named errors the daemon sends; every one begins with kErrorPrefix.
+namespace errors {
+inline constexpr std::string_view kErrorPrefix = "org.vibscore.Haptics1.Error.";
+inline constexpr const char* kInvalidDocument = "org.vibscore.Haptics1.Error.InvalidDocument";
+inline constexpr const char* kNotFound = "org.vibscore.Haptics1.Error.NotFound";
+inline constexpr const char* kPermissionDenied = "org.vibscore.Haptics1.Error.PermissionDenied";
+inline constexpr const char* kLimitExceeded = "org.vibscore.Haptics1.Error.LimitExceeded";
+inline constexpr const char* kBusy = "org.vibscore.Haptics1.Error.Busy";
+inline constexpr const char* kDevice = "org.vibscore.Haptics1.Error.Device";
+
+// Not ours: what the bus says when vibscored is not there, and the generic failure a method
+// sends when none of the names above fits.
+inline constexpr const char* kServiceUnknown = "org.freedesktop.DBus.Error.ServiceUnknown";
+inline constexpr const char* kNameHasNoOwner = "org.freedesktop.DBus.Error.NameHasNoOwner";
+inline constexpr const char* kFailed = "org.freedesktop.DBus.Error.Failed";
+}  // namespace errors
+
+}  // namespace vibscore::haptics1
