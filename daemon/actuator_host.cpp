@@ -3,38 +3,59 @@
 #include <exception>
 #include <utility>
 
-#include "daemon/drivers/available.hpp"
 #include "daemon/drivers/disconnected_actuator.hpp"
 #include "daemon/log.hpp"
 
 namespace vibscore::daemon {
 
-ActuatorHost::ActuatorHost(std::string driver, DriverSettingsMap settings,
-                           std::filesystem::path drivers_dir)
-    : driver_(std::move(driver)),
-      settings_(std::move(settings)),
-      drivers_dir_(std::move(drivers_dir)),
-      actuator_(open(driver_, settings_)) {}
+ActuatorHost::ActuatorHost(const DaemonConfig& config)
+    : config_(config),
+      driver_(config.driver),
+      settings_(config.settings_of(config.driver)),
+      drivers_dir_(config.drivers_dir),
+      actuator_(open(driver_, settings_, drivers_dir_)) {}
 
-std::unique_ptr<drivers::Actuator> ActuatorHost::open(const std::string& driver,
-                                                      const DriverSettingsMap& settings) const {
-    return drivers::make_actuator(driver, settings, drivers_dir_);
+std::unique_ptr<drivers::Actuator> ActuatorHost::open(
+    const std::string& driver, const DriverSettingsMap& settings,
+    const std::filesystem::path& drivers_dir) const {
+    return drivers::make_actuator(driver, settings, drivers_dir);
 }
 
-void ActuatorHost::switch_to(Player& player, const std::string& driver,
-                             const DriverSettingsMap& settings) {
-    player.stop_all("driver-switch");
+std::vector<drivers::DriverInfo> ActuatorHost::drivers() const {
+    return drivers::available_drivers(config_.drivers_dir);
+}
+
+void ActuatorHost::switch_to(const std::string& driver) {
+    try {
+        open_in_place_of_running(driver);
+    } catch (...) {
+        if (changed_) {
+            changed_();
+        }
+        throw;
+    }
+    if (changed_) {
+        changed_();
+    }
+}
+
+void ActuatorHost::open_in_place_of_running(const std::string& driver) {
+    const DriverSettingsMap settings = config_.settings_of(driver);
+    const std::filesystem::path drivers_dir = config_.drivers_dir;
     // The player must never point at a closed backend, not even for a moment.
     drivers::DisconnectedActuator switching("switching to driver " + driver);
-    player.replace_actuator(switching);
+    if (player_) {
+        player_->stop_all("driver-switch");
+        player_->replace_actuator(switching);
+    }
     actuator_.reset();
     try {
-        actuator_ = open(driver, settings);
+        actuator_ = open(driver, settings, drivers_dir);
     } catch (const std::exception& error) {
         log::error("driver " + driver + " failed to open (" + error.what() + "); reopening " +
                    driver_);
         try {
-            actuator_ = open(driver_, settings_);
+            actuator_ = open(driver_, settings_, drivers_dir_);
         } catch (const std::exception& reopen_error) {
             actuator_ = std::make_unique<drivers::DisconnectedActuator>(
                 "driver " + driver + " failed (" + error.what() + ") and driver " + driver_ +
@@ -44,13 +65,28 @@ void ActuatorHost::switch_to(Player& player, const std::string& driver,
             log::error(std::string("no actuator until the next switch or reload: ") +
                        reopen_error.what());
         }
-        player.replace_actuator(*actuator_);
+        if (player_) {
+            player_->replace_actuator(*actuator_);
+        }
         throw;
     }
-    player.replace_actuator(*actuator_);
+    if (player_) {
+        player_->replace_actuator(*actuator_);
+    }
     driver_ = driver;
     settings_ = settings;
+    drivers_dir_ = drivers_dir;
     log::info("driver is now " + driver);
+}
+
+bool ActuatorHost::follow_config() {
+    const bool differs = config_.driver != driver_ ||
+                         config_.settings_of(config_.driver) != settings_ ||
+                         config_.drivers_dir != drivers_dir_;
+    if (differs) {
+        switch_to(config_.driver);
+    }
+    return differs;
 }
 
 }  // namespace vibscore::daemon

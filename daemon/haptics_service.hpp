@@ -2,47 +2,31 @@
 
 #include <sdbus-c++/sdbus-c++.h>
 
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "daemon/actuator_host.hpp"
 #include "daemon/callers.hpp"
-#include "daemon/drivers/available.hpp"
+#include "daemon/config.hpp"
 #include "daemon/player.hpp"
 #include "daemon/registry/registry.hpp"
 #include "haptics1-adaptor.h"
 
 namespace vibscore::daemon {
 
-inline constexpr const char* kBusName = "org.vibscore.Haptics1";
-inline constexpr const char* kObjectPath = "/org/vibscore/Haptics1";
-
-// Switching actuator backends at run time; main() owns the backends and the configuration.
-class DriverControl {
-  public:
-    virtual ~DriverControl() = default;
-    virtual std::vector<drivers::DriverInfo> drivers() const = 0;
-    // Switches to `driver` with its configured settings; throws what opening it throws.
-    virtual void switch_driver(const std::string& driver) = 0;
-};
-
-// The org.vibscore.Haptics1 object: checks who calls and what they send, then hands the work to
-// the registry and the player. Every failure leaves here as a named D-Bus error; nothing a caller
-// sends can stop the daemon.
+// The org.vibscore.Haptics1 object: the bus adaptor. It finds out who calls and admits them,
+// then hands the work to the registry, play_request, the player and the actuator host, and turns
+// what they report into signals. Every failure leaves here as a named D-Bus error; nothing a
+// caller sends can stop the daemon.
 class HapticsService final : public sdbus::AdaptorInterfaces<org::vibscore::Haptics1_adaptor>,
                              public PlayerListener {
   public:
-    struct Settings {
-        std::string driver;
-        std::vector<std::string> capabilities;
-        double separation_s = 0.030;
-    };
-
-    HapticsService(sdbus::IConnection& connection, Registry& registry, Player& player,
-                   CallerDirectory& callers, DriverControl& driver_control, Settings settings);
+    // `config` is the running configuration (a reload replaces its contents). The service
+    // listens to the player and the host, and watches callers leave the bus, until destroyed.
+    HapticsService(sdbus::IConnection& connection, const DaemonConfig& config, Registry& registry,
+                   Player& player, CallerDirectory& callers, ActuatorHost& host);
     ~HapticsService() override;
-
-    // New settings; a change of driver or capabilities is announced with PropertiesChanged.
-    void update_settings(Settings settings);
 
     // PlayerListener: playback events become signals.
     void playback_started(std::uint64_t id, const std::string& label) override;
@@ -59,8 +43,8 @@ class HapticsService final : public sdbus::AdaptorInterfaces<org::vibscore::Hapt
     std::string Get(const std::string& kind, const std::string& name) override;
     std::vector<sdbus::Struct<std::string, std::string>> ListDrivers() override;
     void SwitchDriver(const std::string& driver) override;
-    std::string Driver() override { return settings_.driver; }
-    std::vector<std::string> Capabilities() override { return settings_.capabilities; }
+    std::string Driver() override { return host_.driver(); }
+    std::vector<std::string> Capabilities() override { return host_.capabilities().names(); }
     double Intensity() override { return player_.master_intensity(); }
     void Intensity(const double& value) override;
     std::string Version() override;
@@ -68,15 +52,17 @@ class HapticsService final : public sdbus::AdaptorInterfaces<org::vibscore::Hapt
     // The caller of the method being handled; counts the request against its rate.
     const Caller& admit_caller();
     void require_privileged(const Caller& caller, const char* action) const;
-    PlaybackRequest prepare(const std::string& score,
-                            const std::map<std::string, sdbus::Variant>& options,
-                            const Caller& caller) const;
+    // Driver and Capabilities changed with a switch: announced with PropertiesChanged.
+    void driver_switched();
 
+    const DaemonConfig& config_;
     Registry& registry_;
     Player& player_;
     CallerDirectory& callers_;
-    DriverControl& driver_control_;
-    Settings settings_;
+    ActuatorHost& host_;
+    std::string announced_driver_;
+    std::vector<std::string> announced_capabilities_;
+    sdbus::Slot vanish_watch_;  // NameOwnerChanged: a caller left the bus
 };
 
 }  // namespace vibscore::daemon

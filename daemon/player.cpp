@@ -8,9 +8,28 @@
 
 namespace vibscore::daemon {
 
-Player::Player(EventLoop& loop, drivers::Actuator& actuator, PlayerListener& listener)
-    : timer_(loop, [this] { run_due(); }), actuator_(&actuator), listener_(listener) {
+namespace {
+
+// Stands in while nobody listens, so reporting needs no null checks.
+class NobodyListens final : public PlayerListener {
+  public:
+    void playback_started(std::uint64_t, const std::string&) override {}
+    void playback_position(std::uint64_t, std::size_t, std::size_t) override {}
+    void playback_finished(std::uint64_t, const std::string&) override {}
+};
+
+NobodyListens nobody;
+
+}  // namespace
+
+Player::Player(EventLoop& loop, drivers::Actuator& actuator, PlayerListener* listener)
+    : timer_(loop, [this] { run_due(); }), actuator_(&actuator), listener_(&nobody) {
+    set_listener(listener);
     actuator_->off();  // whatever state the device was left in
+}
+
+void Player::set_listener(PlayerListener* listener) {
+    listener_ = listener != nullptr ? listener : &nobody;
 }
 
 Player::~Player() {
@@ -74,7 +93,7 @@ std::uint64_t Player::play(PlaybackRequest request) {
             return id;
         }
     }
-    listener_.playback_started(id, label);
+    listener_->playback_started(id, label);
     if (!on_since_us_) {
         prepare_next_drive();  // a score that starts vibrating has prepared its second drive
     }
@@ -150,7 +169,7 @@ std::optional<std::uint64_t> Player::on_time_deadline_us() const {
 
 bool Player::execute(const render::Cue& cue) {
     if (cue.kind == render::Cue::Kind::position) {
-        listener_.playback_position(current_->id, cue.bar, cue.symbol);
+        listener_->playback_position(current_->id, cue.bar, cue.symbol);
         return true;
     }
     const drivers::Drive drive = drive_for(cue);
@@ -229,7 +248,7 @@ void Player::finish(const std::string& reason) {
     timer_.disarm();
     const std::uint64_t id = current_->id;
     current_.reset();
-    listener_.playback_finished(id, reason);
+    listener_->playback_finished(id, reason);
 }
 
 Player::StopResult Player::stop(std::uint64_t id, uid_t caller, bool privileged) {

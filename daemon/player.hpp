@@ -46,7 +46,10 @@ class PlayerBusy : public std::runtime_error {
 // follows their usage; see dbus/org.vibscore.Haptics1.xml (Play) and docs/daemon.md.
 class Player {
   public:
-    Player(EventLoop& loop, drivers::Actuator& actuator, PlayerListener& listener);
+    // Reports to `listener` (none: set_listener() later, e.g. by the bus service built after it).
+    Player(EventLoop& loop, drivers::Actuator& actuator, PlayerListener* listener = nullptr);
+    Player(EventLoop& loop, drivers::Actuator& actuator, PlayerListener& listener)
+        : Player(loop, actuator, &listener) {}
     ~Player();
     Player(const Player&) = delete;
     Player& operator=(const Player&) = delete;
@@ -73,6 +76,9 @@ class Player {
 
     std::optional<std::uint64_t> current_id() const;
 
+    // Who hears of playback events from now on; nullptr: nobody.
+    void set_listener(PlayerListener* listener);
+
   private:
     struct Playback {
         std::uint64_t id = 0;
@@ -96,7 +102,7 @@ class Player {
 
     EventLoop::Timer timer_;
     drivers::Actuator* actuator_;
-    PlayerListener& listener_;
+    PlayerListener* listener_;
     std::optional<Playback> current_;
     std::uint64_t next_id_ = 1;
     double master_intensity_ = 1.0;

@@ -1,0 +1,57 @@
+#include "daemon/command_line.hpp"
+
+#include <CLI/CLI.hpp>
+
+#include <filesystem>
+
+#include "config.h"
+
+namespace vibscore::daemon {
+
+std::variant<CommandLine, int> parse_command_line(int argc, const char* const* argv) {
+    CLI::App app{
+        "vibscored - the vibscore haptics service: plays vibrotactile scores on the actuator\n"
+        "for callers on the D-Bus system bus (org.vibscore.Haptics1).\n"
+        "DBUS_SYSTEM_BUS_ADDRESS points it at another bus (tests, development).\n"
+        "Signals: SIGTERM/SIGINT stop playback and exit; SIGHUP reloads the configuration.",
+        "vibscored"};
+    CommandLine command_line;
+    app.set_version_flag("--version", std::string("vibscored ") + VIBSCORE_VERSION);
+    app.add_option("--config", command_line.config,
+                   std::string("configuration file (default ") + kDefaultConfigFile + ")");
+    app.add_option("--driver", command_line.driver,
+                   "actuator backend, overriding the configuration");
+    app.add_option("--store", command_line.store, "directory of composed documents");
+    app.add_option("--shipped", command_line.shipped, "directory of shipped clefs and scores");
+    app.add_flag("--verbose", command_line.verbose, "log every playback");
+    app.add_flag("--list-drivers", command_line.list_drivers,
+                 "list the actuator backends and exit");
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& error) {
+        return app.exit(error);
+    }
+    command_line.config_given = app.count("--config") > 0;
+    return command_line;
+}
+
+DaemonConfig read_config(const CommandLine& command_line) {
+    DaemonConfig defaults;
+    defaults.shipped = VIBSCORE_CLEFDIR;
+    DaemonConfig config = defaults;
+    if (command_line.config_given || std::filesystem::exists(command_line.config)) {
+        config = load_config(command_line.config, defaults);
+    }
+    if (!command_line.driver.empty()) {
+        config.driver = command_line.driver;
+    }
+    if (!command_line.store.empty()) {
+        config.store = command_line.store;
+    }
+    if (!command_line.shipped.empty()) {
+        config.shipped = command_line.shipped;
+    }
+    return config;
+}
+
+}  // namespace vibscore::daemon

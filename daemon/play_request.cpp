@@ -1,0 +1,114 @@
+#include "daemon/play_request.hpp"
+
+#include <string>
+
+#include "daemon/render/cue_schedule.hpp"
+#include "daemon/render/performance.hpp"
+#include "daemon/request_error.hpp"
+
+namespace vibscore::daemon {
+
+namespace {
+
+RequestError invalid(const std::string& message) {
+    return RequestError(RequestError::Code::invalid, message);
+}
+
+template <typename T>
+T option_value(const std::string& key, const sdbus::Variant& value, const char* signature,
+               const char* type_name) {
+    if (value.peekValueType() != signature) {
+        throw invalid("option \"" + key + "\" must be " + type_name + " (" + signature + "), not " +
+                      value.peekValueType());
+    }
+    return value.get<T>();
+}
+
+bool is_inline_document(const std::string& score) {
+    const auto first = score.find_first_not_of(" \t\r\n");
+    return first != std::string::npos && score[first] == '<';
+}
+
+}  // namespace
+
+PlayOptions parse_play_options(const std::map<std::string, sdbus::Variant>& options) {
+    PlayOptions parsed;
+    for (const auto& [key, value] : options) {
+        if (key == "usage") {
+            const auto name = option_value<std::string>(key, value, "s", "a string");
+            const auto usage = parse_usage(name);
+            if (!usage) {
+                throw invalid("unknown usage \"" + name + "\" (expected " +
+                              std::string(usage_names()) + ")");
+            }
+            parsed.usage = *usage;
+        } else if (key == "repeat") {
+            parsed.repeat = option_value<std::int32_t>(key, value, "i", "an int32");
+            if (parsed.repeat < -1) {
+                throw invalid("repeat " + std::to_string(parsed.repeat) +
+                              " is invalid (0 once, n more times, -1 forever)");
+            }
+        } else if (key == "intensity") {
+            parsed.intensity = option_value<double>(key, value, "d", "a double");
+            if (!(parsed.intensity >= 0.0 && parsed.intensity <= 1.0)) {
+                throw invalid("intensity " + std::to_string(parsed.intensity) + " is outside 0..1");
+            }
+        } else if (key == "clef") {
+            parsed.clef = option_value<std::string>(key, value, "s", "a string");
+        } else if (key == "start-bar") {
+            parsed.start_bar = option_value<std::uint32_t>(key, value, "u", "a uint32");
+        } else {
+            throw invalid("unknown option \"" + key +
+                          "\" (expected usage, repeat, intensity, clef, start-bar)");
+        }
+    }
+    return parsed;
+}
+
+ScoreToPlay find_score_to_play(const Registry& registry, const std::string& score,
+                               const std::string& clef_override) {
+    ScoreToPlay found;
+    if (is_inline_document(score)) {
+        found.bundle = registry.inline_score(score);
+        found.label = "<inline>";
+    } else {
+        found.bundle = registry.score(score);
+        found.label = score;
+    }
+    if (!clef_override.empty()) {
+        const Clef clef = registry.clef(clef_override);
+        found.bundle =
+            bind_clefs(ParsedScore{found.bundle.score, found.bundle.where}, found.bundle.file,
+                       [&](const ClefDeclaration&, const SourceLocation&) { return clef; });
+    }
+    return found;
+}
+
+PlaybackRequest make_playback_request(const ScoreToPlay& score, const PlayOptions& options,
+                                      double separation_s) {
+    const auto bars = score.bundle.score.bars.size();
+    if (options.start_bar >= bars) {
+        throw invalid("start-bar " + std::to_string(options.start_bar) +
+                      " is past the last bar (the score has " + std::to_string(bars) + ")");
+    }
+    render::RenderOptions render_options;
+    render_options.separation_s = separation_s;
+    render_options.start_bar = options.start_bar;
+    const render::Performance performance(score.bundle, render_options);
+
+    PlaybackRequest request;
+    request.label = score.label;
+    request.cues = render::cue_schedule(performance);
+    if (request.cues.size() > kMaxCues) {
+        throw RequestError(RequestError::Code::limit_exceeded,
+                           "the score needs " + std::to_string(request.cues.size()) +
+                               " actuator commands; the limit is " + std::to_string(kMaxCues));
+    }
+    request.duration_s = performance.duration();
+    request.usage = options.usage;
+    request.repeat = options.repeat;
+    request.intensity = options.intensity;
+    return request;
+}
+
+}  // namespace vibscore::daemon

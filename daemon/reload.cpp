@@ -1,0 +1,23 @@
+#include "daemon/reload.hpp"
+
+#include "daemon/drivers/configured_actuator.hpp"
+#include "daemon/log.hpp"
+
+namespace vibscore::daemon {
+
+void reload_config(DaemonConfig& running, DaemonConfig fresh, ActuatorHost& host,
+                   CallerDirectory& callers) {
+    DriverSettingsMap fresh_settings = fresh.settings_of(fresh.driver);
+    drivers::take_common_settings(fresh.driver, fresh_settings);
+    if (fresh.store != running.store || fresh.shipped != running.shipped) {
+        log::warning("store and shipped directories change only on restart");
+        fresh.store = running.store;
+        fresh.shipped = running.shipped;
+    }
+    callers.set_rate(fresh.requests_per_second, fresh.request_burst);
+    running = std::move(fresh);
+    host.follow_config();
+    log::info("configuration reloaded");
+}
+
+}  // namespace vibscore::daemon

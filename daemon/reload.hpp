@@ -1,0 +1,18 @@
+#pragma once
+
+#include "daemon/actuator_host.hpp"
+#include "daemon/callers.hpp"
+#include "daemon/config.hpp"
+
+namespace vibscore::daemon {
+
+// SIGHUP: `fresh`, the configuration read again, becomes the running one. The new driver
+// settings are checked before anything changes, so a bad file changes nothing (ConfigError or
+// std::invalid_argument naming the key). Then the request rate applies at once, and the backend
+// is reopened if its driver, settings or drivers directory changed; when that fails, the host
+// runs the previous backend and the error is rethrown. The store and shipped directories change
+// only on restart: they keep their running values, and a warning says so.
+void reload_config(DaemonConfig& running, DaemonConfig fresh, ActuatorHost& host,
+                   CallerDirectory& callers);
+
+}  // namespace vibscore::daemon
