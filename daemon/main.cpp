@@ -118,8 +118,8 @@ int serve(const Options& options) {
     EventLoop loop;
     ActuatorHost host(config.driver, config.settings_of(config.driver), config.drivers_dir);
     Registry registry(config.shipped, config.store);
-    log::info("registry: " + std::to_string(registry.list(DocumentClass::score).size()) +
-              " scores, " + std::to_string(registry.list(DocumentClass::clef).size()) +
+    log::info("registry: " + std::to_string(registry.list(DocumentKind::score).size()) +
+              " scores, " + std::to_string(registry.list(DocumentKind::clef).size()) +
               " clefs (shipped " + config.shipped.string() + ", store " + config.store.string() +
               ")");
     CallerDirectory callers(config.requests_per_second, config.request_burst);
