@@ -501,17 +501,17 @@ class Fd {
     int fd_;
 };
 
-constexpr long kCrashSlots = 4;  // slot 0 is a clef; slots 1-3 are scores that use it
+constexpr long kCrashNames = 4;  // name 0 is a clef; names 1-3 are scores that use it
 
 std::string crash_name(long seq) {
-    return seq % kCrashSlots == 0 ? "crash-clef" : "crash-" + std::to_string(seq % kCrashSlots);
+    return seq % kCrashNames == 0 ? "crash-clef" : "crash-" + std::to_string(seq % kCrashNames);
 }
 
 // A distinct, complete document for each sequence number, marked at both ends. At about 60 KB
 // the kill often lands while it is being written.
 std::string crash_document(long seq) {
     const auto mark = "<!-- seq " + std::to_string(seq) + " -->\n";
-    if (seq % kCrashSlots == 0) {
+    if (seq % kCrashNames == 0) {
         const double tempo = 0.1 + static_cast<double>(seq % 100) / 1000;
         return mark + sine_clef(tempo, {100, 150, 200}, {0.5, 1.0}) + "\n<!-- " +
                std::string(60'000, 'p') + " -->\n" + mark;
@@ -588,7 +588,7 @@ TEST(RegistryCrash, SigkillNeverLeavesAPartialDocumentNorLosesAnAcknowledgedOne)
         ASSERT_EQ(::pipe2(fds, O_CLOEXEC), 0);
         Fd read_end(fds[0]);
         Fd write_end(fds[1]);
-        const long first = round * 1'000'000;  // a multiple of kCrashSlots: the clef comes first
+        const long first = round * 1'000'000;  // a multiple of kCrashNames: the clef comes first
         const pid_t child = ::fork();
         ASSERT_GE(child, 0);
         if (child == 0) {

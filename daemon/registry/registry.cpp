@@ -509,9 +509,9 @@ void Registry::compose_clef(const std::string& name, std::string_view document) 
     const auto path = stored_path(DocumentKind::clef, name);
     write_file_atomically(path, document);
 
-    auto& slot = stored_clefs_[name];
-    stored_bytes_ = stored_bytes_ - slot.text.size() + record.text.size();
-    slot = std::move(record);
+    auto& stored = stored_clefs_[name];
+    stored_bytes_ = stored_bytes_ - stored.text.size() + record.text.size();
+    stored = std::move(record);
     commit(std::move(rebound));
     log::info("registry: stored " + file + " in " + path.string());
 }
@@ -530,9 +530,9 @@ void Registry::compose_score(const std::string& name, std::string_view document)
     const auto path = stored_path(DocumentKind::score, name);
     write_file_atomically(path, document);
 
-    auto& slot = stored_scores_[name];
-    stored_bytes_ = stored_bytes_ - slot.text.size() + record.text.size();
-    slot = std::move(record);
+    auto& stored = stored_scores_[name];
+    stored_bytes_ = stored_bytes_ - stored.text.size() + record.text.size();
+    stored = std::move(record);
     log::info("registry: stored " + file + " in " + path.string());
 }
 
