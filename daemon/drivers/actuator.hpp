@@ -16,7 +16,6 @@ using vibscore::DeviceError;
 struct Capabilities {
     bool amplitude_control = true;   // strength can vary, not only on/off
     bool frequency_control = false;  // the vibration frequency can be chosen per note
-    bool waveform_playback = false;  // arbitrary sample streams
     bool effect_memory = false;      // effects can be uploaded ahead of their onset (prepare)
     bool envelopes = false;          // a linear ramp can be handed over whole (Drive::ramp_s)
     bool gain_control = false;       // the device scales every drive itself (set_gain)

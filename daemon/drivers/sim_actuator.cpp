@@ -34,7 +34,6 @@ Capabilities SimActuator::capabilities() const {
     Capabilities capabilities;
     capabilities.amplitude_control = true;
     capabilities.frequency_control = true;
-    capabilities.waveform_playback = false;
     capabilities.effect_memory = false;
     return capabilities;
 }
