@@ -324,7 +324,7 @@ bool EditorModel::begin_entry(Continuing continuing) {
         // Entering runs on into the next bar as a bar fills, as in notation editors: a new one
         // (on the same clef) after the last bar. Leaving takes a new bar back with the proposal.
         if (cursor_.bar + 1 == score_->bars.size()) {
-            vibscore::editor::split_bar(edit(), cursor_);
+            split_bar_at(edit(), cursor_);
         }
         cursor_ = {cursor_.bar + 1, 0};
     }
@@ -482,7 +482,7 @@ void EditorModel::cancel_entry() {
 
 bool EditorModel::split_bar() {
     anchor_.reset();
-    vibscore::editor::split_bar(edit(), cursor_);
+    split_bar_at(edit(), cursor_);
     cursor_ = {cursor_.bar + 1, 0};
     land();
     return done("new bar");
@@ -492,7 +492,7 @@ bool EditorModel::delete_at_cursor() {
     const auto used_before = clefs_in_use(*score_);
     if (const auto marked = block()) {
         Score& score = edit();
-        erase(score, *marked);
+        erase_block(score, *marked);
         drop_clefs_no_longer_used(score, used_before);
         cursor_ = marked->first;
         anchor_.reset();
@@ -512,7 +512,7 @@ bool EditorModel::delete_at_cursor() {
                                         serial(*previous, tie) == serial(*note, tie) &&
                                         serial(*next, tie) == serial(*note, tie);
                 if (!inside_run) {
-                    vibscore::editor::untie(score, cursor_, tie);
+                    untie_note(score, cursor_, tie);
                 }
             }
         }
@@ -586,7 +586,7 @@ bool EditorModel::untie(Tie tie) {
     }
     Score& score = edit();
     for (const auto at : notes) {
-        vibscore::editor::untie(score, at, tie);
+        untie_note(score, at, tie);
     }
     return done(tie == Tie::legato ? "legato removed" : "portamento removed");
 }
@@ -679,14 +679,14 @@ bool EditorModel::shift_numbers(int delta) {
 
 bool EditorModel::copy() {
     if (const auto marked = block()) {
-        clipboard_ = vibscore::editor::copy(*score_, *marked);
+        clipboard_ = copy_block(*score_, *marked);
         return done("block copied");
     }
     const auto at = at_hand();
     if (!at) {
         return refuse("nothing here to copy");
     }
-    clipboard_ = vibscore::editor::copy(*score_, Block{*at, {at->bar, at->symbol + 1}});
+    clipboard_ = copy_block(*score_, Block{*at, {at->bar, at->symbol + 1}});
     return done("copied");
 }
 
@@ -710,11 +710,11 @@ bool EditorModel::paste() {
     }
     Score& score = edit();
     if (const auto marked = block()) {
-        erase(score, *marked);
+        erase_block(score, *marked);
         cursor_ = marked->first;
     }
     anchor_.reset();
-    cursor_ = vibscore::editor::paste(score, cursor_, clipboard_);
+    cursor_ = paste_clip(score, cursor_, clipboard_);
     land();
     return done("pasted");
 }

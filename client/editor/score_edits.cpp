@@ -14,10 +14,6 @@ std::int64_t serial(const Note& note, Tie tie) {
     return tie == Tie::legato ? note.legato : note.portamento;
 }
 
-bool is_end(const Score& score, Position at) {
-    return at.symbol >= score.bars.at(at.bar).symbols.size();
-}
-
 bool is_empty_position(const Score& score, Position at) {
     const Symbol* symbol = symbol_at(score, at);
     return symbol == nullptr || std::holds_alternative<Blank>(*symbol);
@@ -90,16 +86,6 @@ std::vector<Position> symbols_in(const Score& score, const Block& block) {
     return found;
 }
 
-std::vector<Position> notes_in(const Score& score, const Block& block) {
-    std::vector<Position> notes;
-    for (const auto at : symbols_in(score, block)) {
-        if (note_at(score, at) != nullptr) {
-            notes.push_back(at);
-        }
-    }
-    return notes;
-}
-
 std::int64_t unused_serial(const Score& score, Tie tie) {
     std::int64_t largest = 0;
     for (const auto& bar : score.bars) {
@@ -159,7 +145,7 @@ void tie_together(Score& score, const std::vector<Position>& notes, Tie tie) {
     }
 }
 
-void untie(Score& score, Position at, Tie tie) {
+void untie_note(Score& score, Position at, Tie tie) {
     Note* note = note_at(score, at);
     if (note == nullptr || serial(*note, tie) == 0) {
         return;
@@ -210,7 +196,7 @@ void insert_symbol(Score& score, Position at, Symbol symbol) {
     symbols.insert(symbols.begin() + static_cast<std::ptrdiff_t>(at.symbol), std::move(symbol));
 }
 
-void split_bar(Score& score, Position at) {
+void split_bar_at(Score& score, Position at) {
     auto& bar = score.bars.at(at.bar);
     Bar tail{bar.clef, {}};
     const auto cut = bar.symbols.begin() + static_cast<std::ptrdiff_t>(at.symbol);
@@ -228,7 +214,7 @@ void join_with_next(Score& score, std::size_t bar) {
     score.bars.erase(score.bars.begin() + static_cast<std::ptrdiff_t>(bar) + 1);
 }
 
-void erase(Score& score, const Block& block) {
+void erase_block(Score& score, const Block& block) {
     if (block.first >= block.end) {
         return;
     }
@@ -255,7 +241,7 @@ bool Clip::empty() const {
            bars.size() <= 1;
 }
 
-Clip copy(const Score& score, const Block& block) {
+Clip copy_block(const Score& score, const Block& block) {
     Clip clip;
     if (block.first >= block.end) {
         return clip;
@@ -272,7 +258,7 @@ Clip copy(const Score& score, const Block& block) {
     return clip;
 }
 
-Position paste(Score& score, Position at, const Clip& clip) {
+Position paste_clip(Score& score, Position at, const Clip& clip) {
     if (clip.bars.empty()) {
         return at;
     }
@@ -296,11 +282,11 @@ Position paste(Score& score, Position at, const Clip& clip) {
             bar.clef = here_clef;  // copied from a score that declared other clefs
         }
     }
-    split_bar(score, at);
+    split_bar_at(score, at);
     Position end{at.bar, at.symbol};
     for (std::size_t i = 0; i < fresh.bars.size(); ++i) {
         if (i > 0) {
-            split_bar(score, end);
+            split_bar_at(score, end);
             score.bars[end.bar + 1].clef = fresh.bars[i].clef;
             end = {end.bar + 1, 0};
         }
@@ -386,13 +372,6 @@ std::optional<Length> toggled_dot(Length length) {
             break;
     }
     return std::nullopt;
-}
-
-void drop_unused_clefs(Score& score) {
-    std::erase_if(score.clefs, [&](const ClefDeclaration& clef) {
-        return std::none_of(score.bars.begin(), score.bars.end(),
-                            [&](const Bar& bar) { return bar.clef == clef.id; });
-    });
 }
 
 }  // namespace vibscore::editor
