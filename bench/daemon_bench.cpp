@@ -6,7 +6,6 @@
 #include <CLI/CLI.hpp>
 
 #include <csignal>
-#include <ctime>
 
 #include <algorithm>
 #include <chrono>
@@ -25,6 +24,7 @@
 
 #include "bench/report.hpp"
 #include "bench/summary.hpp"
+#include "common/monotonic_clock.hpp"
 #include "daemon/render/cue_schedule.hpp"
 #include "daemon/render/performance.hpp"
 #include "score/bundle.hpp"
@@ -52,12 +52,6 @@ struct Settings {
     double pairs_per_second = 10.0;
     bool high_limit_for_clients = false;
 };
-
-std::int64_t monotonic_ns() {
-    timespec now{};
-    clock_gettime(CLOCK_MONOTONIC, &now);
-    return static_cast<std::int64_t>(now.tv_sec) * 1'000'000'000 + now.tv_nsec;
-}
 
 void sleep_ms(double ms) {
     std::this_thread::sleep_for(std::chrono::duration<double, std::milli>(ms));
@@ -131,7 +125,7 @@ LatencyResult play_latency(DaemonFixture& daemon, int count) {
     std::vector<Attempt> attempts;
     int errors = 0;
     for (int i = 0; i < count; ++i) {
-        const auto t0 = monotonic_ns();
+        const auto t0 = monotonic_now_ns();
         try {
             const auto id = client->Play("touch-tick", touch);
             client->Stop(id);
@@ -156,7 +150,7 @@ LatencyResult stop_latency(DaemonFixture& daemon, int count) {
     std::vector<Attempt> attempts;
     int errors = 0;
     for (int i = 0; i < count; ++i) {
-        const auto played_at = monotonic_ns();
+        const auto played_at = monotonic_now_ns();
         if (!attempts.empty()) {
             attempts.back().until = played_at;
         }
@@ -168,7 +162,7 @@ LatencyResult stop_latency(DaemonFixture& daemon, int count) {
             continue;
         }
         sleep_ms(5.0);
-        const auto t0 = monotonic_ns();
+        const auto t0 = monotonic_now_ns();
         try {
             client->Stop(id);
         } catch (const sdbus::Error&) {
@@ -399,13 +393,13 @@ ConcurrencyResult concurrent_clients(DaemonFixture& daemon, const Settings& sett
         workers[i].thread = std::thread([&, i] {
             auto& worker = workers[i];
             const auto timed = [&](std::vector<double>& into, const auto& call) {
-                const auto t0 = monotonic_ns();
+                const auto t0 = monotonic_now_ns();
                 try {
                     call();
-                    into.push_back(static_cast<double>(monotonic_ns() - t0) / 1e6);
+                    into.push_back(static_cast<double>(monotonic_now_ns() - t0) / 1e6);
                     return true;
                 } catch (const sdbus::Error& error) {
-                    into.push_back(static_cast<double>(monotonic_ns() - t0) / 1e6);
+                    into.push_back(static_cast<double>(monotonic_now_ns() - t0) / 1e6);
                     ++worker.errors;
                     ++worker.error_names[error.getName()];
                     return false;

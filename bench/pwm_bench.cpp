@@ -24,26 +24,22 @@
 
 #include "bench/report.hpp"
 #include "bench/summary.hpp"
+#include "common/monotonic_clock.hpp"
 #include "daemon/drivers/gpio_lines.hpp"
 #include "daemon/drivers/gpio_pwm_actuator.hpp"
 
 namespace {
 
 using namespace vibscore::drivers;
+using vibscore::monotonic_now_ns;
 
 constexpr std::int64_t kNanosPerSecond = 1'000'000'000;
 const std::vector<double> kDuties{0.1, 0.25, 0.5, 0.75, 0.9};
 // Periods left out after each duty change: the one in which it happened and the next.
 constexpr int kSettlePeriods = 2;
 
-std::int64_t now_ns() {
-    timespec now{};
-    ::clock_gettime(CLOCK_MONOTONIC, &now);
-    return static_cast<std::int64_t>(now.tv_sec) * kNanosPerSecond + now.tv_nsec;
-}
-
 void sleep_for_ns(std::int64_t ns) {
-    const std::int64_t deadline = now_ns() + ns;
+    const std::int64_t deadline = monotonic_now_ns() + ns;
     const timespec until{static_cast<time_t>(deadline / kNanosPerSecond),
                          static_cast<long>(deadline % kNanosPerSecond)};
     while (::clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &until, nullptr) != 0) {
@@ -134,7 +130,7 @@ class RecordingLines final : public GpioLines {
         if (inner_) {
             inner_->set_values(values);
         }
-        recording_->record(now_ns(), values[0]);
+        recording_->record(monotonic_now_ns(), values[0]);
     }
 
   private:
@@ -298,18 +294,18 @@ int main(int argc, char** argv) {
             for (const double duty : kDuties) {
                 Segment segment;
                 segment.duty = duty;
-                segment.start_ns = now_ns();
+                segment.start_ns = monotonic_now_ns();
                 erm.apply({duty});
                 // The thread is known once it has made its first edge.
                 if (segments.empty()) {
                     sleep_for_ns(kSettlePeriods * kNanosPerSecond /
                                  static_cast<std::int64_t>(options.carrier_hz));
                 }
-                segment.cpu_from_ns = now_ns();
+                segment.cpu_from_ns = monotonic_now_ns();
                 segment.cpu_start_ns = recording->thread_cpu_ns();
                 segment.wakeups_start = recording->thread_wakeups();
                 sleep_for_ns(static_cast<std::int64_t>(options.seconds * 1e9));
-                segment.end_ns = now_ns();
+                segment.end_ns = monotonic_now_ns();
                 segment.cpu_end_ns = recording->thread_cpu_ns();
                 segment.wakeups_end = recording->thread_wakeups();
                 segments.push_back(segment);

@@ -43,8 +43,8 @@ void report(const DocumentError& error, std::ostream& err) {
 void describe_score(const ScoreBundle& bundle, std::ostream& out) {
     const render::Performance performance(bundle);
     std::size_t notes = 0;
-    for (const auto& slot : performance.timeline()) {
-        notes += slot.is_note ? 1 : 0;
+    for (const auto& timing : performance.timeline()) {
+        notes += timing.is_note ? 1 : 0;
     }
     out << "title:    " << (bundle.score.title.empty() ? "(untitled)" : bundle.score.title) << "\n"
         << "file:     " << bundle.file << "\n"

@@ -24,13 +24,6 @@ void check(int result, const char* what) {
 
 }  // namespace
 
-std::uint64_t monotonic_now_us() {
-    timespec now{};
-    clock_gettime(CLOCK_MONOTONIC, &now);
-    return static_cast<std::uint64_t>(now.tv_sec) * 1'000'000u +
-           static_cast<std::uint64_t>(now.tv_nsec) / 1000u;
-}
-
 EventLoop::EventLoop() {
     check(sd_event_new(&event_), "sd_event_new");
     // Pings the service manager only when it asked for a watchdog (WATCHDOG_USEC); otherwise an

@@ -6,14 +6,14 @@
 #include <functional>
 #include <memory>
 
+// The timers' deadlines are on monotonic_now_us(), the clock every deadline in the daemon uses.
+#include "common/monotonic_clock.hpp"
+
 namespace sdbus {
 class IConnection;
 }
 
 namespace vibscore::daemon {
-
-// Microseconds on CLOCK_MONOTONIC, the clock every deadline in the daemon is measured on.
-std::uint64_t monotonic_now_us();
 
 struct EventSourceUnref {
     void operator()(sd_event_source* source) const { sd_event_source_disable_unref(source); }

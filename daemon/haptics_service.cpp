@@ -69,8 +69,8 @@ auto guarded(const char* method, Body&& body) -> decltype(body()) {
     }
 }
 
-DocumentClass document_class(const std::string& kind) {
-    const auto parsed = parse_document_class(kind);
+DocumentKind document_class(const std::string& kind) {
+    const auto parsed = parse_document_kind(kind);
     if (!parsed) {
         throw RequestError(RequestError::Code::invalid,
                            "unknown kind \"" + kind + "\" (expected score or clef)");

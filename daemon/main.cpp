@@ -43,8 +43,8 @@ int serve(const CommandLine& command_line) {
     EventLoop loop;
     ActuatorHost host(config);
     Registry registry(config.shipped, config.store);
-    log::info("registry: " + std::to_string(registry.list(DocumentClass::score).size()) +
-              " scores, " + std::to_string(registry.list(DocumentClass::clef).size()) +
+    log::info("registry: " + std::to_string(registry.list(DocumentKind::score).size()) +
+              " scores, " + std::to_string(registry.list(DocumentKind::clef).size()) +
               " clefs (shipped " + config.shipped.string() + ", store " + config.store.string() +
               ")");
     CallerDirectory callers(config.requests_per_second, config.request_burst);

@@ -94,6 +94,20 @@ std::string read_document_file(const std::filesystem::path& path) {
     return text;
 }
 
+std::string_view to_string(DocumentKind kind) {
+    return kind == DocumentKind::score ? "score" : "clef";
+}
+
+std::optional<DocumentKind> parse_document_kind(std::string_view text) {
+    if (text == "score" || text == "scores") {
+        return DocumentKind::score;
+    }
+    if (text == "clef" || text == "clefs") {
+        return DocumentKind::clef;
+    }
+    return std::nullopt;
+}
+
 DocumentKind document_kind(std::string_view text, const std::string& file) {
     const auto root = xml::root_name(text);
     if (root == "VibScore") {

@@ -3,7 +3,9 @@
 #include <filesystem>
 #include <functional>
 #include <map>
+#include <optional>
 #include <string>
+#include <string_view>
 
 #include "score/clef.hpp"
 #include "score/score.hpp"
@@ -31,7 +33,14 @@ ScoreBundle bind_clefs(ParsedScore parsed, std::string file, const ClefResolver&
 // Reads a whole document file, refusing files over limits::document_bytes.
 std::string read_document_file(const std::filesystem::path& path);
 
+// The two kinds of document: what the registry holds, the client reads and the bus names
+// "score" and "clef".
 enum class DocumentKind { score, clef };
+
+std::string_view to_string(DocumentKind kind);
+
+// Accepts "score", "scores", "clef" and "clefs".
+std::optional<DocumentKind> parse_document_kind(std::string_view text);
 
 // Tells a VibScore from a VibClef by its root element; throws DocumentError for anything else.
 DocumentKind document_kind(std::string_view text, const std::string& file);

@@ -119,5 +119,16 @@ TEST(Bundle, TellsScoresFromClefsByRoot) {
     EXPECT_NE(broken.message.find("malformed XML"), std::string::npos);
 }
 
+TEST(DocumentKind, ParsesSingularAndPlural) {
+    EXPECT_EQ(parse_document_kind("score"), DocumentKind::score);
+    EXPECT_EQ(parse_document_kind("scores"), DocumentKind::score);
+    EXPECT_EQ(parse_document_kind("clef"), DocumentKind::clef);
+    EXPECT_EQ(parse_document_kind("clefs"), DocumentKind::clef);
+    EXPECT_EQ(parse_document_kind("Score"), std::nullopt);
+    EXPECT_EQ(parse_document_kind(""), std::nullopt);
+    EXPECT_EQ(to_string(DocumentKind::score), "score");
+    EXPECT_EQ(to_string(DocumentKind::clef), "clef");
+}
+
 }  // namespace
 }  // namespace vibscore

@@ -321,18 +321,18 @@ TEST_F(DaemonBus, AcknowledgedComposesSurviveSigkillMidStream) {
     client.reset();
     ASSERT_GT(acknowledged.load(), 7);
     daemon.start_daemon();
-    for (int slot = 0; slot < 7; ++slot) {
+    for (int stream = 0; stream < 7; ++stream) {
         // The newest acknowledged take of each name is stored whole (or a newer one whose reply
         // was lost in the kill); never a partial document.
-        const auto got = daemon.call({"Get", "ss", "score", "stream-" + std::to_string(slot)});
+        const auto got = daemon.call({"Get", "ss", "score", "stream-" + std::to_string(stream)});
         ASSERT_EQ(got.exit_code, 0) << got.err;
         const auto at = got.out.find("take ");
         ASSERT_NE(at, std::string::npos) << got.out;
         const int take = std::stoi(got.out.substr(at + 5));
-        EXPECT_EQ(take % 7, slot);
+        EXPECT_EQ(take % 7, stream);
         int newest_acknowledged = -1;
         for (int i = 0; i < acknowledged; ++i) {
-            if (i % 7 == slot)
+            if (i % 7 == stream)
                 newest_acknowledged = i;
         }
         EXPECT_GE(take, newest_acknowledged);

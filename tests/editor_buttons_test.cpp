@@ -27,8 +27,8 @@ std::string highlighted(const editor::Editor& editor) {
     return menu.lines.empty() ? "" : menu.lines[static_cast<std::size_t>(menu.highlighted)];
 }
 
-const Symbol& symbol(const editor::Editor& editor, std::size_t slot, std::size_t bar = 0) {
-    return editor.model.score().bars.at(bar).symbols.at(slot);
+const Symbol& symbol(const editor::Editor& editor, std::size_t index, std::size_t bar = 0) {
+    return editor.model.score().bars.at(bar).symbols.at(index);
 }
 
 // The notes and rests of every bar in order: entering runs on into a new bar as a bar fills.

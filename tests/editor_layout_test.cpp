@@ -159,7 +159,7 @@ TEST(StaffLayout, TheEditorsCursorBlockAndPlaybackCursor) {
         "<Bar clef=\"lra\"><Note length=\"quarter\" number=\"1\" string=\"2\"/>"
         "<Note length=\"quarter\" number=\"1\" string=\"2\"/></Bar>");
     LayoutOptions options;
-    options.end_slots = true;
+    options.end_positions = true;
     options.cursor = Position{0, 2};  // the empty position at the end of the bar
     options.cursor_string = 5;
     options.block = editor::Block{{0, 0}, {0, 1}};
@@ -175,7 +175,7 @@ TEST(StaffLayout, TheEditorsCursorBlockAndPlaybackCursor) {
     EXPECT_FALSE(cell(layout, row_of_string(2), layout.x_of({0, 1})).overlay &
                  editor::overlay_selected);
     EXPECT_EQ(cell(layout, editor::row_playback, layout.x_of({0, 1})).glyph, "●");
-    // Without end slots (show) the end of a bar has no place of its own.
+    // Without end positions (show) the end of a bar has no place of its own.
     EXPECT_EQ(layout_staff(score).x_of({0, 2}), -1);
 }
 

@@ -202,7 +202,6 @@ TEST_F(EvdevActuatorTest, PeriodicDeviceCapabilities) {
     EXPECT_TRUE(capabilities.effect_memory);
     EXPECT_TRUE(capabilities.envelopes);
     EXPECT_TRUE(capabilities.gain_control);
-    EXPECT_FALSE(capabilities.waveform_playback);
     EXPECT_EQ(capabilities.max_on_time_s, 0.0);
 }
 

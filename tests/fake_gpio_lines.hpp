@@ -1,7 +1,5 @@
 #pragma once
 
-#include <time.h>
-
 #include <algorithm>
 #include <chrono>
 #include <condition_variable>
@@ -13,6 +11,7 @@
 #include <thread>
 #include <vector>
 
+#include "common/monotonic_clock.hpp"
 #include "daemon/drivers/actuator.hpp"
 #include "daemon/drivers/gpio_lines.hpp"
 
@@ -95,8 +94,7 @@ class FakeGpio::Lines final : public drivers::GpioLines {
     std::string describe() const override { return description_; }
 
     void set_values(const std::vector<int>& values) override {
-        timespec now{};
-        ::clock_gettime(CLOCK_MONOTONIC, &now);
+        const std::int64_t now_ns = monotonic_now_ns();
         const std::lock_guard lock(gpio_->mutex_);
         if (values.size() != count_) {
             throw std::logic_error("set_values: " + std::to_string(values.size()) + " values for " +
@@ -111,9 +109,7 @@ class FakeGpio::Lines final : public drivers::GpioLines {
         for (const int value : values) {
             levels.push_back(value != 0 ? 1 : 0);
         }
-        gpio_->records_.push_back(
-            {static_cast<std::int64_t>(now.tv_sec) * 1'000'000'000 + now.tv_nsec, std::move(levels),
-             std::this_thread::get_id()});
+        gpio_->records_.push_back({now_ns, std::move(levels), std::this_thread::get_id()});
         gpio_->changed_.notify_all();
     }
 

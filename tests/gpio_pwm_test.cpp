@@ -102,7 +102,6 @@ TEST_F(GpioSettingsTest, ErmOpensItsLineOnTheDefaultChip) {
     const auto capabilities = erm->capabilities();
     EXPECT_TRUE(capabilities.amplitude_control);
     EXPECT_FALSE(capabilities.frequency_control);
-    EXPECT_FALSE(capabilities.waveform_playback);
     EXPECT_FALSE(capabilities.envelopes);
 }
 

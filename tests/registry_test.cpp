@@ -87,11 +87,11 @@ TEST_F(RegistryTest, LoadsShippedAndStoredDocuments) {
     std::ofstream(store_dir() / "song.score.xml") << score_using("mine.clef.xml", 1, "Song");
     std::ofstream(store_dir() / "notes.txt") << "not a document";
     const auto registry = open();
-    EXPECT_THAT(registry.list(DocumentClass::clef),
+    EXPECT_THAT(registry.list(DocumentKind::clef),
                 ElementsAre(RegistryEntry{"base", "sine, tempo 0.2 s, 3 strings", true},
                             RegistryEntry{"mine", "sine, tempo 0.5 s, 1 string", false}));
     EXPECT_THAT(
-        registry.list(DocumentClass::score),
+        registry.list(DocumentKind::score),
         ElementsAre(RegistryEntry{"song", "Song", false}, RegistryEntry{"tune", "Tune", true}));
     EXPECT_EQ(registry.stored_documents(), 2u);
     EXPECT_EQ(registry.score("song").clef_of(registry.score("song").score.bars[0]).tempo, 0.5);
@@ -99,11 +99,11 @@ TEST_F(RegistryTest, LoadsShippedAndStoredDocuments) {
 
 TEST_F(RegistryTest, GetReturnsTheDocumentTextExactly) {
     const auto registry = open();
-    EXPECT_EQ(registry.get(DocumentClass::clef, "base"), kBaseClef);
-    EXPECT_EQ(registry.get(DocumentClass::score, "tune"), score_using("base.clef.xml", 3, "Tune"));
-    EXPECT_THAT(error_of(Code::not_found, [&] { registry.get(DocumentClass::score, "base"); }),
+    EXPECT_EQ(registry.get(DocumentKind::clef, "base"), kBaseClef);
+    EXPECT_EQ(registry.get(DocumentKind::score, "tune"), score_using("base.clef.xml", 3, "Tune"));
+    EXPECT_THAT(error_of(Code::not_found, [&] { registry.get(DocumentKind::score, "base"); }),
                 HasSubstr("score \"base\""));
-    EXPECT_THAT(error_of(Code::not_found, [&] { registry.get(DocumentClass::clef, "nope"); }),
+    EXPECT_THAT(error_of(Code::not_found, [&] { registry.get(DocumentKind::clef, "nope"); }),
                 HasSubstr("clef \"nope\""));
     error_of(Code::not_found, [&] { registry.score("nope"); });
     error_of(Code::not_found, [&] { registry.clef("nope"); });
@@ -120,18 +120,18 @@ TEST_F(RegistryTest, CreatesTheStoreDirectory) {
 TEST_F(RegistryTest, ComposesAScoreAndAClef) {
     auto registry = open();
     const auto clef_text = sine_clef(0.1, {60, 70}, {0.3});
-    EXPECT_EQ(registry.compose("pulse", clef_text), DocumentClass::clef);
+    EXPECT_EQ(registry.compose("pulse", clef_text), DocumentKind::clef);
     const auto score_text = score_using("pulse.clef.xml", 2, "Beat");
-    EXPECT_EQ(registry.compose("beat", score_text), DocumentClass::score);
+    EXPECT_EQ(registry.compose("beat", score_text), DocumentKind::score);
 
     EXPECT_EQ(read_file(store_dir() / "pulse.clef.xml"), clef_text);
     EXPECT_EQ(read_file(store_dir() / "beat.score.xml"), score_text);
-    EXPECT_EQ(registry.get(DocumentClass::score, "beat"), score_text);
+    EXPECT_EQ(registry.get(DocumentKind::score, "beat"), score_text);
     EXPECT_EQ(registry.clef("pulse").tempo, 0.1);
     const auto bundle = registry.score("beat");
     EXPECT_EQ(bundle.file, "score \"beat\"");
     EXPECT_EQ(bundle.clef_of(bundle.score.bars[0]).strings[1].frequency, 70.0);
-    EXPECT_THAT(names_of(registry.list(DocumentClass::score)), ElementsAre("beat", "tune"));
+    EXPECT_THAT(names_of(registry.list(DocumentKind::score)), ElementsAre("beat", "tune"));
     EXPECT_EQ(registry.stored_documents(), 2u);
     EXPECT_EQ(registry.stored_bytes(), clef_text.size() + score_text.size());
 }
@@ -139,7 +139,7 @@ TEST_F(RegistryTest, ComposesAScoreAndAClef) {
 TEST_F(RegistryTest, AcceptsTheThreeHrefForms) {
     auto registry = open();
     for (const std::string href : {"base.clef.xml", "base.xml", "base"}) {
-        EXPECT_EQ(registry.compose("s", score_using(href, 3)), DocumentClass::score) << href;
+        EXPECT_EQ(registry.compose("s", score_using(href, 3)), DocumentKind::score) << href;
         EXPECT_EQ(registry.score("s").clefs.at("c").tempo, 0.2) << href;
     }
 }
@@ -149,8 +149,8 @@ TEST_F(RegistryTest, ComposingAnExistingNameReplacesIt) {
     registry.compose("s", score_using("base", 1, "First"));
     const auto second = score_using("base", 2, "Second");
     registry.compose("s", second);
-    EXPECT_EQ(registry.get(DocumentClass::score, "s"), second);
-    EXPECT_EQ(registry.list(DocumentClass::score).at(0).title, "Second");
+    EXPECT_EQ(registry.get(DocumentKind::score, "s"), second);
+    EXPECT_EQ(registry.list(DocumentKind::score).at(0).title, "Second");
     EXPECT_EQ(registry.stored_documents(), 1u);
     EXPECT_EQ(registry.stored_bytes(), second.size());
     EXPECT_EQ(file_names(store_dir()), std::vector<std::string>{"s.score.xml"});
@@ -160,8 +160,8 @@ TEST_F(RegistryTest, AScoreAndAClefMayShareAName) {
     auto registry = open();
     registry.compose("x", sine_clef(0.3, {90}, {1}));
     registry.compose("x", score_using("x.clef.xml"));
-    EXPECT_TRUE(registry.contains(DocumentClass::clef, "x"));
-    EXPECT_TRUE(registry.contains(DocumentClass::score, "x"));
+    EXPECT_TRUE(registry.contains(DocumentKind::clef, "x"));
+    EXPECT_TRUE(registry.contains(DocumentKind::score, "x"));
     EXPECT_EQ(registry.score("x").clefs.at("c").tempo, 0.3);
 }
 
@@ -169,16 +169,16 @@ TEST_F(RegistryTest, AStoredClefShadowsTheShippedOneUntilDeleted) {
     auto registry = open();
     const auto slower = sine_clef(0.4, {110, 160, 210}, {0.5, 1.0});
     registry.compose("base", slower);
-    EXPECT_EQ(registry.get(DocumentClass::clef, "base"), slower);
-    EXPECT_FALSE(registry.is_shipped(DocumentClass::clef, "base"));
-    EXPECT_THAT(registry.list(DocumentClass::clef),
+    EXPECT_EQ(registry.get(DocumentKind::clef, "base"), slower);
+    EXPECT_FALSE(registry.is_shipped(DocumentKind::clef, "base"));
+    EXPECT_THAT(registry.list(DocumentKind::clef),
                 ElementsAre(RegistryEntry{"base", "sine, tempo 0.4 s, 3 strings", false}));
     // The shipped score now plays with the stored clef.
     EXPECT_EQ(registry.score("tune").clefs.at("c").tempo, 0.4);
 
-    registry.remove(DocumentClass::clef, "base");
-    EXPECT_EQ(registry.get(DocumentClass::clef, "base"), kBaseClef);
-    EXPECT_TRUE(registry.is_shipped(DocumentClass::clef, "base"));
+    registry.remove(DocumentKind::clef, "base");
+    EXPECT_EQ(registry.get(DocumentKind::clef, "base"), kBaseClef);
+    EXPECT_TRUE(registry.is_shipped(DocumentKind::clef, "base"));
     EXPECT_EQ(registry.score("tune").clefs.at("c").tempo, 0.2);
     EXPECT_TRUE(file_names(store_dir()).empty());
 }
@@ -187,11 +187,11 @@ TEST_F(RegistryTest, AStoredScoreShadowsTheShippedOneUntilDeleted) {
     auto registry = open();
     const auto mine = score_using("base", 1, "My tune");
     registry.compose("tune", mine);
-    EXPECT_EQ(registry.get(DocumentClass::score, "tune"), mine);
-    EXPECT_THAT(registry.list(DocumentClass::score),
+    EXPECT_EQ(registry.get(DocumentKind::score, "tune"), mine);
+    EXPECT_THAT(registry.list(DocumentKind::score),
                 ElementsAre(RegistryEntry{"tune", "My tune", false}));
-    registry.remove(DocumentClass::score, "tune");
-    EXPECT_THAT(registry.list(DocumentClass::score),
+    registry.remove(DocumentKind::score, "tune");
+    EXPECT_THAT(registry.list(DocumentKind::score),
                 ElementsAre(RegistryEntry{"tune", "Tune", true}));
     EXPECT_EQ(registry.score("tune").score.title, "Tune");
 }
@@ -206,8 +206,8 @@ TEST_F(RegistryTest, RefusesBadNamesNamingThem) {
             error_of(Code::invalid_document, [&] { registry.compose(name, score_using("base")); });
         const auto shown = name.find('\0') == std::string::npos ? name.substr(0, 80) : "a\\x00b";
         EXPECT_THAT(message, HasSubstr("invalid name \"" + shown + "\"")) << name;
-        error_of(Code::invalid_document, [&] { registry.get(DocumentClass::score, name); });
-        error_of(Code::invalid_document, [&] { registry.remove(DocumentClass::clef, name); });
+        error_of(Code::invalid_document, [&] { registry.get(DocumentKind::score, name); });
+        error_of(Code::invalid_document, [&] { registry.remove(DocumentKind::clef, name); });
     }
     EXPECT_EQ(registry.stored_documents(), 0u);
     EXPECT_TRUE(file_names(store_dir()).empty());
@@ -219,7 +219,7 @@ TEST_F(RegistryTest, AcceptsGoodNames) {
          std::vector<std::string>{"a", "0", "a.b-c_d", "9lives", std::string(64, 'z')}) {
         EXPECT_TRUE(is_valid_name(name)) << name;
         registry.compose(name, score_using("base"));
-        EXPECT_TRUE(registry.contains(DocumentClass::score, name)) << name;
+        EXPECT_TRUE(registry.contains(DocumentKind::score, name)) << name;
     }
 }
 
@@ -236,7 +236,7 @@ TEST_F(RegistryTest, RefusesClefHrefsThatAreNotBareNames) {
             << message;
         error_of(Code::invalid_document, [&] { registry.inline_score(score_using(href)); });
     }
-    EXPECT_FALSE(registry.contains(DocumentClass::score, "s"));
+    EXPECT_FALSE(registry.contains(DocumentKind::score, "s"));
 }
 
 TEST_F(RegistryTest, RefusesAScoreNamingAnUnknownClef) {
@@ -281,7 +281,7 @@ TEST_F(RegistryTest, RefusesMoreDocumentsThanTheStoreLimit) {
     EXPECT_THAT(error_of(Code::limit_exceeded, [&] { registry.compose("d", score_using("base")); }),
                 HasSubstr("score \"d\""));
     registry.compose("a", score_using("base", 2));  // replacing needs no new room
-    registry.remove(DocumentClass::score, "b");
+    registry.remove(DocumentKind::score, "b");
     registry.compose("d", score_using("base"));
     EXPECT_EQ(registry.stored_documents(), 3u);
 }
@@ -299,13 +299,13 @@ TEST_F(RegistryTest, RefusesMoreBytesThanTheStoreLimit) {
 
 TEST_F(RegistryTest, DeleteRefusesMissingAndShippedDocuments) {
     auto registry = open();
-    EXPECT_THAT(error_of(Code::not_found, [&] { registry.remove(DocumentClass::score, "nope"); }),
+    EXPECT_THAT(error_of(Code::not_found, [&] { registry.remove(DocumentKind::score, "nope"); }),
                 HasSubstr("score \"nope\""));
-    error_of(Code::not_found, [&] { registry.remove(DocumentClass::clef, "tune"); });
+    error_of(Code::not_found, [&] { registry.remove(DocumentKind::clef, "tune"); });
     EXPECT_THAT(
-        error_of(Code::permission_denied, [&] { registry.remove(DocumentClass::clef, "base"); }),
+        error_of(Code::permission_denied, [&] { registry.remove(DocumentKind::clef, "base"); }),
         HasSubstr("shipped documents are read-only"));
-    error_of(Code::permission_denied, [&] { registry.remove(DocumentClass::score, "tune"); });
+    error_of(Code::permission_denied, [&] { registry.remove(DocumentKind::score, "tune"); });
 }
 
 TEST_F(RegistryTest, DeleteRefusesAClefThatScoresUse) {
@@ -314,13 +314,13 @@ TEST_F(RegistryTest, DeleteRefusesAClefThatScoresUse) {
     registry.compose("song", score_using("mine"));
     registry.compose("other", score_using("mine.xml"));
     const auto message =
-        error_of(Code::in_use, [&] { registry.remove(DocumentClass::clef, "mine"); });
+        error_of(Code::in_use, [&] { registry.remove(DocumentKind::clef, "mine"); });
     EXPECT_THAT(message, HasSubstr("score \"other\""));
     EXPECT_THAT(message, HasSubstr("score \"song\""));
-    EXPECT_TRUE(registry.contains(DocumentClass::clef, "mine"));
-    registry.remove(DocumentClass::score, "song");
-    registry.remove(DocumentClass::score, "other");
-    registry.remove(DocumentClass::clef, "mine");
+    EXPECT_TRUE(registry.contains(DocumentKind::clef, "mine"));
+    registry.remove(DocumentKind::score, "song");
+    registry.remove(DocumentKind::score, "other");
+    registry.remove(DocumentKind::clef, "mine");
     EXPECT_TRUE(file_names(store_dir()).empty());
 }
 
@@ -329,7 +329,7 @@ TEST_F(RegistryTest, DeleteRefusesAShadowingClefWhenTheShippedOneWouldNotFit) {
     registry.compose("base", sine_clef(0.2, {1, 2, 3, 4}, {1, 1}));
     registry.compose("wide", score_using("base", 4));
     const auto message =
-        error_of(Code::in_use, [&] { registry.remove(DocumentClass::clef, "base"); });
+        error_of(Code::in_use, [&] { registry.remove(DocumentKind::clef, "base"); });
     EXPECT_THAT(message, HasSubstr("score \"wide\""));
     EXPECT_THAT(message, HasSubstr("string 4 is beyond"));
     EXPECT_TRUE(std::filesystem::exists(store_dir() / "base.clef.xml"));
@@ -345,7 +345,7 @@ TEST_F(RegistryTest, RefusesAClefChangeThatBreaksAScoreUsingIt) {
     });
     EXPECT_THAT(message, HasSubstr("score \"song\""));
     EXPECT_THAT(message, HasSubstr("score \"song\":6:5: string 3 is beyond clef \"c\""));
-    EXPECT_EQ(registry.get(DocumentClass::clef, "mine"), three);
+    EXPECT_EQ(registry.get(DocumentKind::clef, "mine"), three);
     EXPECT_EQ(read_file(store_dir() / "mine.clef.xml"), three);
     EXPECT_EQ(registry.score("song").clefs.at("c").strings.size(), 3u);
 
@@ -377,15 +377,15 @@ TEST_F(RegistryTest, PersistsAcrossInstances) {
         registry.compose("song", song);
         registry.compose("gone", score_using("base"));
         registry.compose("base", sine_clef(0.3, {1, 2, 3}, {1, 1}));
-        registry.remove(DocumentClass::score, "gone");
+        registry.remove(DocumentKind::score, "gone");
     }
     const auto registry = open();
-    EXPECT_EQ(registry.get(DocumentClass::clef, "mine"), clef_text);
-    EXPECT_EQ(registry.get(DocumentClass::score, "song"), song);
-    EXPECT_FALSE(registry.contains(DocumentClass::score, "gone"));
+    EXPECT_EQ(registry.get(DocumentKind::clef, "mine"), clef_text);
+    EXPECT_EQ(registry.get(DocumentKind::score, "song"), song);
+    EXPECT_FALSE(registry.contains(DocumentKind::score, "gone"));
     EXPECT_EQ(registry.score("tune").clefs.at("c").tempo, 0.3);
     EXPECT_EQ(registry.stored_documents(), 3u);
-    EXPECT_THAT(names_of(registry.list(DocumentClass::score)), ElementsAre("song", "tune"));
+    EXPECT_THAT(names_of(registry.list(DocumentKind::score)), ElementsAre("song", "tune"));
 }
 
 TEST_F(RegistryTest, RemovesStaleTemporaryFilesAtStart) {
@@ -394,7 +394,7 @@ TEST_F(RegistryTest, RemovesStaleTemporaryFilesAtStart) {
     std::ofstream(store_dir() / "song.score.xml") << score_using("base");
     const auto registry = open();
     EXPECT_EQ(file_names(store_dir()), std::vector<std::string>{"song.score.xml"});
-    EXPECT_THAT(names_of(registry.list(DocumentClass::score)), ElementsAre("song", "tune"));
+    EXPECT_THAT(names_of(registry.list(DocumentKind::score)), ElementsAre("song", "tune"));
 }
 
 TEST_F(RegistryTest, SkipsBadStoredFilesAndLoadsTheOthers) {
@@ -412,8 +412,8 @@ TEST_F(RegistryTest, SkipsBadStoredFilesAndLoadsTheOthers) {
     const auto registry = open();
     const auto log = ::testing::internal::GetCapturedStderr();
 
-    EXPECT_THAT(names_of(registry.list(DocumentClass::score)), ElementsAre("good", "tune"));
-    EXPECT_THAT(names_of(registry.list(DocumentClass::clef)), ElementsAre("base"));
+    EXPECT_THAT(names_of(registry.list(DocumentKind::score)), ElementsAre("good", "tune"));
+    EXPECT_THAT(names_of(registry.list(DocumentKind::clef)), ElementsAre("base"));
     EXPECT_EQ(registry.stored_documents(), 1u);
     for (const auto* file : {"cut.score.xml", "broken.clef.xml", "orphan.score.xml",
                              "wrong.clef.xml", "Upper.score.xml", "dir.score.xml"}) {
@@ -430,9 +430,9 @@ TEST_F(RegistryTest, AMissingShippedDirectoryIsOnlyAWarning) {
     Registry registry(shipped_.path() / "missing", store_dir());
     EXPECT_THAT(::testing::internal::GetCapturedStderr(),
                 HasSubstr((shipped_.path() / "missing").string()));
-    EXPECT_TRUE(registry.list(DocumentClass::score).empty());
+    EXPECT_TRUE(registry.list(DocumentKind::score).empty());
     registry.compose("k", kBaseClef);
-    EXPECT_THAT(names_of(registry.list(DocumentClass::clef)), ElementsAre("k"));
+    EXPECT_THAT(names_of(registry.list(DocumentKind::clef)), ElementsAre("k"));
 }
 
 TEST_F(RegistryTest, AFailedWriteChangesNothingAndNamesThePath) {
@@ -446,7 +446,7 @@ TEST_F(RegistryTest, AFailedWriteChangesNothingAndNamesThePath) {
         EXPECT_THAT(error.what(), HasSubstr((store_dir() / "s.score.xml").string()));
         EXPECT_THAT(error.what(), HasSubstr("No such file or directory"));
     }
-    EXPECT_EQ(registry.get(DocumentClass::score, "s"), score_using("base", 1));
+    EXPECT_EQ(registry.get(DocumentKind::score, "s"), score_using("base", 1));
 }
 
 TEST_F(RegistryTest, InlineScoresUseRegistryClefs) {
@@ -459,17 +459,6 @@ TEST_F(RegistryTest, InlineScoresUseRegistryClefs) {
         HasSubstr("<inline score>:4:3: clef \"c\": no clef named \"ghost\""));
     EXPECT_THAT(error_of(Code::invalid_document, [&] { registry.inline_score(kBaseClef); }),
                 HasSubstr("expected <VibScore>"));
-}
-
-TEST(DocumentClass, ParsesSingularAndPlural) {
-    EXPECT_EQ(parse_document_class("score"), DocumentClass::score);
-    EXPECT_EQ(parse_document_class("scores"), DocumentClass::score);
-    EXPECT_EQ(parse_document_class("clef"), DocumentClass::clef);
-    EXPECT_EQ(parse_document_class("clefs"), DocumentClass::clef);
-    EXPECT_EQ(parse_document_class("Score"), std::nullopt);
-    EXPECT_EQ(parse_document_class(""), std::nullopt);
-    EXPECT_EQ(to_string(DocumentClass::score), "score");
-    EXPECT_EQ(to_string(DocumentClass::clef), "clef");
 }
 
 TEST(Registry, LoadsEveryShippedDocument) {
@@ -486,8 +475,8 @@ TEST(Registry, LoadsEveryShippedDocument) {
         scores += name.ends_with(".score.xml") ? 1 : 0;
         clefs += name.ends_with(".clef.xml") ? 1 : 0;
     }
-    EXPECT_EQ(registry.list(DocumentClass::score).size(), scores);
-    EXPECT_EQ(registry.list(DocumentClass::clef).size(), clefs);
+    EXPECT_EQ(registry.list(DocumentKind::score).size(), scores);
+    EXPECT_EQ(registry.list(DocumentKind::clef).size(), clefs);
     EXPECT_EQ(registry.score("alarm").file, "score \"alarm\"");
     EXPECT_EQ(registry.stored_documents(), 0u);
 }
@@ -512,17 +501,17 @@ class Fd {
     int fd_;
 };
 
-constexpr long kCrashSlots = 4;  // slot 0 is a clef; slots 1-3 are scores that use it
+constexpr long kCrashNames = 4;  // name 0 is a clef; names 1-3 are scores that use it
 
 std::string crash_name(long seq) {
-    return seq % kCrashSlots == 0 ? "crash-clef" : "crash-" + std::to_string(seq % kCrashSlots);
+    return seq % kCrashNames == 0 ? "crash-clef" : "crash-" + std::to_string(seq % kCrashNames);
 }
 
 // A distinct, complete document for each sequence number, marked at both ends. At about 60 KB
 // the kill often lands while it is being written.
 std::string crash_document(long seq) {
     const auto mark = "<!-- seq " + std::to_string(seq) + " -->\n";
-    if (seq % kCrashSlots == 0) {
+    if (seq % kCrashNames == 0) {
         const double tempo = 0.1 + static_cast<double>(seq % 100) / 1000;
         return mark + sine_clef(tempo, {100, 150, 200}, {0.5, 1.0}) + "\n<!-- " +
                std::string(60'000, 'p') + " -->\n" + mark;
@@ -599,7 +588,7 @@ TEST(RegistryCrash, SigkillNeverLeavesAPartialDocumentNorLosesAnAcknowledgedOne)
         ASSERT_EQ(::pipe2(fds, O_CLOEXEC), 0);
         Fd read_end(fds[0]);
         Fd write_end(fds[1]);
-        const long first = round * 1'000'000;  // a multiple of kCrashSlots: the clef comes first
+        const long first = round * 1'000'000;  // a multiple of kCrashNames: the clef comes first
         const pid_t child = ::fork();
         ASSERT_GE(child, 0);
         if (child == 0) {
@@ -653,10 +642,9 @@ TEST(RegistryCrash, SigkillNeverLeavesAPartialDocumentNorLosesAnAcknowledgedOne)
 
         // Every acknowledged compose is there, or the one in flight that replaced it.
         for (auto& [name, expected] : durable) {
-            const auto document_class =
-                name == "crash-clef" ? DocumentClass::clef : DocumentClass::score;
-            ASSERT_TRUE(registry.contains(document_class, name)) << name;
-            const auto text = registry.get(document_class, name);
+            const auto kind = name == "crash-clef" ? DocumentKind::clef : DocumentKind::score;
+            ASSERT_TRUE(registry.contains(kind, name)) << name;
+            const auto text = registry.get(kind, name);
             const long stored = crash_seq(text);
             EXPECT_TRUE(stored == expected || stored == in_flight)
                 << name << ": stored seq " << stored << ", acknowledged " << expected
@@ -665,7 +653,7 @@ TEST(RegistryCrash, SigkillNeverLeavesAPartialDocumentNorLosesAnAcknowledgedOne)
             expected = stored;
         }
         if (crash_name(in_flight) != "crash-clef" && !durable.contains(crash_name(in_flight)) &&
-            registry.contains(DocumentClass::score, crash_name(in_flight))) {
+            registry.contains(DocumentKind::score, crash_name(in_flight))) {
             durable[crash_name(in_flight)] = in_flight;  // created but not acknowledged
         }
     }

@@ -80,7 +80,6 @@ TEST(SimActuator, NameAndCapabilities) {
     const auto capabilities = sim.capabilities();
     EXPECT_TRUE(capabilities.amplitude_control);
     EXPECT_TRUE(capabilities.frequency_control);
-    EXPECT_FALSE(capabilities.waveform_playback);
     EXPECT_FALSE(capabilities.effect_memory);
 }
 

@@ -5,7 +5,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <ctime>
 #include <filesystem>
 #include <memory>
 #include <optional>
@@ -16,7 +15,8 @@
 #include "client/editor/editor.hpp"
 #include "client/editor/evdev_buttons.hpp"
 #include "client/editor/ncurses_view.hpp"
-#include "daemon/drivers/actuator.hpp"
+#include "common/device_error.hpp"
+#include "common/monotonic_clock.hpp"
 #include "score/document_error.hpp"
 #include "score/score_xml.hpp"
 
@@ -24,10 +24,9 @@ namespace vibscore::editor {
 
 namespace {
 
+// Now on the clock the kernel stamps key events with (EvdevDevice asks it to).
 std::chrono::microseconds monotonic_now() {
-    timespec now{};
-    clock_gettime(CLOCK_MONOTONIC, &now);
-    return std::chrono::seconds(now.tv_sec) + std::chrono::microseconds(now.tv_nsec / 1000);
+    return std::chrono::microseconds(monotonic_now_us());
 }
 
 std::string stem(const std::string& path) {
@@ -188,7 +187,7 @@ class Session {
                     handle(editor_->press(*held));
                 }
                 ++it;
-            } catch (const drivers::DeviceError& error) {
+            } catch (const DeviceError& error) {
                 message_ = error.what();  // the keyboard still works
                 it = buttons_.erase(it);
             }
@@ -355,7 +354,7 @@ int run_editor(const EditOptions& options, std::ostream& err) {
         return 0;
     } catch (const DocumentError& error) {
         err << error.what() << "\n";
-    } catch (const drivers::DeviceError& error) {
+    } catch (const DeviceError& error) {
         err << "vibscore edit: " << error.what() << "\n";
     } catch (const std::invalid_argument& error) {
         err << "vibscore edit: " << error.what() << "\n";

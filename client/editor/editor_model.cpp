@@ -184,7 +184,7 @@ void EditorModel::restore(const Snapshot& snapshot) {
 void EditorModel::land() {
     const auto& bars = score_->bars;
     cursor_.bar = std::min(cursor_.bar, bars.size() - 1);
-    cursor_.slot = std::min(cursor_.slot, bars[cursor_.bar].symbols.size());
+    cursor_.symbol = std::min(cursor_.symbol, bars[cursor_.bar].symbols.size());
     if (const Note* note = note_at(*score_, cursor_)) {
         string_ = note->string;
     }
@@ -203,22 +203,22 @@ bool EditorModel::done(std::string what) {
 // --- moving -------------------------------------------------------------------------------
 
 void EditorModel::step_left() {
-    if (cursor_.slot > 0) {
-        --cursor_.slot;
+    if (cursor_.symbol > 0) {
+        --cursor_.symbol;
     } else if (cursor_.bar > 0) {
         --cursor_.bar;
-        cursor_.slot = score_->bars[cursor_.bar].symbols.size();
+        cursor_.symbol = score_->bars[cursor_.bar].symbols.size();
     }
     land();
 }
 
 bool EditorModel::step_right() {
     const auto& bars = score_->bars;
-    if (cursor_.slot < bars[cursor_.bar].symbols.size()) {
-        ++cursor_.slot;
+    if (cursor_.symbol < bars[cursor_.bar].symbols.size()) {
+        ++cursor_.symbol;
     } else if (cursor_.bar + 1 < bars.size()) {
         ++cursor_.bar;
-        cursor_.slot = 0;
+        cursor_.symbol = 0;
     } else {
         return false;
     }
@@ -293,7 +293,7 @@ bool EditorModel::insert_note(int number) {
     note.string = string_;
     number_ = number;
     insert_symbol(edit(), cursor_, note);
-    ++cursor_.slot;
+    ++cursor_.symbol;
     land();
     return done("");
 }
@@ -301,7 +301,7 @@ bool EditorModel::insert_note(int number) {
 bool EditorModel::insert_rest() {
     anchor_.reset();
     insert_symbol(edit(), cursor_, Rest{length_});
-    ++cursor_.slot;
+    ++cursor_.symbol;
     land();
     return done("");
 }
@@ -309,7 +309,7 @@ bool EditorModel::insert_rest() {
 bool EditorModel::insert_blank() {
     anchor_.reset();
     auto& symbols = edit().bars[cursor_.bar].symbols;
-    symbols.insert(symbols.begin() + static_cast<std::ptrdiff_t>(cursor_.slot), Blank{});
+    symbols.insert(symbols.begin() + static_cast<std::ptrdiff_t>(cursor_.symbol), Blank{});
     return done("");
 }
 
@@ -324,7 +324,7 @@ bool EditorModel::begin_entry(Continuing continuing) {
         // Entering runs on into the next bar as a bar fills, as in notation editors: a new one
         // (on the same clef) after the last bar. Leaving takes a new bar back with the proposal.
         if (cursor_.bar + 1 == score_->bars.size()) {
-            vibscore::editor::split_bar(edit(), cursor_);
+            split_bar_at(edit(), cursor_);
         }
         cursor_ = {cursor_.bar + 1, 0};
     }
@@ -345,7 +345,7 @@ bool EditorModel::begin_entry(Continuing continuing) {
 
 bool EditorModel::at_end_of_full_bar() const {
     const Bar& bar = score_->bars[cursor_.bar];
-    return cursor_.slot == bar.symbols.size() && Score::beat_count(bar) >= beats_in_a_full_bar;
+    return cursor_.symbol == bar.symbols.size() && Score::beat_count(bar) >= beats_in_a_full_bar;
 }
 
 void EditorModel::entry_string(int delta) {
@@ -464,7 +464,7 @@ void EditorModel::end_entry() {
     } else if (const auto* rest = std::get_if<Rest>(symbol_at(*score_, cursor_))) {
         rest_length_ = rest->length;
     }
-    ++cursor_.slot;
+    ++cursor_.symbol;
     land();
 }
 
@@ -482,7 +482,7 @@ void EditorModel::cancel_entry() {
 
 bool EditorModel::split_bar() {
     anchor_.reset();
-    vibscore::editor::split_bar(edit(), cursor_);
+    split_bar_at(edit(), cursor_);
     cursor_ = {cursor_.bar + 1, 0};
     land();
     return done("new bar");
@@ -492,7 +492,7 @@ bool EditorModel::delete_at_cursor() {
     const auto used_before = clefs_in_use(*score_);
     if (const auto marked = block()) {
         Score& score = edit();
-        erase(score, *marked);
+        erase_block(score, *marked);
         drop_clefs_no_longer_used(score, used_before);
         cursor_ = marked->first;
         anchor_.reset();
@@ -512,12 +512,12 @@ bool EditorModel::delete_at_cursor() {
                                         serial(*previous, tie) == serial(*note, tie) &&
                                         serial(*next, tie) == serial(*note, tie);
                 if (!inside_run) {
-                    vibscore::editor::untie(score, cursor_, tie);
+                    untie_note(score, cursor_, tie);
                 }
             }
         }
         auto& symbols = score.bars[cursor_.bar].symbols;
-        symbols.erase(symbols.begin() + static_cast<std::ptrdiff_t>(cursor_.slot));
+        symbols.erase(symbols.begin() + static_cast<std::ptrdiff_t>(cursor_.symbol));
         land();
         return done("");
     }
@@ -586,7 +586,7 @@ bool EditorModel::untie(Tie tie) {
     }
     Score& score = edit();
     for (const auto at : notes) {
-        vibscore::editor::untie(score, at, tie);
+        untie_note(score, at, tie);
     }
     return done(tie == Tie::legato ? "legato removed" : "portamento removed");
 }
@@ -679,14 +679,14 @@ bool EditorModel::shift_numbers(int delta) {
 
 bool EditorModel::copy() {
     if (const auto marked = block()) {
-        clipboard_ = vibscore::editor::copy(*score_, *marked);
+        clipboard_ = copy_block(*score_, *marked);
         return done("block copied");
     }
     const auto at = at_hand();
     if (!at) {
         return refuse("nothing here to copy");
     }
-    clipboard_ = vibscore::editor::copy(*score_, Block{*at, {at->bar, at->slot + 1}});
+    clipboard_ = copy_block(*score_, Block{*at, {at->bar, at->symbol + 1}});
     return done("copied");
 }
 
@@ -697,7 +697,7 @@ bool EditorModel::cut() {
             return refuse("nothing here to cut");
         }
         anchor_ = *at;
-        cursor_ = {at->bar, at->slot + 1};
+        cursor_ = {at->bar, at->symbol + 1};
     }
     copy();
     delete_at_cursor();
@@ -710,11 +710,11 @@ bool EditorModel::paste() {
     }
     Score& score = edit();
     if (const auto marked = block()) {
-        erase(score, *marked);
+        erase_block(score, *marked);
         cursor_ = marked->first;
     }
     anchor_.reset();
-    cursor_ = vibscore::editor::paste(score, cursor_, clipboard_);
+    cursor_ = paste_clip(score, cursor_, clipboard_);
     land();
     return done("pasted");
 }
@@ -748,8 +748,8 @@ bool EditorModel::set_bar_clef(const std::string& id) {
     std::size_t last = cursor_.bar;
     if (const auto marked = block()) {
         first = marked->first.bar;
-        last = marked->end.slot == 0 && marked->end.bar > first ? marked->end.bar - 1
-                                                                : marked->end.bar;
+        last = marked->end.symbol == 0 && marked->end.bar > first ? marked->end.bar - 1
+                                                                  : marked->end.bar;
     }
     const auto used_before = clefs_in_use(*score_);
     Score changed = *score_;
@@ -889,7 +889,7 @@ std::string EditorModel::fingerprint() const {
     }
     text += '#';
     number(static_cast<long long>(cursor_.bar));
-    number(static_cast<long long>(cursor_.slot));
+    number(static_cast<long long>(cursor_.symbol));
     number(string_);
     number(static_cast<int>(length_));
     number(number_);
@@ -898,7 +898,7 @@ std::string EditorModel::fingerprint() const {
     if (anchor_) {
         text += 'A';
         number(static_cast<long long>(anchor_->bar));
-        number(static_cast<long long>(anchor_->slot));
+        number(static_cast<long long>(anchor_->symbol));
         number(anchor_sticky_);
     }
     text += 'C';

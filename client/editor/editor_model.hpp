@@ -87,7 +87,6 @@ class EditorModel {
     // one after the last bar.
     enum class Continuing { no, yes };
     bool begin_entry(Continuing continuing = Continuing::no);
-    bool in_entry() const { return in_entry_; }
     // Moves the note `delta` strings up, wrapping round the six; a rest becomes the proposed
     // note there. The active string follows.
     void entry_string(int delta);

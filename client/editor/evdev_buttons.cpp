@@ -2,32 +2,15 @@
 
 #include <fcntl.h>
 #include <libevdev/libevdev.h>
-#include <unistd.h>
 
-#include <cerrno>
 #include <cstring>
 #include <ctime>
 
-#include "daemon/drivers/actuator.hpp"
-
 namespace vibscore::editor {
 
-using drivers::DeviceError;
-
-void EvdevDevice::Free::operator()(libevdev* device) const {
-    libevdev_free(device);
-}
-
 EvdevDevice::EvdevDevice(std::string path, bool grab)
-    : path_(std::move(path)), fd_(::open(path_.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC)) {
-    if (fd_.get() < 0) {
-        throw DeviceError(path_ + ": cannot open: " + std::strerror(errno));
-    }
-    libevdev* device = nullptr;
-    if (const int created = libevdev_new_from_fd(fd_.get(), &device); created < 0) {
-        throw DeviceError(path_ + ": not an evdev device: " + std::strerror(-created));
-    }
-    device_.reset(device);
+    : path_(std::move(path)), node_(path_, O_RDONLY | O_NONBLOCK) {
+    libevdev* const device = node_.device();
     if (!libevdev_has_event_type(device, EV_KEY)) {
         throw DeviceError(path_ + " (" + libevdev_get_name(device) + ") has no keys");
     }
@@ -43,7 +26,7 @@ EvdevDevice::EvdevDevice(std::string path, bool grab)
 }
 
 int EvdevDevice::next_event(unsigned flags, input_event& event) {
-    return libevdev_next_event(device_.get(), flags, &event);
+    return libevdev_next_event(node_.device(), flags, &event);
 }
 
 namespace {

@@ -3,16 +3,13 @@
 #include <linux/input.h>
 
 #include <chrono>
-#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "client/editor/button_map.hpp"
 #include "client/editor/buttons.hpp"
-#include "daemon/unique_fd.hpp"
-
-struct libevdev;
+#include "common/evdev_node.hpp"
 
 namespace vibscore::editor {
 
@@ -26,23 +23,19 @@ class InputEvents {
 };
 
 // An evdev device (gpio-keys, a phone's keys, a keyboard) opened read-only and non-blocking,
-// stamping its events with the monotonic clock. Throws drivers::DeviceError naming the path.
+// stamping its events with the monotonic clock. Throws DeviceError naming the path.
 class EvdevDevice final : public InputEvents {
   public:
     // grab: take the keys for the editor alone, so volume keys stop changing the volume.
     EvdevDevice(std::string path, bool grab);
 
-    int fd() const { return fd_.get(); }
+    int fd() const { return node_.fd(); }
     const std::string& path() const { return path_; }
     int next_event(unsigned flags, input_event& event) override;
 
   private:
-    struct Free {
-        void operator()(libevdev* device) const;
-    };
     std::string path_;
-    UniqueFd fd_;  // declared first: closed after libevdev lets go of it (and of a grab)
-    std::unique_ptr<libevdev, Free> device_;
+    EvdevNode node_;
 };
 
 // Turns key events into button presses through a ButtonMap. A key with only a short-press
@@ -53,7 +46,7 @@ class ButtonReader {
   public:
     ButtonReader(InputEvents& events, ButtonMap map, std::string device);
 
-    // Every press waiting on the device, in order. Throws drivers::DeviceError when the
+    // Every press waiting on the device, in order. Throws DeviceError when the
     // device fails (unplugged, read error).
     std::vector<Button> read();
     // The long press of a key held since before now - hold_ms (`now` on the monotonic clock).

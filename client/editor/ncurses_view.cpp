@@ -170,7 +170,7 @@ void Screen::draw(const EditorModel& model, const ButtonScheme& scheme, const Vi
     werase(stdscr);
 
     LayoutOptions options;
-    options.end_slots = true;
+    options.end_positions = true;
     options.cursor = model.cursor();
     options.cursor_string = model.string();
     options.block = model.block();

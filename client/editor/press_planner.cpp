@@ -87,8 +87,8 @@ int progress(const Editor& editor, const Score& target) {
     Score without_open = editor.model.score();
     const Position open = editor.model.cursor();
     auto& symbols = without_open.bars.at(open.bar).symbols;
-    if (open.slot < symbols.size()) {
-        symbols.erase(symbols.begin() + static_cast<std::ptrdiff_t>(open.slot));
+    if (open.symbol < symbols.size()) {
+        symbols.erase(symbols.begin() + static_cast<std::ptrdiff_t>(open.symbol));
     }
     const int entered = entered_prefix(without_open, target);
     if (entered >= 0 || !symbols.empty() || open.bar + 1 != without_open.bars.size()) {

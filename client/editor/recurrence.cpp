@@ -20,14 +20,15 @@ std::vector<Placed> symbols_before(const Score& score, Position at) {
     std::vector<Placed> found;
     for (std::size_t bar = 0; bar <= at.bar && bar < score.bars.size(); ++bar) {
         const auto& symbols = score.bars[bar].symbols;
-        const std::size_t end = bar == at.bar ? std::min(at.slot, symbols.size()) : symbols.size();
+        const std::size_t end =
+            bar == at.bar ? std::min(at.symbol, symbols.size()) : symbols.size();
         double beat = 0.0;
-        for (std::size_t slot = 0; slot < end; ++slot) {
-            if (std::holds_alternative<Blank>(symbols[slot])) {
+        for (std::size_t s = 0; s < end; ++s) {
+            if (std::holds_alternative<Blank>(symbols[s])) {
                 continue;
             }
-            found.push_back({&symbols[slot], beat});
-            beat += beats(length_of(symbols[slot]));
+            found.push_back({&symbols[s], beat});
+            beat += beats(length_of(symbols[s]));
         }
     }
     return found;

@@ -14,10 +14,6 @@ std::int64_t serial(const Note& note, Tie tie) {
     return tie == Tie::legato ? note.legato : note.portamento;
 }
 
-bool is_end(const Score& score, Position at) {
-    return at.slot >= score.bars.at(at.bar).symbols.size();
-}
-
 bool is_empty_position(const Score& score, Position at) {
     const Symbol* symbol = symbol_at(score, at);
     return symbol == nullptr || std::holds_alternative<Blank>(*symbol);
@@ -25,12 +21,12 @@ bool is_empty_position(const Score& score, Position at) {
 
 const Symbol* symbol_at(const Score& score, Position at) {
     const auto& symbols = score.bars.at(at.bar).symbols;
-    return at.slot < symbols.size() ? &symbols[at.slot] : nullptr;
+    return at.symbol < symbols.size() ? &symbols[at.symbol] : nullptr;
 }
 
 Symbol* symbol_at(Score& score, Position at) {
     auto& symbols = score.bars.at(at.bar).symbols;
-    return at.slot < symbols.size() ? &symbols[at.slot] : nullptr;
+    return at.symbol < symbols.size() ? &symbols[at.symbol] : nullptr;
 }
 
 Note* note_at(Score& score, Position at) {
@@ -46,16 +42,16 @@ const Note* note_at(const Score& score, Position at) {
 std::optional<Position> symbol_before(const Score& score, Position at) {
     Position p = at;
     while (true) {
-        if (p.slot == 0) {
+        if (p.symbol == 0) {
             if (p.bar == 0) {
                 return std::nullopt;
             }
             --p.bar;
-            p.slot = score.bars[p.bar].symbols.size();
+            p.symbol = score.bars[p.bar].symbols.size();
             continue;
         }
-        --p.slot;
-        if (!std::holds_alternative<Blank>(score.bars[p.bar].symbols[p.slot])) {
+        --p.symbol;
+        if (!std::holds_alternative<Blank>(score.bars[p.bar].symbols[p.symbol])) {
             return p;
         }
     }
@@ -64,15 +60,15 @@ std::optional<Position> symbol_before(const Score& score, Position at) {
 std::optional<Position> symbol_after(const Score& score, Position at) {
     Position p = at;
     while (true) {
-        ++p.slot;
-        while (p.slot >= score.bars[p.bar].symbols.size()) {
+        ++p.symbol;
+        while (p.symbol >= score.bars[p.bar].symbols.size()) {
             if (p.bar + 1 >= score.bars.size()) {
                 return std::nullopt;
             }
             ++p.bar;
-            p.slot = 0;
+            p.symbol = 0;
         }
-        if (!std::holds_alternative<Blank>(score.bars[p.bar].symbols[p.slot])) {
+        if (!std::holds_alternative<Blank>(score.bars[p.bar].symbols[p.symbol])) {
             return p;
         }
     }
@@ -81,23 +77,13 @@ std::optional<Position> symbol_after(const Score& score, Position at) {
 std::vector<Position> symbols_in(const Score& score, const Block& block) {
     std::vector<Position> found;
     for (std::size_t b = block.first.bar; b <= block.end.bar && b < score.bars.size(); ++b) {
-        const std::size_t from = b == block.first.bar ? block.first.slot : 0;
-        const std::size_t to = b == block.end.bar ? block.end.slot : score.bars[b].symbols.size();
+        const std::size_t from = b == block.first.bar ? block.first.symbol : 0;
+        const std::size_t to = b == block.end.bar ? block.end.symbol : score.bars[b].symbols.size();
         for (std::size_t s = from; s < to && s < score.bars[b].symbols.size(); ++s) {
             found.push_back({b, s});
         }
     }
     return found;
-}
-
-std::vector<Position> notes_in(const Score& score, const Block& block) {
-    std::vector<Position> notes;
-    for (const auto at : symbols_in(score, block)) {
-        if (note_at(score, at) != nullptr) {
-            notes.push_back(at);
-        }
-    }
-    return notes;
 }
 
 std::int64_t unused_serial(const Score& score, Tie tie) {
@@ -159,7 +145,7 @@ void tie_together(Score& score, const std::vector<Position>& notes, Tie tie) {
     }
 }
 
-void untie(Score& score, Position at, Tie tie) {
+void untie_note(Score& score, Position at, Tie tie) {
     Note* note = note_at(score, at);
     if (note == nullptr || serial(*note, tie) == 0) {
         return;
@@ -203,17 +189,17 @@ void set_length_of(Symbol& symbol, Length length) {
 
 void insert_symbol(Score& score, Position at, Symbol symbol) {
     auto& symbols = score.bars.at(at.bar).symbols;
-    if (at.slot < symbols.size() && std::holds_alternative<Blank>(symbols[at.slot])) {
-        symbols[at.slot] = std::move(symbol);
+    if (at.symbol < symbols.size() && std::holds_alternative<Blank>(symbols[at.symbol])) {
+        symbols[at.symbol] = std::move(symbol);
         return;
     }
-    symbols.insert(symbols.begin() + static_cast<std::ptrdiff_t>(at.slot), std::move(symbol));
+    symbols.insert(symbols.begin() + static_cast<std::ptrdiff_t>(at.symbol), std::move(symbol));
 }
 
-void split_bar(Score& score, Position at) {
+void split_bar_at(Score& score, Position at) {
     auto& bar = score.bars.at(at.bar);
     Bar tail{bar.clef, {}};
-    const auto cut = bar.symbols.begin() + static_cast<std::ptrdiff_t>(at.slot);
+    const auto cut = bar.symbols.begin() + static_cast<std::ptrdiff_t>(at.symbol);
     tail.symbols.assign(std::make_move_iterator(cut), std::make_move_iterator(bar.symbols.end()));
     bar.symbols.erase(cut, bar.symbols.end());
     score.bars.insert(score.bars.begin() + static_cast<std::ptrdiff_t>(at.bar) + 1,
@@ -228,21 +214,21 @@ void join_with_next(Score& score, std::size_t bar) {
     score.bars.erase(score.bars.begin() + static_cast<std::ptrdiff_t>(bar) + 1);
 }
 
-void erase(Score& score, const Block& block) {
+void erase_block(Score& score, const Block& block) {
     if (block.first >= block.end) {
         return;
     }
     auto& first = score.bars.at(block.first.bar).symbols;
     if (block.first.bar == block.end.bar) {
-        first.erase(first.begin() + static_cast<std::ptrdiff_t>(block.first.slot),
-                    first.begin() + static_cast<std::ptrdiff_t>(block.end.slot));
+        first.erase(first.begin() + static_cast<std::ptrdiff_t>(block.first.symbol),
+                    first.begin() + static_cast<std::ptrdiff_t>(block.end.symbol));
         return;
     }
     auto& last = score.bars.at(block.end.bar).symbols;
     std::vector<Symbol> kept(
-        std::make_move_iterator(last.begin() + static_cast<std::ptrdiff_t>(block.end.slot)),
+        std::make_move_iterator(last.begin() + static_cast<std::ptrdiff_t>(block.end.symbol)),
         std::make_move_iterator(last.end()));
-    first.erase(first.begin() + static_cast<std::ptrdiff_t>(block.first.slot), first.end());
+    first.erase(first.begin() + static_cast<std::ptrdiff_t>(block.first.symbol), first.end());
     first.insert(first.end(), std::make_move_iterator(kept.begin()),
                  std::make_move_iterator(kept.end()));
     score.bars.erase(score.bars.begin() + static_cast<std::ptrdiff_t>(block.first.bar) + 1,
@@ -255,15 +241,15 @@ bool Clip::empty() const {
            bars.size() <= 1;
 }
 
-Clip copy(const Score& score, const Block& block) {
+Clip copy_block(const Score& score, const Block& block) {
     Clip clip;
     if (block.first >= block.end) {
         return clip;
     }
     for (std::size_t b = block.first.bar; b <= block.end.bar; ++b) {
         const auto& bar = score.bars.at(b);
-        const std::size_t from = b == block.first.bar ? block.first.slot : 0;
-        const std::size_t to = b == block.end.bar ? block.end.slot : bar.symbols.size();
+        const std::size_t from = b == block.first.bar ? block.first.symbol : 0;
+        const std::size_t to = b == block.end.bar ? block.end.symbol : bar.symbols.size();
         Bar part{bar.clef, {}};
         part.symbols.assign(bar.symbols.begin() + static_cast<std::ptrdiff_t>(from),
                             bar.symbols.begin() + static_cast<std::ptrdiff_t>(to));
@@ -272,7 +258,7 @@ Clip copy(const Score& score, const Block& block) {
     return clip;
 }
 
-Position paste(Score& score, Position at, const Clip& clip) {
+Position paste_clip(Score& score, Position at, const Clip& clip) {
     if (clip.bars.empty()) {
         return at;
     }
@@ -296,17 +282,17 @@ Position paste(Score& score, Position at, const Clip& clip) {
             bar.clef = here_clef;  // copied from a score that declared other clefs
         }
     }
-    split_bar(score, at);
-    Position end{at.bar, at.slot};
+    split_bar_at(score, at);
+    Position end{at.bar, at.symbol};
     for (std::size_t i = 0; i < fresh.bars.size(); ++i) {
         if (i > 0) {
-            split_bar(score, end);
+            split_bar_at(score, end);
             score.bars[end.bar + 1].clef = fresh.bars[i].clef;
             end = {end.bar + 1, 0};
         }
         auto& symbols = score.bars[end.bar].symbols;
         symbols.insert(symbols.end(), fresh.bars[i].symbols.begin(), fresh.bars[i].symbols.end());
-        end.slot = symbols.size();
+        end.symbol = symbols.size();
     }
     join_with_next(score, end.bar);  // the symbols that stood after `at`
     return end;
@@ -386,13 +372,6 @@ std::optional<Length> toggled_dot(Length length) {
             break;
     }
     return std::nullopt;
-}
-
-void drop_unused_clefs(Score& score) {
-    std::erase_if(score.clefs, [&](const ClefDeclaration& clef) {
-        return std::none_of(score.bars.begin(), score.bars.end(),
-                            [&](const Bar& bar) { return bar.clef == clef.id; });
-    });
 }
 
 }  // namespace vibscore::editor

@@ -24,7 +24,6 @@ enum class Tie { legato, portamento };
 std::int64_t& serial(Note& note, Tie tie);
 std::int64_t serial(const Note& note, Tie tie);
 
-bool is_end(const Score& score, Position at);
 // The end of a bar or a Blank: where a new symbol can go without moving another.
 bool is_empty_position(const Score& score, Position at);
 const Symbol* symbol_at(const Score& score, Position at);
@@ -38,7 +37,6 @@ std::optional<Position> symbol_after(const Score& score, Position at);
 
 // The positions of the symbols (Blanks included) in a block.
 std::vector<Position> symbols_in(const Score& score, const Block& block);
-std::vector<Position> notes_in(const Score& score, const Block& block);
 
 // One past the largest serial of this kind in the score: a serial no note uses yet.
 std::int64_t unused_serial(const Score& score, Tie tie);
@@ -49,7 +47,7 @@ bool tie_to_previous(Score& score, Position at, Tie tie);
 // Ties every note of the list together with one new serial.
 void tie_together(Score& score, const std::vector<Position>& notes, Tie tie);
 // Unties the note at `at`; a neighbour left tied to nothing is untied too.
-void untie(Score& score, Position at, Tie tie);
+void untie_note(Score& score, Position at, Tie tie);
 
 // The length of a note or rest (a Blank has none: quarter), and setting it.
 Length length_of(const Symbol& symbol);
@@ -58,11 +56,11 @@ void set_length_of(Symbol& symbol, Length length);
 // Inserts before the symbol at `at` (replacing it when it is a Blank).
 void insert_symbol(Score& score, Position at, Symbol symbol);
 // Ends the bar at `at`: the symbols from `at` on move into a new bar with the same clef.
-void split_bar(Score& score, Position at);
+void split_bar_at(Score& score, Position at);
 // Removes the bar line after bar `bar`, joining the next bar into it.
 void join_with_next(Score& score, std::size_t bar);
 // Removes a block's symbols and the bar lines inside it.
-void erase(Score& score, const Block& block);
+void erase_block(Score& score, const Block& block);
 
 // Copied symbols: bars[0] continues the bar pasted into; each further bar starts a new bar.
 struct Clip {
@@ -70,10 +68,10 @@ struct Clip {
     bool empty() const;
     bool operator==(const Clip&) const = default;
 };
-Clip copy(const Score& score, const Block& block);
+Clip copy_block(const Score& score, const Block& block);
 // Pastes before `at`, giving the clip's ties fresh serials so they tie only among themselves.
 // Returns the position just after the pasted symbols.
-Position paste(Score& score, Position at, const Clip& clip);
+Position paste_clip(Score& score, Position at, const Clip& clip);
 
 // Lengths in the order a user steps through them with Left/Right: plain lengths from 32th to
 // whole; a dotted length steps to the next dotted one (or the plain one where none exists).
@@ -86,8 +84,5 @@ int wrapped(int value, int delta, int lowest, int highest);
 bool is_dotted(Length length);
 // The dotted form of a plain length and back; nullopt when the thesis has no such length.
 std::optional<Length> toggled_dot(Length length);
-
-// Removes declarations no bar uses any more.
-void drop_unused_clefs(Score& score);
 
 }  // namespace vibscore::editor

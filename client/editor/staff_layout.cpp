@@ -16,7 +16,7 @@ constexpr const char* kSustain = "━";
 constexpr const char* kDot = "·";
 constexpr const char* kRest = "▬";
 constexpr const char* kPlayback = "●";
-constexpr int kEndSlotWidth = 2;
+constexpr int kEndWidth = 2;
 
 int plain_width(Length length) {
     switch (length) {
@@ -73,7 +73,7 @@ class Painter {
 
 const Span* span_at(const StaffLayout& layout, Position at) {
     for (const auto& span : layout.spans) {
-        if (span.kind != Span::Kind::bar_line && span.bar == at.bar && span.slot == at.slot) {
+        if (span.kind != Span::Kind::bar_line && span.bar == at.bar && span.symbol == at.symbol) {
             return &span;
         }
     }
@@ -227,14 +227,14 @@ StaffLayout layout_staff(const Score& score, const LayoutOptions& options) {
             layout.spans.push_back({Span::Kind::symbol, b, s, x, width});
             x += width;
         }
-        if (options.end_slots) {
-            layout.spans.push_back({Span::Kind::end_slot, b, bar.symbols.size(), x, kEndSlotWidth});
-            x += kEndSlotWidth;
+        if (options.end_positions) {
+            layout.spans.push_back({Span::Kind::end, b, bar.symbols.size(), x, kEndWidth});
+            x += kEndWidth;
         }
         // Room for the clef box over the bar.
         const int needed = static_cast<int>(boxes.back().text.size()) + 1;
         if (x - start < needed) {
-            if (options.end_slots) {
+            if (options.end_positions) {
                 layout.spans.back().width += needed - (x - start);
             }
             x = start + needed;
@@ -264,7 +264,7 @@ StaffLayout layout_staff(const Score& score, const LayoutOptions& options) {
         if (span.kind != Span::Kind::symbol) {
             continue;
         }
-        const Symbol& symbol = score.bars[span.bar].symbols[span.slot];
+        const Symbol& symbol = score.bars[span.bar].symbols[span.symbol];
         if (const auto* note = std::get_if<Note>(&symbol)) {
             const int row = row_of_string(std::clamp(note->string, 1, 6));
             const std::string head = std::to_string(note->number);
@@ -292,7 +292,7 @@ StaffLayout layout_staff(const Score& score, const LayoutOptions& options) {
 
     if (options.block) {
         for (const auto& span : layout.spans) {
-            const Position at{span.bar, span.slot};
+            const Position at{span.bar, span.symbol};
             if (span.kind == Span::Kind::symbol && options.block->first <= at &&
                 at < options.block->end) {
                 for (int column = span.x; column < span.x + span.width; ++column) {

@@ -63,14 +63,14 @@ constexpr int row_of_string(int string) {
 
 // Where each part of the score landed, in columns.
 struct Span {
-    enum class Kind { bar_line, symbol, end_slot };
+    enum class Kind { bar_line, symbol, end };  // end: the empty position closing a bar
     Kind kind = Kind::symbol;
-    std::size_t bar = 0, slot = 0;
+    std::size_t bar = 0, symbol = 0;
     int x = 0, width = 1;
 };
 
 struct LayoutOptions {
-    bool end_slots = false;  // the editor shows the empty position at the end of each bar
+    bool end_positions = false;  // the editor shows the empty position at the end of each bar
     std::optional<Position> cursor;
     int cursor_string = 1;
     std::optional<Block> block;
@@ -82,7 +82,7 @@ struct StaffLayout {
     std::vector<std::vector<Cell>> rows;  // staff_rows rows of `width` cells
     std::vector<Span> spans;
 
-    // The column of a position's symbol (its head), or of a bar's end slot; -1 if not shown.
+    // The column of a position's symbol (its head), or of a bar's end position; -1 if not shown.
     int x_of(Position at) const;
 };
 

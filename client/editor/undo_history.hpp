@@ -31,8 +31,6 @@ class UndoHistory {
     std::optional<Snapshot> undo(Snapshot current);
     std::optional<Snapshot> redo(Snapshot current);
 
-    bool can_undo() const { return undo_ != nullptr; }
-    bool can_redo() const { return redo_ != nullptr; }
     const Snapshot* last() const { return undo_ ? &undo_->snapshot : nullptr; }
 
   private:

@@ -8,8 +8,6 @@ std::vector<std::string> Capabilities::names() const {
         names.emplace_back("amplitude-control");
     if (frequency_control)
         names.emplace_back("frequency-control");
-    if (waveform_playback)
-        names.emplace_back("waveform-playback");
     if (effect_memory)
         names.emplace_back("effect-memory");
     if (envelopes)

@@ -1,17 +1,21 @@
 #pragma once
 
-#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "common/device_error.hpp"
+
 namespace vibscore::drivers {
+
+// The device failed or went away: what apply() and the backends throw. One type with the editor's
+// keys (common/), so the player and the bus adaptor catch it by this name.
+using vibscore::DeviceError;
 
 // What an actuator backend can do; the player adapts what it sends to it.
 struct Capabilities {
     bool amplitude_control = true;   // strength can vary, not only on/off
     bool frequency_control = false;  // the vibration frequency can be chosen per note
-    bool waveform_playback = false;  // arbitrary sample streams
     bool effect_memory = false;      // effects can be uploaded ahead of their onset (prepare)
     bool envelopes = false;          // a linear ramp can be handed over whole (Drive::ramp_s)
     bool gain_control = false;       // the device scales every drive itself (set_gain)
@@ -32,12 +36,6 @@ struct Drive {
     double ramp_to = 0.0;
     double ramp_s = 0.0;
     bool operator==(const Drive&) const = default;
-};
-
-// The device failed or went away; the message names the device and the errno text.
-class DeviceError : public std::runtime_error {
-  public:
-    using std::runtime_error::runtime_error;
 };
 
 // The narrow interface between the player and an actuator backend. Calls come from the daemon's

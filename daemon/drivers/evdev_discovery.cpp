@@ -8,13 +8,12 @@
 #include <algorithm>
 #include <charconv>
 #include <fstream>
-#include <memory>
 #include <string>
 #include <system_error>
 #include <vector>
 
+#include "common/evdev_node.hpp"
 #include "daemon/drivers/actuator.hpp"
-#include "daemon/unique_fd.hpp"
 
 namespace vibscore::drivers {
 
@@ -74,17 +73,15 @@ bool udev_tags_vibra(const fs::path& udev_data, const CharDeviceNumber& number) 
 }
 
 FfProbeResult kernel_force_feedback(const fs::path& path) {
-    const UniqueFd fd(::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK));
-    if (fd.get() < 0) {
-        return FfProbeResult::unreadable;
+    std::optional<EvdevNode> node;
+    try {
+        node.emplace(path, O_RDONLY | O_NONBLOCK);
+    } catch (const EvdevOpenError& error) {
+        return error.step() == EvdevOpenError::Step::open ? FfProbeResult::unreadable
+                                                          : FfProbeResult::no_force_feedback;
     }
-    libevdev* raw = nullptr;
-    if (libevdev_new_from_fd(fd.get(), &raw) < 0) {
-        return FfProbeResult::no_force_feedback;  // not an event device
-    }
-    const std::unique_ptr<libevdev, decltype(&libevdev_free)> evdev(raw, libevdev_free);
-    const auto has = [&evdev](unsigned code) {
-        return libevdev_has_event_code(evdev.get(), EV_FF, code) != 0;
+    const auto has = [&node](unsigned code) {
+        return libevdev_has_event_code(node->device(), EV_FF, code) != 0;
     };
     const bool usable = has(FF_RUMBLE) || (has(FF_PERIODIC) && (has(FF_SINE) || has(FF_SQUARE)));
     return usable ? FfProbeResult::force_feedback : FfProbeResult::no_force_feedback;

@@ -9,7 +9,7 @@
 #include <cstring>
 #include <utility>
 
-#include "daemon/unique_fd.hpp"
+#include "common/evdev_node.hpp"
 
 namespace vibscore::drivers {
 
@@ -23,27 +23,24 @@ bool FfDeviceError::device_gone() const noexcept {
 
 namespace {
 
-struct LibevdevFree {
-    void operator()(libevdev* device) const noexcept { libevdev_free(device); }
-};
-using LibevdevPtr = std::unique_ptr<libevdev, LibevdevFree>;
+// Read-write: the FF ioctls and writes need write access.
+EvdevNode open_node(const std::string& path) {
+    try {
+        return EvdevNode(path, O_RDWR | O_NONBLOCK);
+    } catch (const EvdevOpenError& error) {
+        const bool opening = error.step() == EvdevOpenError::Step::open;
+        throw FfDeviceError(path, opening ? "open" : "reading the device's capabilities",
+                            error.error_number());
+    }
+}
 
 class KernelFfDevice : public FfDevice {
   public:
-    explicit KernelFfDevice(std::string path) : path_(std::move(path)) {
-        fd_ = UniqueFd(::open(path_.c_str(), O_RDWR | O_CLOEXEC | O_NONBLOCK));
-        if (fd_.get() < 0) {
-            throw FfDeviceError(path_, "open", errno);
-        }
-        libevdev* raw = nullptr;
-        const int result = libevdev_new_from_fd(fd_.get(), &raw);
-        if (result < 0) {
-            throw FfDeviceError(path_, "reading the device's capabilities", -result);
-        }
-        const LibevdevPtr evdev(raw);
-        name_ = libevdev_get_name(evdev.get());
+    explicit KernelFfDevice(std::string path) : path_(std::move(path)), node_(open_node(path_)) {
+        libevdev* const evdev = node_.device();
+        name_ = libevdev_get_name(evdev);
         const auto has = [&](unsigned code) {
-            return libevdev_has_event_code(evdev.get(), EV_FF, code) != 0;
+            return libevdev_has_event_code(evdev, EV_FF, code) != 0;
         };
         features_.periodic = has(FF_PERIODIC);
         features_.sine = has(FF_SINE);
@@ -51,7 +48,7 @@ class KernelFfDevice : public FfDevice {
         features_.rumble = has(FF_RUMBLE);
         features_.gain = has(FF_GAIN);
         int slots = 0;
-        if (libevdev_has_event_type(evdev.get(), EV_FF) && retry_ioctl(EVIOCGEFFECTS, &slots) < 0) {
+        if (libevdev_has_event_type(evdev, EV_FF) && retry_ioctl(EVIOCGEFFECTS, &slots) < 0) {
             throw FfDeviceError(path_, "EVIOCGEFFECTS", errno);
         }
         features_.effect_slots = slots;
@@ -77,7 +74,7 @@ class KernelFfDevice : public FfDevice {
     void write(std::span<const input_event> events) override {
         ssize_t written;
         do {
-            written = ::write(fd_.get(), events.data(), events.size_bytes());
+            written = ::write(node_.fd(), events.data(), events.size_bytes());
         } while (written < 0 && errno == EINTR);
         if (written < 0) {
             throw FfDeviceError(path_, "write", errno);
@@ -95,14 +92,14 @@ class KernelFfDevice : public FfDevice {
     int retry_ioctl(unsigned long request, Arg arg) {
         int result;
         do {
-            result = ::ioctl(fd_.get(), request, arg);
+            result = ::ioctl(node_.fd(), request, arg);
         } while (result < 0 && errno == EINTR);
         return result;
     }
 
     std::string path_;
+    EvdevNode node_;
     std::string name_;
-    UniqueFd fd_;
     FfFeatures features_;
 };
 

@@ -11,6 +11,7 @@
 #include <exception>
 #include <utility>
 
+#include "common/monotonic_clock.hpp"
 #include "daemon/log.hpp"
 
 namespace vibscore::drivers {
@@ -19,15 +20,9 @@ namespace {
 
 constexpr std::int64_t kNanosPerSecond = 1'000'000'000;
 
-std::int64_t now_ns() {
-    timespec now{};
-    ::clock_gettime(CLOCK_MONOTONIC, &now);
-    return static_cast<std::int64_t>(now.tv_sec) * kNanosPerSecond + now.tv_nsec;
-}
-
 void sleep_until(std::int64_t deadline_ns) {
     // A late thread goes straight on: the edge is due, and a system call would only add to it.
-    if (now_ns() >= deadline_ns) {
+    if (monotonic_now_ns() >= deadline_ns) {
         return;
     }
     const timespec deadline{static_cast<time_t>(deadline_ns / kNanosPerSecond),
@@ -40,7 +35,7 @@ void sleep_until(std::int64_t deadline_ns) {
 // period late, whole periods are skipped (keeping the phase) instead of being played in a burst.
 std::int64_t next_period_start(std::int64_t start, std::int64_t period) {
     std::int64_t next = start + period;
-    const std::int64_t behind = now_ns() - next;
+    const std::int64_t behind = monotonic_now_ns() - next;
     if (behind > period) {
         next += behind / period * period;
     }
@@ -150,7 +145,7 @@ void PwmThread::run() {
             playing = std::move(*pending_);
             pending_.reset();
             next_edge = 0;
-            period_start = now_ns();
+            period_start = monotonic_now_ns();
         }
         if (playing.steady()) {
             if (!write(lock, playing.edges.empty() ? all_low_ : playing.edges.front().values)) {

@@ -1,7 +1,5 @@
 #include "daemon/drivers/sim_actuator.hpp"
 
-#include <time.h>
-
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -20,12 +18,6 @@ std::string meter_label(ActuatorKind kind) {
 
 }  // namespace
 
-std::int64_t monotonic_now_ns() {
-    timespec now{};
-    ::clock_gettime(CLOCK_MONOTONIC, &now);
-    return static_cast<std::int64_t>(now.tv_sec) * 1'000'000'000 + now.tv_nsec;
-}
-
 SimActuator::SimActuator(SimSettings settings, MonotonicClock clock)
     : clock_(clock ? std::move(clock) : MonotonicClock(monotonic_now_ns)), model_(settings.model) {
     if (settings.trace) {
@@ -42,7 +34,6 @@ Capabilities SimActuator::capabilities() const {
     Capabilities capabilities;
     capabilities.amplitude_control = true;
     capabilities.frequency_control = true;
-    capabilities.waveform_playback = false;
     capabilities.effect_memory = false;
     return capabilities;
 }

@@ -9,6 +9,7 @@
 #include <string>
 #include <string_view>
 
+#include "common/monotonic_clock.hpp"
 #include "daemon/drivers/actuator.hpp"
 #include "daemon/drivers/actuator_model.hpp"
 #include "daemon/drivers/terminal_meter.hpp"
@@ -23,11 +24,8 @@ struct SimSettings {
     int meter_fd = 2;
 };
 
-// Monotonic time in nanoseconds.
+// Monotonic time in nanoseconds: monotonic_now_ns, or a test's clock.
 using MonotonicClock = std::function<std::int64_t()>;
-
-// CLOCK_MONOTONIC in nanoseconds.
-std::int64_t monotonic_now_ns();
 
 // An actuator that exists only as a model: the default on a development machine. It records what
 // it is told (trace file), shows it (terminal meter) and models what a real ERM or LRA would do

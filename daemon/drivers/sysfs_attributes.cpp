@@ -8,8 +8,8 @@
 #include <system_error>
 #include <thread>
 
+#include "common/unique_fd.hpp"
 #include "daemon/drivers/actuator.hpp"
-#include "daemon/unique_fd.hpp"
 
 namespace vibscore::drivers {
 

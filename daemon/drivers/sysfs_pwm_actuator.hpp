@@ -47,8 +47,6 @@ class SysfsPwmActuator : public Actuator {
     void apply(const Drive& drive) override;
     void off() noexcept override;
 
-    const std::filesystem::path& channel_dir() const { return channel_dir_; }
-
   private:
     void open_channel();
     void close_channel() noexcept;

@@ -1,6 +1,6 @@
 #pragma once
 
-#include "daemon/unique_fd.hpp"
+#include "common/unique_fd.hpp"
 
 #include <cstddef>
 #include <cstdint>

@@ -1,6 +1,6 @@
 #include "daemon/registry/atomic_file.hpp"
 
-#include "daemon/unique_fd.hpp"
+#include "common/unique_fd.hpp"
 
 #include <fcntl.h>
 #include <sys/stat.h>

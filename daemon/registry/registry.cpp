@@ -49,8 +49,8 @@ std::string in_quotes(std::string_view text) {
 }
 
 // The file label diagnostics carry: `score "alarm"`, so clients see names, not store paths.
-std::string label(DocumentClass document_class, std::string_view name) {
-    return std::string(to_string(document_class)) + " " + in_quotes(name);
+std::string label(DocumentKind kind, std::string_view name) {
+    return std::string(to_string(kind)) + " " + in_quotes(name);
 }
 
 void check_name(std::string_view name) {
@@ -172,20 +172,6 @@ const Record* find_in(const std::map<std::string, Record, std::less<>>& records,
 
 }  // namespace
 
-std::string_view to_string(DocumentClass document_class) {
-    return document_class == DocumentClass::score ? "score" : "clef";
-}
-
-std::optional<DocumentClass> parse_document_class(std::string_view text) {
-    if (text == "score" || text == "scores") {
-        return DocumentClass::score;
-    }
-    if (text == "clef" || text == "clefs") {
-        return DocumentClass::clef;
-    }
-    return std::nullopt;
-}
-
 std::string_view to_string(RegistryError::Code code) {
     switch (code) {
         case Code::invalid_document:
@@ -247,7 +233,7 @@ Registry::Registry(std::filesystem::path shipped_dir, std::filesystem::path stor
 void Registry::load_clef(const std::filesystem::path& path, const std::string& name, bool shipped) {
     try {
         auto text = read_document_file(path);
-        ClefRecord record{{}, {}, read_clef(text, label(DocumentClass::clef, name))};
+        ClefRecord record{{}, {}, read_clef(text, label(DocumentKind::clef, name))};
         record.title = clef_title(record.clef);
         record.text = std::move(text);
         if (!shipped) {
@@ -263,7 +249,7 @@ void Registry::load_score(const std::filesystem::path& path, const std::string& 
                           bool shipped) {
     try {
         auto text = read_document_file(path);
-        const auto file = label(DocumentClass::score, name);
+        const auto file = label(DocumentKind::score, name);
         auto record = bind(read_score(text, file), file);
         record.text = std::move(text);
         if (!shipped) {
@@ -285,18 +271,17 @@ const Registry::ScoreRecord* Registry::find_score(std::string_view name) const {
     return stored != nullptr ? stored : find_in(shipped_scores_, name);
 }
 
-bool Registry::contains(DocumentClass document_class, std::string_view name) const {
-    return document_class == DocumentClass::clef ? find_clef(name) != nullptr
-                                                 : find_score(name) != nullptr;
+bool Registry::contains(DocumentKind kind, std::string_view name) const {
+    return kind == DocumentKind::clef ? find_clef(name) != nullptr : find_score(name) != nullptr;
 }
 
-bool Registry::is_shipped(DocumentClass document_class, std::string_view name) const {
-    return document_class == DocumentClass::clef
+bool Registry::is_shipped(DocumentKind kind, std::string_view name) const {
+    return kind == DocumentKind::clef
                ? !stored_clefs_.contains(name) && shipped_clefs_.contains(name)
                : !stored_scores_.contains(name) && shipped_scores_.contains(name);
 }
 
-std::vector<RegistryEntry> Registry::list(DocumentClass document_class) const {
+std::vector<RegistryEntry> Registry::list(DocumentKind kind) const {
     std::map<std::string_view, RegistryEntry> visible;
     const auto add = [&](const auto& records, bool shipped) {
         for (const auto& [name, record] : records) {
@@ -309,7 +294,7 @@ std::vector<RegistryEntry> Registry::list(DocumentClass document_class) const {
         }
     };
     // Stored documents go in last so they replace the shipped ones they shadow.
-    if (document_class == DocumentClass::clef) {
+    if (kind == DocumentKind::clef) {
         add(shipped_clefs_, true);
         add(stored_clefs_, false);
     } else {
@@ -324,10 +309,10 @@ std::vector<RegistryEntry> Registry::list(DocumentClass document_class) const {
     return entries;
 }
 
-std::string Registry::get(DocumentClass document_class, std::string_view name) const {
+std::string Registry::get(DocumentKind kind, std::string_view name) const {
     check_name(name);
     const std::string* text = nullptr;
-    if (document_class == DocumentClass::clef) {
+    if (kind == DocumentKind::clef) {
         const auto* record = find_clef(name);
         text = record != nullptr ? &record->text : nullptr;
     } else {
@@ -335,7 +320,7 @@ std::string Registry::get(DocumentClass document_class, std::string_view name) c
         text = record != nullptr ? &record->text : nullptr;
     }
     if (text == nullptr) {
-        throw RegistryError(Code::not_found, "no " + label(document_class, name));
+        throw RegistryError(Code::not_found, "no " + label(kind, name));
     }
     return *text;
 }
@@ -344,7 +329,7 @@ ScoreBundle Registry::score(std::string_view name) const {
     check_name(name);
     const auto* record = find_score(name);
     if (record == nullptr) {
-        throw RegistryError(Code::not_found, "no " + label(DocumentClass::score, name));
+        throw RegistryError(Code::not_found, "no " + label(DocumentKind::score, name));
     }
     return record->bundle;
 }
@@ -353,7 +338,7 @@ Clef Registry::clef(std::string_view name) const {
     check_name(name);
     const auto* record = find_clef(name);
     if (record == nullptr) {
-        throw RegistryError(Code::not_found, "no " + label(DocumentClass::clef, name));
+        throw RegistryError(Code::not_found, "no " + label(DocumentKind::clef, name));
     }
     return record->clef;
 }
@@ -416,7 +401,7 @@ std::vector<Registry::Rebound> Registry::rebind_dependents(std::string_view name
                 rebound.push_back({shipped, score_name, std::move(bound.bundle)});
             } catch (const DocumentError& error) {
                 problems += "\n" + std::string(shipped ? "shipped " : "") +
-                            label(DocumentClass::score, score_name) + ":\n" + error.what();
+                            label(DocumentKind::score, score_name) + ":\n" + error.what();
             }
         }
     };
@@ -435,7 +420,7 @@ std::vector<std::string> Registry::users_of(std::string_view clef_name) const {
         for (const auto& [score_name, record] : records) {
             if (std::binary_search(record.clef_names.begin(), record.clef_names.end(), clef_name)) {
                 users.push_back(std::string(shipped ? "shipped " : "") +
-                                label(DocumentClass::score, score_name));
+                                label(DocumentKind::score, score_name));
             }
         }
     };
@@ -451,24 +436,22 @@ void Registry::commit(std::vector<Rebound> rebound) {
     }
 }
 
-std::filesystem::path Registry::stored_path(DocumentClass document_class,
-                                            std::string_view name) const {
-    return store_dir_ /
-           (std::string(name) +
-            std::string(document_class == DocumentClass::clef ? clef_suffix : score_suffix));
+std::filesystem::path Registry::stored_path(DocumentKind kind, std::string_view name) const {
+    return store_dir_ / (std::string(name) +
+                         std::string(kind == DocumentKind::clef ? clef_suffix : score_suffix));
 }
 
-void Registry::check_store_limits(DocumentClass document_class, const std::string& name,
+void Registry::check_store_limits(DocumentKind kind, const std::string& name,
                                   std::size_t new_size) const {
     std::optional<std::size_t> old_size;
-    if (document_class == DocumentClass::clef) {
+    if (kind == DocumentKind::clef) {
         if (const auto* old = find_in(stored_clefs_, name)) {
             old_size = old->text.size();
         }
     } else if (const auto* old = find_in(stored_scores_, name)) {
         old_size = old->text.size();
     }
-    const auto what = label(document_class, name);
+    const auto what = label(kind, name);
     if (!old_size && stored_documents() + 1 > limits_.documents) {
         throw RegistryError(Code::limit_exceeded,
                             "cannot store " + what + ": the store already holds " +
@@ -484,7 +467,7 @@ void Registry::check_store_limits(DocumentClass document_class, const std::strin
     }
 }
 
-DocumentClass Registry::compose(std::string_view name, std::string_view document) {
+DocumentKind Registry::compose(std::string_view name, std::string_view document) {
     check_name(name);
     const std::string key(name);
     if (document.size() > limits_.document_bytes) {
@@ -501,16 +484,16 @@ DocumentClass Registry::compose(std::string_view name, std::string_view document
     }
     if (kind == DocumentKind::clef) {
         compose_clef(key, document);
-        return DocumentClass::clef;
+        return DocumentKind::clef;
     }
     compose_score(key, document);
-    return DocumentClass::score;
+    return DocumentKind::score;
 }
 
 // Each compose validates and prepares everything first, then writes the disk, then updates
 // memory, so a refused or failed compose leaves both exactly as they were.
 void Registry::compose_clef(const std::string& name, std::string_view document) {
-    const auto file = label(DocumentClass::clef, name);
+    const auto file = label(DocumentKind::clef, name);
     ClefRecord record;
     try {
         record.clef = read_clef(document, file);
@@ -521,20 +504,20 @@ void Registry::compose_clef(const std::string& name, std::string_view document) 
     record.text = document;
     auto rebound = rebind_dependents(name, record.clef, Code::invalid_document,
                                      file + " does not fit the scores that use it:");
-    check_store_limits(DocumentClass::clef, name, document.size());
+    check_store_limits(DocumentKind::clef, name, document.size());
 
-    const auto path = stored_path(DocumentClass::clef, name);
+    const auto path = stored_path(DocumentKind::clef, name);
     write_file_atomically(path, document);
 
-    auto& slot = stored_clefs_[name];
-    stored_bytes_ = stored_bytes_ - slot.text.size() + record.text.size();
-    slot = std::move(record);
+    auto& stored = stored_clefs_[name];
+    stored_bytes_ = stored_bytes_ - stored.text.size() + record.text.size();
+    stored = std::move(record);
     commit(std::move(rebound));
     log::info("registry: stored " + file + " in " + path.string());
 }
 
 void Registry::compose_score(const std::string& name, std::string_view document) {
-    const auto file = label(DocumentClass::score, name);
+    const auto file = label(DocumentKind::score, name);
     ScoreRecord record;
     try {
         record = bind(read_score(document, file), file);
@@ -542,21 +525,21 @@ void Registry::compose_score(const std::string& name, std::string_view document)
         throw RegistryError(Code::invalid_document, error.what());
     }
     record.text = document;
-    check_store_limits(DocumentClass::score, name, document.size());
+    check_store_limits(DocumentKind::score, name, document.size());
 
-    const auto path = stored_path(DocumentClass::score, name);
+    const auto path = stored_path(DocumentKind::score, name);
     write_file_atomically(path, document);
 
-    auto& slot = stored_scores_[name];
-    stored_bytes_ = stored_bytes_ - slot.text.size() + record.text.size();
-    slot = std::move(record);
+    auto& stored = stored_scores_[name];
+    stored_bytes_ = stored_bytes_ - stored.text.size() + record.text.size();
+    stored = std::move(record);
     log::info("registry: stored " + file + " in " + path.string());
 }
 
-void Registry::remove(DocumentClass document_class, std::string_view name) {
+void Registry::remove(DocumentKind kind, std::string_view name) {
     check_name(name);
-    const auto what = label(document_class, name);
-    const bool is_clef = document_class == DocumentClass::clef;
+    const auto what = label(kind, name);
+    const bool is_clef = kind == DocumentKind::clef;
     const bool stored = is_clef ? stored_clefs_.contains(name) : stored_scores_.contains(name);
     const bool shipped = is_clef ? shipped_clefs_.contains(name) : shipped_scores_.contains(name);
     if (!stored) {
@@ -583,7 +566,7 @@ void Registry::remove(DocumentClass document_class, std::string_view name) {
         }
     }
 
-    const auto path = stored_path(document_class, name);
+    const auto path = stored_path(kind, name);
     remove_file_durably(path);
 
     if (is_clef) {

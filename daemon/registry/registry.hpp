@@ -16,14 +16,6 @@
 
 namespace vibscore::daemon {
 
-// The two kinds of document the registry holds. On the bus: "score" and "clef".
-enum class DocumentClass { score, clef };
-
-std::string_view to_string(DocumentClass document_class);
-
-// Accepts "score", "scores", "clef" and "clefs".
-std::optional<DocumentClass> parse_document_class(std::string_view text);
-
 // A request the registry refuses. The bus layer maps code() to a named D-Bus error and sends
 // what() as its message, which names the document and the value at fault.
 class RegistryError : public std::runtime_error {
@@ -78,19 +70,19 @@ class Registry {
              StoreLimits store_limits = {});
 
     // The visible documents of a class (stored ones shadow shipped ones), sorted by name.
-    std::vector<RegistryEntry> list(DocumentClass document_class) const;
+    std::vector<RegistryEntry> list(DocumentKind kind) const;
 
     // The document text exactly as composed or shipped. Throws not_found.
-    std::string get(DocumentClass document_class, std::string_view name) const;
+    std::string get(DocumentKind kind, std::string_view name) const;
 
     // Validates document, stores it durably under name (replacing a stored document of the same
     // name and class, shadowing a shipped one) and returns its class, told by the root element.
     // Throws invalid_document, limit_exceeded; std::system_error when the disk write fails.
-    DocumentClass compose(std::string_view name, std::string_view document);
+    DocumentKind compose(std::string_view name, std::string_view document);
 
     // Deletes a stored document; a shipped one of the same name becomes visible again.
     // Throws not_found, permission_denied (shipped only) or in_use (a clef a score needs).
-    void remove(DocumentClass document_class, std::string_view name);
+    void remove(DocumentKind kind, std::string_view name);
 
     // A registry score with its clefs resolved from the registry. Throws not_found.
     ScoreBundle score(std::string_view name) const;
@@ -102,8 +94,8 @@ class Registry {
     // A registry clef. Throws not_found.
     Clef clef(std::string_view name) const;
 
-    bool contains(DocumentClass document_class, std::string_view name) const;
-    bool is_shipped(DocumentClass document_class, std::string_view name) const;
+    bool contains(DocumentKind kind, std::string_view name) const;
+    bool is_shipped(DocumentKind kind, std::string_view name) const;
 
     std::size_t stored_documents() const { return stored_clefs_.size() + stored_scores_.size(); }
     std::size_t stored_bytes() const { return stored_bytes_; }
@@ -151,9 +143,8 @@ class Registry {
 
     void compose_clef(const std::string& name, std::string_view document);
     void compose_score(const std::string& name, std::string_view document);
-    void check_store_limits(DocumentClass document_class, const std::string& name,
-                            std::size_t new_size) const;
-    std::filesystem::path stored_path(DocumentClass document_class, std::string_view name) const;
+    void check_store_limits(DocumentKind kind, const std::string& name, std::size_t new_size) const;
+    std::filesystem::path stored_path(DocumentKind kind, std::string_view name) const;
 
     std::filesystem::path shipped_dir_;
     std::filesystem::path store_dir_;

@@ -89,15 +89,15 @@ std::vector<Cue> cue_schedule(const Performance& performance, const CueOptions& 
     std::vector<Cue> cues;
     cues.reserve(drives.size() + performance.timeline().size());
     auto drive = drives.begin();
-    for (const auto& slot : performance.timeline()) {
-        for (; drive != drives.end() && drive->at <= slot.onset; ++drive) {
+    for (const auto& timing : performance.timeline()) {
+        for (; drive != drives.end() && drive->at <= timing.onset; ++drive) {
             cues.push_back(*drive);
         }
         Cue position;
-        position.at = slot.onset;
+        position.at = timing.onset;
         position.kind = Cue::Kind::position;
-        position.bar = slot.bar;
-        position.symbol = slot.symbol;
+        position.bar = timing.bar;
+        position.symbol = timing.symbol;
         cues.push_back(position);
     }
     cues.insert(cues.end(), drive, drives.end());

@@ -31,9 +31,9 @@ struct CueOptions {
     double update_interval_s = 0.005;
 };
 
-// The performance as actuator commands for backends without waveform playback: a drive at each
-// note onset, updates along ramps and shapes, a drive of 0 when a note ends, and a position cue
-// at each note or rest. Cues are in time order; a drive equal to the one before is left out.
+// The performance as actuator commands (no backend takes a sample stream): a drive at each note
+// onset, updates along ramps and shapes, a drive of 0 when a note ends, and a position cue at
+// each note or rest. Cues are in time order; a drive equal to the one before is left out.
 std::vector<Cue> cue_schedule(const Performance& performance, const CueOptions& options = {});
 
 }  // namespace vibscore::render

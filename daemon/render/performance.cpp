@@ -9,7 +9,7 @@ namespace vibscore::render {
 namespace {
 
 // A note or rest in playing order, with its place in the score and in time.
-struct Slot {
+struct Timing {
     const Note* note = nullptr;  // nullptr for a rest
     const Clef* clef = nullptr;
     std::size_t bar = 0, symbol = 0;
@@ -25,12 +25,12 @@ bool portamento(const Note& a, const Note& b) {
     return a.portamento != 0 && a.portamento == b.portamento;
 }
 
-double number_amplitude(const Slot& slot) {
-    return slot.clef->numbers.at(static_cast<std::size_t>(slot.note->number - 1));
+double number_amplitude(const Timing& timing) {
+    return timing.clef->numbers.at(static_cast<std::size_t>(timing.note->number - 1));
 }
 
-double frequency(const Slot& slot) {
-    return slot.clef->strings.at(static_cast<std::size_t>(slot.note->string - 1)).frequency;
+double frequency(const Timing& timing) {
+    return timing.clef->strings.at(static_cast<std::size_t>(timing.note->string - 1)).frequency;
 }
 
 double fraction(double x) {
@@ -40,7 +40,7 @@ double fraction(double x) {
 }  // namespace
 
 Performance::Performance(const ScoreBundle& bundle, const RenderOptions& options) {
-    std::vector<Slot> slots;
+    std::vector<Timing> timings;
     // Beats are multiples of 1/8, exact in binary; counting them and multiplying by the tempo
     // once keeps a long piece's onsets free of accumulated rounding.
     double run_start = 0.0;  // seconds where the current tempo began
@@ -67,22 +67,23 @@ Performance::Performance(const ScoreBundle& bundle, const RenderOptions& options
             }
             const double onset = now();
             run_beats += symbol_beats;
-            Slot slot{std::get_if<Note>(&symbol), &clef, b, s, onset, now() - onset};
-            timeline_.push_back({b, s, onset, slot.length, slot.note != nullptr});
-            slots.push_back(slot);
+            Timing timing{std::get_if<Note>(&symbol), &clef, b, s, onset, now() - onset};
+            timeline_.push_back({b, s, onset, timing.length, timing.note != nullptr});
+            timings.push_back(timing);
         }
     }
     duration_ = now();
 
     std::map<std::pair<const Clef*, int>, int> shape_of_string;
-    const auto shape_index = [&](const Slot& slot) {
-        const auto key = std::make_pair(slot.clef, slot.note->string);
+    const auto shape_index = [&](const Timing& timing) {
+        const auto key = std::make_pair(timing.clef, timing.note->string);
         const auto found = shape_of_string.find(key);
         if (found != shape_of_string.end()) {
             return found->second;
         }
-        const auto& points = slot.clef->strings.at(static_cast<std::size_t>(key.second - 1)).points;
-        const Waveform& added = waveforms_.emplace_back(slot.clef->type, points);
+        const auto& points =
+            timing.clef->strings.at(static_cast<std::size_t>(key.second - 1)).points;
+        const Waveform& added = waveforms_.emplace_back(timing.clef->type, points);
         // A Catmull-Rom spline can overshoot its points; find the true peak by sampling.
         double peak = 0.0;
         for (int k = 0; k <= 4096; ++k) {
@@ -94,30 +95,31 @@ Performance::Performance(const ScoreBundle& bundle, const RenderOptions& options
         return index;
     };
 
-    for (std::size_t i = 0; i < slots.size(); ++i) {
-        const Slot& slot = slots[i];
-        if (slot.note == nullptr) {
+    for (std::size_t i = 0; i < timings.size(); ++i) {
+        const Timing& timing = timings[i];
+        if (timing.note == nullptr) {
             continue;
         }
-        const Note& note = *slot.note;
-        const Slot* previous = i > 0 && slots[i - 1].note != nullptr ? &slots[i - 1] : nullptr;
-        const Slot* next =
-            i + 1 < slots.size() && slots[i + 1].note != nullptr ? &slots[i + 1] : nullptr;
+        const Note& note = *timing.note;
+        const Timing* previous =
+            i > 0 && timings[i - 1].note != nullptr ? &timings[i - 1] : nullptr;
+        const Timing* next =
+            i + 1 < timings.size() && timings[i + 1].note != nullptr ? &timings[i + 1] : nullptr;
         const bool tied_to_next = next != nullptr && tied(note, *next->note);
         const bool tied_from_previous = previous != nullptr && tied(*previous->note, note);
         const bool glide = next != nullptr && portamento(note, *next->note);
 
         Tone tone;
-        tone.bar = slot.bar;
-        tone.symbol = slot.symbol;
-        tone.onset = slot.onset;
+        tone.bar = timing.bar;
+        tone.symbol = timing.symbol;
+        tone.onset = timing.onset;
         const double gap =
             next != nullptr && !tied_to_next
-                ? std::min(options.separation_s, options.separation_max_fraction * slot.length)
+                ? std::min(options.separation_s, options.separation_max_fraction * timing.length)
                 : 0.0;
-        tone.duration = slot.length - gap;
+        tone.duration = timing.length - gap;
 
-        const double strength = number_amplitude(slot);
+        const double strength = number_amplitude(timing);
         tone.amplitude_start = tone.amplitude_end = strength;
         if (note.dynamics == Dynamics::crescendo) {
             const bool continues = previous != nullptr && previous->note->dynamics == note.dynamics;
@@ -129,12 +131,12 @@ Performance::Performance(const ScoreBundle& bundle, const RenderOptions& options
             tone.amplitude_end = number_amplitude(*next);
         }
 
-        tone.tempo = slot.clef->tempo;
+        tone.tempo = timing.clef->tempo;
         const bool next_same_kind = next != nullptr && (next->clef->type == ClefType::sine) ==
-                                                           (slot.clef->type == ClefType::sine);
-        if (slot.clef->type == ClefType::sine) {
+                                                           (timing.clef->type == ClefType::sine);
+        if (timing.clef->type == ClefType::sine) {
             tone.kind = Tone::Kind::sine;
-            tone.frequency_start = tone.frequency_end = frequency(slot);
+            tone.frequency_start = tone.frequency_end = frequency(timing);
             if (glide && next_same_kind) {
                 tone.frequency_end = frequency(*next);
             }
@@ -145,7 +147,7 @@ Performance::Performance(const ScoreBundle& bundle, const RenderOptions& options
             }
         } else {
             tone.kind = Tone::Kind::shape;
-            tone.shape = shape_index(slot);
+            tone.shape = shape_index(timing);
             if (glide && next_same_kind) {
                 tone.shape_to = shape_index(*next);
             }

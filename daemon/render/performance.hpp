@@ -24,7 +24,7 @@ struct Tone {
 
     std::size_t bar = 0, symbol = 0;  // in the score
     double onset = 0.0;               // seconds from the start of the performance
-    double duration = 0.0;            // sounding time; the rest of its slot is silence
+    double duration = 0.0;            // sounding time; the rest of its length is silence
     // Strength moves linearly from amplitude_start to amplitude_end across the duration
     // (crescendo, decrescendo, portamento); constant otherwise.
     double amplitude_start = 0.0, amplitude_end = 0.0;
@@ -41,7 +41,7 @@ struct Tone {
     double end() const { return onset + duration; }
 };
 
-// A note or rest of the score and the time it takes (its slot).
+// A note or rest of the score and the time it takes.
 struct SymbolTiming {
     std::size_t bar = 0, symbol = 0;
     double onset = 0.0, length = 0.0;

@@ -20,8 +20,8 @@
 
 #include "client/editor/button_map.hpp"
 #include "client/editor/evdev_buttons.hpp"
+#include "common/unique_fd.hpp"
 #include "daemon/drivers/actuator.hpp"
-#include "daemon/unique_fd.hpp"
 #include "tests/hil/uinput_keys.hpp"
 
 namespace vibscore::hil {

@@ -15,7 +15,7 @@
 #include <memory>
 #include <sstream>
 
-#include "daemon/unique_fd.hpp"
+#include "common/unique_fd.hpp"
 #include "tests/hil/uinput_vibrator.hpp"
 
 namespace vibscore::hil {

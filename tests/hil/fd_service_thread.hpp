@@ -3,7 +3,7 @@
 #include <functional>
 #include <thread>
 
-#include "daemon/unique_fd.hpp"
+#include "common/unique_fd.hpp"
 
 namespace vibscore::hil {
 

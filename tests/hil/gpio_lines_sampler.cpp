@@ -8,7 +8,7 @@
 #include <cerrno>
 #include <system_error>
 
-#include "daemon/unique_fd.hpp"
+#include "common/unique_fd.hpp"
 
 namespace vibscore::hil {
 

@@ -7,7 +7,7 @@
 #include <stdexcept>
 #include <system_error>
 
-#include "daemon/unique_fd.hpp"
+#include "common/unique_fd.hpp"
 #include "tests/hil/kernel_files.hpp"
 
 namespace vibscore::hil {

@@ -8,7 +8,7 @@
 #include <system_error>
 #include <thread>
 
-#include "daemon/unique_fd.hpp"
+#include "common/unique_fd.hpp"
 
 namespace vibscore::hil {
 

@@ -5,7 +5,7 @@
 #include <filesystem>
 #include <string>
 
-#include "daemon/unique_fd.hpp"
+#include "common/unique_fd.hpp"
 
 namespace vibscore::hil {
 

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "daemon/unique_fd.hpp"
+#include "common/unique_fd.hpp"
 #include "tests/hil/fd_service_thread.hpp"
 
 namespace vibscore::hil {
