@@ -3,7 +3,7 @@
 #include <algorithm>
 
 #include "config.h"
-#include "daemon/event_loop.hpp"
+#include "common/monotonic_clock.hpp"
 #include "daemon/log.hpp"
 #include "daemon/play_request.hpp"
 #include "daemon/request_error.hpp"
@@ -69,7 +69,7 @@ auto guarded(const char* method, Body&& body) -> decltype(body()) {
     }
 }
 
-DocumentKind document_class(const std::string& kind) {
+DocumentKind kind_named(const std::string& kind) {
     const auto parsed = parse_document_kind(kind);
     if (!parsed) {
         throw RequestError(RequestError::Code::invalid,
@@ -196,7 +196,7 @@ void HapticsService::Delete(const std::string& kind, const std::string& name) {
     guarded("Delete", [&] {
         const Caller& caller = admit_caller();
         require_privileged(caller, "Delete");
-        const auto which = document_class(kind);
+        const auto which = kind_named(kind);
         registry_.remove(which, name);
         log::info("uid " + std::to_string(caller.uid) + " deleted " +
                   std::string(to_string(which)) + " \"" + name + "\"");
@@ -208,7 +208,7 @@ std::vector<sdbus::Struct<std::string, std::string>> HapticsService::List(const 
     return guarded("List", [&] {
         admit_caller();
         std::vector<sdbus::Struct<std::string, std::string>> entries;
-        for (const auto& entry : registry_.list(document_class(kind))) {
+        for (const auto& entry : registry_.list(kind_named(kind))) {
             entries.emplace_back(entry.name, entry.title);
         }
         return entries;
@@ -218,7 +218,7 @@ std::vector<sdbus::Struct<std::string, std::string>> HapticsService::List(const 
 std::string HapticsService::Get(const std::string& kind, const std::string& name) {
     return guarded("Get", [&] {
         admit_caller();
-        return registry_.get(document_class(kind), name);
+        return registry_.get(kind_named(kind), name);
     });
 }
 
