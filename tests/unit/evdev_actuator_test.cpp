@@ -6,12 +6,11 @@
 #include <cerrno>
 #include <map>
 #include <memory>
-#include <ostream>
 #include <stdexcept>
 #include <string>
-#include <utility>
 #include <vector>
 
+#include "tests/fakes/fake_ff_device.hpp"
 #include "tests/support/support.hpp"
 
 namespace vibscore::drivers {
@@ -20,162 +19,27 @@ namespace {
 using ::testing::ElementsAre;
 using ::testing::HasSubstr;
 using ::testing::IsEmpty;
+using vibscore::testing::FakeFfKernel;
+using vibscore::testing::FfCall;
 using vibscore::testing::TempDir;
+using vibscore::testing::WrittenEvent;
 
-// One input event, without the timestamp nobody sets.
-struct Event {
-    std::uint16_t type;
-    std::uint16_t code;
-    std::int32_t value;
-    bool operator==(const Event&) const = default;
-};
-
-std::ostream& operator<<(std::ostream& out, const Event& event) {
-    return out << "{" << event.type << ", " << event.code << ", " << event.value << "}";
-}
-
-Event play(int id) {
+WrittenEvent play(int id) {
     return {EV_FF, static_cast<std::uint16_t>(id), 1};
 }
-Event stop(int id) {
+WrittenEvent stop(int id) {
     return {EV_FF, static_cast<std::uint16_t>(id), 0};
 }
-Event gain(std::int32_t value) {
+WrittenEvent gain(std::int32_t value) {
     return {EV_FF, FF_GAIN, value};
 }
 
-// A call the backend made on a fake device, in order.
-struct Call {
-    enum class Kind { upload, erase, write } kind;
-    ff_effect effect{};         // upload: as the kernel received it (id -1: allocate)
-    int id = -1;                // upload: the id it got; erase: the id erased
-    std::vector<Event> events;  // write: all events of the one write() call
-    unsigned generation = 0;    // which opening of the device the call went to
-};
-
-// The kernel side of the fake: a device that holds `effect_slots` effects, can be unplugged and
-// plugged in again, and records every call made on any opening of it.
-struct FakeKernel {
-    std::string path = "/dev/input/event5";
-    FfFeatures features{
-        .periodic = true, .sine = true, .square = true, .gain = true, .effect_slots = 16};
-    bool present = true;
-    unsigned generation = 1;  // bumped by unplug(): older openings are dead
-    int opens = 0;
-    int fail_next_errno = 0;  // the next call fails with this errno, once
-    std::vector<Call> calls;
-    std::map<int, std::uint16_t> live;  // uploaded, not erased: id -> type
-    int next_id = 0;
-
-    void unplug() {
-        present = false;
-        ++generation;
-        live.clear();
-    }
-
-    std::vector<Call> of(Call::Kind kind) const {
-        std::vector<Call> found;
-        for (const auto& call : calls) {
-            if (call.kind == kind) {
-                found.push_back(call);
-            }
-        }
-        return found;
-    }
-    std::vector<Call> uploads() const { return of(Call::Kind::upload); }
-    std::vector<Call> writes() const { return of(Call::Kind::write); }
-    std::vector<int> erased() const {
-        std::vector<int> ids;
-        for (const auto& call : of(Call::Kind::erase)) {
-            ids.push_back(call.id);
-        }
-        return ids;
-    }
-};
-
-class FakeFfDevice : public FfDevice {
-  public:
-    explicit FakeFfDevice(std::shared_ptr<FakeKernel> kernel)
-        : kernel_(std::move(kernel)), generation_(kernel_->generation) {}
-
-    const std::string& path() const override { return kernel_->path; }
-    const std::string& name() const override { return name_; }
-    FfFeatures features() const override { return kernel_->features; }
-
-    void upload(ff_effect& effect) override {
-        check("EVIOCSFF");
-        Call call{Call::Kind::upload, effect};
-        if (effect.id == -1) {
-            if (static_cast<int>(kernel_->live.size()) >= kernel_->features.effect_slots) {
-                throw FfDeviceError(path(), "EVIOCSFF", ENOSPC);
-            }
-            effect.id = static_cast<std::int16_t>(kernel_->next_id++);
-        } else {
-            // The kernel updates in place only an effect of the same type.
-            const auto found = kernel_->live.find(effect.id);
-            if (found == kernel_->live.end() || found->second != effect.type) {
-                throw FfDeviceError(path(), "EVIOCSFF", EINVAL);
-            }
-        }
-        kernel_->live[effect.id] = effect.type;
-        call.id = effect.id;
-        record(std::move(call));
-    }
-
-    void erase(int id) override {
-        check("EVIOCRMFF");
-        if (kernel_->live.erase(id) == 0) {
-            throw FfDeviceError(path(), "EVIOCRMFF", EINVAL);
-        }
-        Call call{Call::Kind::erase};
-        call.id = id;
-        record(std::move(call));
-    }
-
-    void write(std::span<const input_event> events) override {
-        check("write");
-        Call call{Call::Kind::write};
-        for (const auto& event : events) {
-            call.events.push_back({event.type, event.code, event.value});
-        }
-        record(std::move(call));
-    }
-
-  private:
-    void check(const char* what) {
-        if (!kernel_->present || generation_ != kernel_->generation) {
-            throw FfDeviceError(path(), what, ENODEV);
-        }
-        if (const int error = std::exchange(kernel_->fail_next_errno, 0)) {
-            throw FfDeviceError(path(), what, error);
-        }
-    }
-    void record(Call call) {
-        call.generation = generation_;
-        kernel_->calls.push_back(std::move(call));
-    }
-
-    std::shared_ptr<FakeKernel> kernel_;
-    unsigned generation_;
-    std::string name_ = "fake vibrator";
-};
-
-FfDeviceOpener opener(const std::shared_ptr<FakeKernel>& kernel) {
-    return [kernel]() -> std::unique_ptr<FfDevice> {
-        ++kernel->opens;
-        if (!kernel->present) {
-            throw FfDeviceError(kernel->path, "open", ENOENT);
-        }
-        return std::make_unique<FakeFfDevice>(kernel);
-    };
-}
-
 struct Fixture : ::testing::Test {
-    std::shared_ptr<FakeKernel> kernel = std::make_shared<FakeKernel>();
+    std::shared_ptr<FakeFfKernel> kernel = std::make_shared<FakeFfKernel>();
     EvdevSettings settings;
 
     std::unique_ptr<EvdevActuator> make() {
-        return std::make_unique<EvdevActuator>(settings, opener(kernel));
+        return std::make_unique<EvdevActuator>(settings, fake_ff_opener(kernel));
     }
     void rumble_only() { kernel->features = {.rumble = true, .effect_slots = 16}; }
 };
@@ -529,10 +393,10 @@ TEST_F(EvdevActuatorTest, RemovalThrowsNamingTheDeviceAndReopensOnTheNextDrive) 
     actuator->apply({0.6, 100.0});
     EXPECT_EQ(kernel->opens, 4);
     EXPECT_EQ(actuator->device_path(), "/dev/input/event5");
-    const std::vector<Call> after(kernel->calls.begin() + calls_before, kernel->calls.end());
+    const std::vector<FfCall> after(kernel->calls.begin() + calls_before, kernel->calls.end());
     ASSERT_EQ(after.size(), 3u);
     EXPECT_THAT(after[0].events, ElementsAre(gain(16384)));  // the gain set before it went
-    EXPECT_EQ(after[1].kind, Call::Kind::upload);
+    EXPECT_EQ(after[1].kind, FfCall::Kind::upload);
     EXPECT_EQ(after[1].effect.id, -1);                             // fresh slots on the new opening
     EXPECT_THAT(after[2].events, ElementsAre(play(after[1].id)));  // nothing to stop there
     EXPECT_EQ(after[2].generation, 2u);
