@@ -28,7 +28,7 @@
 #include "daemon/render/cue_schedule.hpp"
 #include "daemon/render/performance.hpp"
 #include "score/bundle.hpp"
-#include "tests/daemon_fixture.hpp"
+#include "tests/support/daemon_fixture.hpp"
 
 namespace {
 

@@ -20,8 +20,8 @@
 
 #include "bench/report.hpp"
 #include "bench/summary.hpp"
-#include "tests/daemon_fixture.hpp"
 #include "tests/hil/uinput_vibrator.hpp"
+#include "tests/support/daemon_fixture.hpp"
 
 namespace {
 

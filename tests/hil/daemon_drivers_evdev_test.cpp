@@ -10,9 +10,9 @@
 #include <sstream>
 #include <thread>
 
-#include "tests/daemon_fixture.hpp"
 #include "tests/hil/score_expectations.hpp"
 #include "tests/hil/uinput_vibrator.hpp"
+#include "tests/support/daemon_fixture.hpp"
 
 namespace vibscore::hil {
 namespace {

@@ -8,10 +8,10 @@
 #include <optional>
 #include <sstream>
 
-#include "tests/daemon_fixture.hpp"
 #include "tests/hil/gpio_lines_sampler.hpp"
 #include "tests/hil/gpio_sim_chip.hpp"
 #include "tests/hil/score_expectations.hpp"
+#include "tests/support/daemon_fixture.hpp"
 
 namespace vibscore::hil {
 namespace {

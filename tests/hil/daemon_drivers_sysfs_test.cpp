@@ -8,12 +8,12 @@
 #include <optional>
 #include <sstream>
 
-#include "tests/daemon_fixture.hpp"
 #include "tests/hil/kernel_files.hpp"
 #include "tests/hil/pwm_sim_chip.hpp"
 #include "tests/hil/score_expectations.hpp"
 #include "tests/hil/uleds_led.hpp"
 #include "tests/hil/written_file.hpp"
+#include "tests/support/daemon_fixture.hpp"
 
 namespace vibscore::hil {
 namespace {

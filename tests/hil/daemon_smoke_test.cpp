@@ -1,8 +1,9 @@
 // vibscored runs in the guest: a private dbus-daemon with the real policy, the daemon with the
-// simulated actuator, and one Play through the bus (the fixture of tests/daemon_bus_test).
+// simulated actuator, and one Play through the bus (the fixture of
+// tests/integration/daemon_bus_test).
 #include <gtest/gtest.h>
 
-#include "tests/daemon_fixture.hpp"
+#include "tests/support/daemon_fixture.hpp"
 
 namespace vibscore::hil {
 namespace {

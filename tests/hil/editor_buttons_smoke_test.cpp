@@ -1,7 +1,7 @@
 // The editor's buttons from real keys: EvdevDevice and ButtonReader (client/editor) reading a
 // UinputKeys device through /dev/input/eventN, with the phone map parsed as `--keymap` is.
-// tests/editor_evdev_test.cpp covers the reader over a fake of libevdev; this is what the kernel
-// really does: its timestamps, its auto-repeat, EVIOCGRAB and an unplugged device.
+// tests/unit/editor_evdev_test.cpp covers the reader over a fake of libevdev; this is what the
+// kernel really does: its timestamps, its auto-repeat, EVIOCGRAB and an unplugged device.
 #include <gtest/gtest.h>
 
 #include <fcntl.h>

@@ -8,7 +8,7 @@
 
 #include "daemon/render/cue_schedule.hpp"
 #include "daemon/render/performance.hpp"
-#include "tests/support.hpp"
+#include "tests/support/support.hpp"
 
 namespace vibscore::hil {
 

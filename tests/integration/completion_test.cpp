@@ -1,0 +1,45 @@
+// The bash completion installed for vibscore, run in a real bash against a real daemon.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "tests/support/daemon_fixture.hpp"
+
+namespace vibscore {
+namespace {
+
+using testing::DaemonFixture;
+using ::testing::HasSubstr;
+using ::testing::Not;
+
+class Completion : public ::testing::Test {
+  protected:
+    DaemonFixture daemon{"drivers-dir = " + testing::required_env("VIBSCORE_EXAMPLE_DRIVERS")};
+
+    // What bash offers after `line` (the last word is the one being completed).
+    std::string complete(const std::string& line) const {
+        const std::filesystem::path client = testing::required_env("VIBSCORE");
+        const std::string script =
+            "PATH=" + client.parent_path().string() + ":$PATH; source " +
+            testing::required_env("VIBSCORE_COMPLETION") + "; COMP_LINE='" + line +
+            "'; read -ra COMP_WORDS <<< \"$COMP_LINE\"; [[ $COMP_LINE == *' ' ]] && "
+            "COMP_WORDS+=(''); COMP_CWORD=$((${#COMP_WORDS[@]} - 1)); _vibscore; "
+            "printf '%s\\n' \"${COMPREPLY[@]}\" | sort";
+        const auto result = testing::run_command({"/bin/bash", "-c", script});
+        EXPECT_EQ(result.exit_code, 0) << result.err;
+        return result.out;
+    }
+};
+
+TEST_F(Completion, OffersVerbsOptionsAndTheDaemonsNames) {
+    EXPECT_EQ(complete("vibscore dr"), "driver\ndrivers\n");
+    EXPECT_EQ(complete("vibscore play --usage al"), "alarm\n");
+    EXPECT_EQ(complete("vibscore play --w"), "--wait\n");
+    EXPECT_THAT(complete("vibscore play notification-"), HasSubstr("notification-message\n"));
+    EXPECT_THAT(complete("vibscore get clef lra-"), HasSubstr("lra-phone\n"));
+    EXPECT_EQ(complete("vibscore get "), "clef\nscore\n");
+    EXPECT_EQ(complete("vibscore driver tr"), "trace\n");
+    EXPECT_THAT(complete("vibscore list "), Not(HasSubstr("ringtone")));
+}
+
+}  // namespace
+}  // namespace vibscore

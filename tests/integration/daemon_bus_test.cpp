@@ -1,0 +1,471 @@
+// The real vibscored on a private bus with the real policy: driven with busctl (systemd's own
+// client) and with a typed sdbus-c++ client that watches the signals.
+#include <gtest/gtest.h>
+
+#include <signal.h>
+#include <sys/socket.h>
+#include <sys/un.h>
+#include <unistd.h>
+
+#include <cstring>
+
+#include <fstream>
+#include <thread>
+
+#include "tests/support/daemon_fixture.hpp"
+
+namespace vibscore {
+namespace {
+
+using testing::DaemonFixture;
+using testing::SeenSignal;
+
+constexpr uid_t kNobody = 65534;
+
+std::map<std::string, sdbus::Variant> options(
+    std::initializer_list<std::pair<const std::string, sdbus::Variant>> list = {}) {
+    return std::map<std::string, sdbus::Variant>(list);
+}
+
+std::string error_name_of(const std::function<void()>& call) {
+    try {
+        call();
+    } catch (const sdbus::Error& error) {
+        return error.getName() + ": " + error.getMessage();
+    }
+    return "<no error>";
+}
+
+const char* const kShortScore =
+    "<VibScore><Title>two notes</Title><Clef id=\"l\" href=\"lra-phone.clef.xml\"/>"
+    "<Bar clef=\"l\"><Note length=\"8th\" number=\"9\" string=\"6\"/><Rest length=\"16th\"/>"
+    "<Note length=\"16th\" number=\"5\" string=\"1\"/></Bar></VibScore>";
+
+class DaemonBus : public ::testing::Test {
+  protected:
+    DaemonFixture daemon;
+};
+
+TEST_F(DaemonBus, BusctlListsAndGetsShippedDocuments) {
+    const auto scores = daemon.call({"List", "s", "score"});
+    ASSERT_EQ(scores.exit_code, 0) << scores.err;
+    EXPECT_NE(scores.out.find("\"ringtone\""), std::string::npos) << scores.out;
+    const auto clef = daemon.call({"Get", "ss", "clef", "lra-phone"});
+    ASSERT_EQ(clef.exit_code, 0) << clef.err;
+    EXPECT_NE(clef.out.find("VibClef"), std::string::npos);
+    const auto properties =
+        daemon.busctl({"get-property", "org.vibscore.Haptics1", "/org/vibscore/Haptics1",
+                       "org.vibscore.Haptics1", "Driver", "Capabilities", "Version"});
+    EXPECT_EQ(properties.out,
+              "s \"sim\"\nas 2 \"amplitude-control\" \"frequency-control\"\n"
+              "s \"0.1.0\"\n");
+}
+
+TEST_F(DaemonBus, BusctlComposesAndDeletesWithRegistryChangedSignals) {
+    auto client = daemon.client();
+    const auto composed = daemon.call({"Compose", "ss", "my-buzz", kShortScore});
+    ASSERT_EQ(composed.exit_code, 0) << composed.err;
+    EXPECT_TRUE(client->wait_for([](const SeenSignal& s) { return s.text == "score/my-buzz"; }));
+    EXPECT_NE(daemon.call({"List", "s", "score"}).out.find("\"my-buzz\" \"two notes\""),
+              std::string::npos);
+    EXPECT_EQ(client->Get("score", "my-buzz").find("<Title>two notes</Title>") != std::string::npos,
+              true);
+    EXPECT_EQ(daemon.call({"Delete", "ss", "score", "my-buzz"}).exit_code, 0);
+    EXPECT_NE(daemon.call({"Get", "ss", "score", "my-buzz"}).err.find("no score \"my-buzz\""),
+              std::string::npos);
+}
+
+TEST_F(DaemonBus, PlaysAScoreWithSignalsInOrderAndTheActuatorEndsOff) {
+    auto client = daemon.client();
+    const auto id = client->Play(kShortScore, options());
+    std::string reason;
+    ASSERT_TRUE(client->wait_finished(id, &reason));
+    EXPECT_EQ(reason, "completed");
+    std::vector<std::string> seen;
+    for (const auto& s : client->signals()) {
+        if (s.id == id)
+            seen.push_back(s.name + " " + s.text);
+    }
+    EXPECT_EQ(seen, (std::vector<std::string>{"PlaybackStarted <inline>", "PlaybackPosition 0.0",
+                                              "PlaybackPosition 0.1", "PlaybackPosition 0.2",
+                                              "PlaybackFinished completed"}));
+    const auto rows = daemon.trace_rows();
+    ASSERT_GE(rows.size(), 4u);
+    // off at start, 235 Hz at full strength, off for the rest, 155 Hz at number 5, off.
+    EXPECT_EQ(rows[1].amplitude, 1.0);
+    EXPECT_EQ(rows[1].frequency_hz, 235.0);
+    EXPECT_EQ(rows[2].amplitude, 0.0);
+    EXPECT_NEAR((rows[2].time_ns - rows[1].time_ns) / 1e6, 100.0, 20.0);  // an 8th at tempo 0.2
+    EXPECT_DOUBLE_EQ(rows[3].amplitude, 0.6);
+    EXPECT_EQ(rows[3].frequency_hz, 155.0);
+    EXPECT_EQ(rows.back().amplitude, 0.0);
+}
+
+TEST_F(DaemonBus, BusctlMonitorSeesThePlaybackSignals) {
+    const auto log = daemon.store().parent_path() / "monitor.log";
+    testing::Process monitor(
+        {"/usr/bin/env", "DBUS_SYSTEM_BUS_ADDRESS=" + daemon.bus_address(), "/usr/bin/busctl",
+         "--system", "monitor", "--match=type='signal',interface='org.vibscore.Haptics1'"},
+        log);
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));  // let it subscribe
+    auto client = daemon.client();
+    const auto id = client->Play("touch-click", options());
+    ASSERT_TRUE(client->wait_finished(id));
+    std::this_thread::sleep_for(std::chrono::milliseconds(200));
+    monitor.signal(SIGTERM);
+    monitor.wait();
+    std::ifstream in(log);
+    const std::string text{std::istreambuf_iterator<char>(in), {}};
+    const auto started = text.find("Member=PlaybackStarted");
+    const auto position = text.find("Member=PlaybackPosition");
+    const auto finished = text.find("Member=PlaybackFinished");
+    ASSERT_NE(started, std::string::npos) << text;
+    ASSERT_NE(position, std::string::npos) << text;
+    ASSERT_NE(finished, std::string::npos) << text;
+    EXPECT_LT(started, position);
+    EXPECT_LT(position, finished);
+    EXPECT_NE(text.find("STRING \"completed\""), std::string::npos) << text;
+}
+
+TEST_F(DaemonBus, BusctlStopSilencesARepeatingPlaybackAtOnce) {
+    auto client = daemon.client();
+    const auto id =
+        client->Play("ringtone", options({{"repeat", sdbus::Variant(std::int32_t{-1})},
+                                          {"usage", sdbus::Variant(std::string("ringtone"))}}));
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    const auto stopped = daemon.call({"Stop", "t", std::to_string(id)});
+    ASSERT_EQ(stopped.exit_code, 0) << stopped.err;
+    std::string reason;
+    ASSERT_TRUE(client->wait_finished(id, &reason));
+    EXPECT_EQ(reason, "stopped");
+    EXPECT_EQ(daemon.trace_rows().back().amplitude, 0.0);
+}
+
+TEST_F(DaemonBus, APlaybackEndsWhenItsCallerLeavesTheBus) {
+    auto watcher = daemon.client();
+    {
+        auto caller = daemon.client();
+        caller->Play("ringtone", options({{"repeat", sdbus::Variant(std::int32_t{-1})}}));
+    }
+    std::string reason;
+    ASSERT_TRUE(watcher->wait_for([&](const SeenSignal& s) {
+        reason = s.text;
+        return s.name == "PlaybackFinished";
+    }));
+    EXPECT_EQ(reason, "client-vanished");
+    EXPECT_EQ(daemon.trace_rows().back().amplitude, 0.0);
+}
+
+TEST_F(DaemonBus, UsageDecidesWhichPlaybackWins) {
+    auto client = daemon.client();
+    const auto touch =
+        client->Play("ringtone", options({{"usage", sdbus::Variant(std::string("touch"))}}));
+    const auto alarm =
+        client->Play("alarm", options({{"usage", sdbus::Variant(std::string("alarm"))}}));
+    std::string reason;
+    ASSERT_TRUE(client->wait_finished(touch, &reason));
+    EXPECT_EQ(reason, "preempted");
+    EXPECT_EQ(
+        error_name_of([&] {
+            client->Play("touch-tick", options({{"usage", sdbus::Variant(std::string("touch"))}}));
+        }).substr(0, 36),
+        "org.vibscore.Haptics1.Error.Busy: a ");
+    client->Stop(alarm);
+}
+
+TEST_F(DaemonBus, OptionsChangeWhatPlays) {
+    auto client = daemon.client();
+    // The same score through the plain ERM clef: no frequency, strength from the line levels.
+    const auto id =
+        client->Play("touch-click", options({{"clef", sdbus::Variant(std::string("erm-phone"))},
+                                             {"intensity", sdbus::Variant(0.5)}}));
+    ASSERT_TRUE(client->wait_finished(id));
+    const auto rows = daemon.trace_rows();
+    ASSERT_GE(rows.size(), 2u);
+    EXPECT_EQ(rows[1].frequency_hz, 0.0);
+    EXPECT_GT(rows[1].amplitude, 0.0);
+    EXPECT_LE(rows[1].amplitude, 0.5);
+    const auto second = client->Play("alarm", options({{"start-bar", sdbus::Variant(1u)}}));
+    ASSERT_TRUE(client->wait_for(
+        [&](const SeenSignal& s) { return s.id == second && s.name == "PlaybackPosition"; }));
+    for (const auto& s : client->signals()) {
+        if (s.id == second && s.name == "PlaybackPosition") {
+            EXPECT_EQ(s.text.substr(0, 2), "1.");
+        }
+    }
+}
+
+TEST_F(DaemonBus, BadInputGetsANamedErrorAndTheDaemonKeepsServing) {
+    auto client = daemon.client();
+    const std::pair<std::function<void()>, std::string> cases[] = {
+        {[&] { client->Play("<VibScore>\n<Bar clef=\"x\">", options()); },
+         "InvalidDocument: <inline score>:2:"},
+        {[&] { client->Play("no-such-score", options()); }, "NotFound: no score \"no-such-score\""},
+        {[&] {
+             client->Play("touch-tick", options({{"repeat", sdbus::Variant(std::string("x"))}}));
+         },
+         "InvalidDocument: option \"repeat\" must be an int32"},
+        {[&] {
+             client->Play("touch-tick", options({{"volume", sdbus::Variant(1.0)}}));
+         },
+         "InvalidDocument: unknown option \"volume\""},
+        {[&] {
+             client->Play("touch-tick", options({{"usage", sdbus::Variant(std::string("loud"))}}));
+         },
+         "InvalidDocument: unknown usage \"loud\""},
+        {[&] {
+             client->Play("touch-tick", options({{"intensity", sdbus::Variant(1.5)}}));
+         },
+         "InvalidDocument: intensity"},
+        {[&] {
+             client->Play("touch-tick", options({{"clef", sdbus::Variant(std::string("nope"))}}));
+         },
+         "NotFound"},
+        {[&] {
+             client->Play("touch-tick", options({{"start-bar", sdbus::Variant(7u)}}));
+         },
+         "InvalidDocument: start-bar 7 is past the last bar"},
+        {[&] { client->Play(std::string(2 << 20, '<'), options()); }, "LimitExceeded"},
+        {[&] {
+             client->Play(
+                 "<VibScore><Clef id=\"c\" href=\"/etc/passwd\"/><Bar clef=\"c\"/>"
+                 "</VibScore>",
+                 options());
+         },
+         "InvalidDocument"},
+        {[&] { client->Get("score", "../../etc/passwd"); }, "InvalidDocument"},
+        {[&] { client->List("songs"); }, "InvalidDocument: unknown kind \"songs\""},
+        {[&] { client->Compose("x", "<html/>"); }, "InvalidDocument"},
+        {[&] { client->Compose("Bad/Name", kShortScore); }, "InvalidDocument"},
+        {[&] { client->Delete("clef", "lra-phone"); }, "PermissionDenied"},
+        {[&] { client->Stop(424242); }, "NotFound"},
+    };
+    for (const auto& [call, expected] : cases) {
+        const auto error = error_name_of(call);
+        EXPECT_NE(error.find("org.vibscore.Haptics1.Error." + expected), std::string::npos)
+            << "expected " << expected << ", got " << error;
+    }
+    // Wrong argument types are refused by the bus layer itself.
+    EXPECT_NE(daemon.call({"Stop", "s", "x"}).exit_code, 0);
+    EXPECT_EQ(daemon.call({"List", "s", "clef"}).exit_code, 0);
+    const auto id = client->Play("touch-tick", options());
+    EXPECT_TRUE(client->wait_finished(id));
+}
+
+TEST_F(DaemonBus, AnUnprivilegedCallerMayPlayButNotComposeDeleteOrStopOthers) {
+    auto client = daemon.client();  // root
+    const auto played = daemon.call({"Play", "sa{sv}", "touch-tick", "0"}, kNobody);
+    EXPECT_EQ(played.exit_code, 0) << played.err;
+    const auto compose = daemon.call({"Compose", "ss", "mine", kShortScore}, kNobody);
+    EXPECT_NE(compose.err.find("Compose needs root or membership of group vibscore"),
+              std::string::npos)
+        << compose.err;
+    EXPECT_NE(daemon.call({"Delete", "ss", "score", "ringtone"}, kNobody).err.find("needs root"),
+              std::string::npos);
+    const auto intensity =
+        daemon.busctl({"set-property", "org.vibscore.Haptics1", "/org/vibscore/Haptics1",
+                       "org.vibscore.Haptics1", "Intensity", "d", "0.2"},
+                      kNobody);
+    EXPECT_NE(intensity.exit_code, 0);
+    const auto id =
+        client->Play("ringtone", options({{"repeat", sdbus::Variant(std::int32_t{-1})}}));
+    const auto stop = daemon.call({"Stop", "t", std::to_string(id)}, kNobody);
+    EXPECT_NE(stop.err.find("belongs to another user"), std::string::npos) << stop.err;
+    EXPECT_FALSE(client->wait_finished(id, nullptr, std::chrono::milliseconds(100)));
+    EXPECT_EQ(daemon.call({"Stop", "t", "0"}, kNobody).exit_code, 0);  // "mine": nothing
+    EXPECT_FALSE(client->wait_finished(id, nullptr, std::chrono::milliseconds(50)));
+    client->Intensity(0.25);  // root may
+    EXPECT_EQ(client->Intensity(), 0.25);
+    client->Stop(id);
+}
+
+TEST_F(DaemonBus, SigtermSwitchesTheActuatorOffAndExitsCleanly) {
+    auto client = daemon.client();
+    client->Play("ringtone", options({{"repeat", sdbus::Variant(std::int32_t{-1})}}));
+    std::this_thread::sleep_for(std::chrono::milliseconds(30));
+    EXPECT_EQ(daemon.stop_daemon(), 0);
+    EXPECT_EQ(daemon.trace_rows().back().amplitude, 0.0);
+    EXPECT_NE(daemon.daemon_log().find("stopping"), std::string::npos);
+}
+
+TEST_F(DaemonBus, ComposedDocumentsSurviveARestart) {
+    auto client = daemon.client();
+    client->Compose("kept", kShortScore);
+    client.reset();
+    EXPECT_EQ(daemon.stop_daemon(), 0);
+    daemon.start_daemon();
+    EXPECT_NE(daemon.call({"Get", "ss", "score", "kept"}).out.find("two notes"), std::string::npos);
+}
+
+TEST_F(DaemonBus, AcknowledgedComposesSurviveSigkillMidStream) {
+    auto client = daemon.client();
+    std::atomic<int> acknowledged{0};
+    std::atomic<bool> stop{false};
+    std::thread writer([&] {
+        for (int i = 0; !stop; ++i) {
+            const std::string title = "take " + std::to_string(i);
+            std::string document = kShortScore;
+            document.replace(document.find("two notes"), 9, title);
+            try {
+                client->Compose("stream-" + std::to_string(i % 7), document);
+                acknowledged = i + 1;
+            } catch (const sdbus::Error&) {
+                break;  // the daemon died under us
+            }
+        }
+    });
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    daemon.kill_daemon();
+    stop = true;
+    writer.join();
+    client.reset();
+    ASSERT_GT(acknowledged.load(), 7);
+    daemon.start_daemon();
+    for (int stream = 0; stream < 7; ++stream) {
+        // The newest acknowledged take of each name is stored whole (or a newer one whose reply
+        // was lost in the kill); never a partial document.
+        const auto got = daemon.call({"Get", "ss", "score", "stream-" + std::to_string(stream)});
+        ASSERT_EQ(got.exit_code, 0) << got.err;
+        const auto at = got.out.find("take ");
+        ASSERT_NE(at, std::string::npos) << got.out;
+        const int take = std::stoi(got.out.substr(at + 5));
+        EXPECT_EQ(take % 7, stream);
+        int newest_acknowledged = -1;
+        for (int i = 0; i < acknowledged; ++i) {
+            if (i % 7 == stream)
+                newest_acknowledged = i;
+        }
+        EXPECT_GE(take, newest_acknowledged);
+        EXPECT_NE(got.out.find("</VibScore>"), std::string::npos);
+    }
+    for (const auto& entry : std::filesystem::directory_iterator(daemon.store())) {
+        EXPECT_EQ(entry.path().filename().string().find(".tmp-"), std::string::npos)
+            << "temporary file left: " << entry.path();
+    }
+}
+
+TEST_F(DaemonBus, SighupReloadsTheDriverAndKeepsServingOnABadFile) {
+    auto client = daemon.client();
+    const auto erm_trace = daemon.store().parent_path() / "erm-trace.csv";
+    daemon.write_config("", "model = erm\ntrace = " + erm_trace.string());
+    daemon.signal_daemon(SIGHUP);
+    for (int i = 0; i < 200 && !std::filesystem::exists(erm_trace); ++i) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    ASSERT_TRUE(std::filesystem::exists(erm_trace)) << daemon.daemon_log();
+    EXPECT_NE(daemon.daemon_log().find("configuration reloaded"), std::string::npos);
+    const auto id = client->Play("touch-click", options());
+    ASSERT_TRUE(client->wait_finished(id));
+    std::ifstream trace(erm_trace);
+    const std::string text{std::istreambuf_iterator<char>(trace), {}};
+    EXPECT_NE(text.find(",1,235,"), std::string::npos) << text;
+
+    daemon.write_config("separation-ms = lots", "");
+    daemon.signal_daemon(SIGHUP);
+    for (int i = 0; i < 200 && daemon.daemon_log().find("reload failed") == std::string::npos;
+         ++i) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    EXPECT_NE(daemon.daemon_log().find("reload failed, keeping the running configuration: "),
+              std::string::npos);
+    EXPECT_NE(daemon.daemon_log().find("separation-ms = \"lots\""), std::string::npos);
+    EXPECT_EQ(daemon.call({"List", "s", "clef"}).exit_code, 0);
+}
+
+TEST_F(DaemonBus, TellsTheServiceManagerItIsReadyAndAlive) {
+    const auto socket_path = daemon.store().parent_path() / "notify";
+    const int fd = socket(AF_UNIX, SOCK_DGRAM | SOCK_CLOEXEC, 0);
+    ASSERT_GE(fd, 0);
+    sockaddr_un address{};
+    address.sun_family = AF_UNIX;
+    std::strncpy(address.sun_path, socket_path.c_str(), sizeof address.sun_path - 1);
+    ASSERT_EQ(bind(fd, reinterpret_cast<sockaddr*>(&address), sizeof address), 0);
+    const timeval timeout{2, 0};
+    setsockopt(fd, SOL_SOCKET, SO_RCVTIMEO, &timeout, sizeof timeout);
+    daemon.kill_daemon();
+    setenv("NOTIFY_SOCKET", socket_path.c_str(), 1);
+    setenv("WATCHDOG_USEC", "200000", 1);
+    daemon.start_daemon();
+    unsetenv("NOTIFY_SOCKET");
+    unsetenv("WATCHDOG_USEC");
+    std::string received;
+    char buffer[512];
+    // The first ping comes as the loop is made, READY=1 once serving, then more pings.
+    const auto seen_all = [&] {
+        const auto ready = received.find("READY=1");
+        const auto last_ping = received.rfind("WATCHDOG=1");
+        return ready != std::string::npos && last_ping != std::string::npos && last_ping > ready;
+    };
+    for (int i = 0; i < 20 && !seen_all(); ++i) {
+        const ssize_t n = recv(fd, buffer, sizeof buffer, 0);
+        if (n > 0)
+            received.append(buffer, static_cast<std::size_t>(n)).append("|");
+    }
+    close(fd);
+    EXPECT_TRUE(seen_all()) << received;
+}
+
+std::vector<std::string> vibscore_command(std::initializer_list<std::string> args) {
+    std::vector<std::string> argv{testing::required_env("VIBSCORE")};
+    argv.insert(argv.end(), args);
+    return argv;
+}
+
+TEST_F(DaemonBus, TheClientPlaysAndWaitsListsComposesAndExplainsErrors) {
+    const auto played =
+        testing::run_command(vibscore_command({"play", "notification-message", "--wait"}));
+    EXPECT_EQ(played.exit_code, 0) << played.err;
+    EXPECT_NE(played.out.find("playback 1: bar 1"), std::string::npos) << played.out;
+    EXPECT_NE(played.out.find("playback 1 completed"), std::string::npos) << played.out;
+    const auto listed = testing::run_command(vibscore_command({"list", "clefs"}));
+    EXPECT_NE(listed.out.find("lra-phone\tsine, tempo 0.2 s, 6 strings"), std::string::npos);
+    const auto file = daemon.store().parent_path() / "mine.score.xml";
+    std::ofstream(file) << kShortScore;
+    EXPECT_EQ(testing::run_command(vibscore_command({"compose", "mine", file.string()})).exit_code,
+              0);
+    const auto from_file =
+        testing::run_command(vibscore_command({"play", file.string(), "--wait"}));
+    EXPECT_NE(from_file.out.find("completed"), std::string::npos) << from_file.err;
+    const auto missing = testing::run_command(vibscore_command({"play", "nope"}));
+    EXPECT_EQ(missing.exit_code, 1);
+    EXPECT_EQ(missing.err, "vibscore: not found: no score \"nope\"\n");
+    const auto not_root = testing::run_command(
+        {"/usr/bin/setpriv", "--reuid=65534", "--regid=65534", "--clear-groups", "--",
+         "/usr/bin/env", "DBUS_SYSTEM_BUS_ADDRESS=" + daemon.bus_address(),
+         testing::required_env("VIBSCORE"), "delete", "score", "mine"});
+    EXPECT_EQ(not_root.exit_code, 1);
+    EXPECT_NE(not_root.err.find("vibscore: not permitted: Delete needs root"), std::string::npos)
+        << not_root.err;
+}
+
+TEST(ClientWithoutDaemon, SaysTheBusCannotBeReached) {
+    setenv("DBUS_SYSTEM_BUS_ADDRESS", "unix:path=/nonexistent/bus", 1);
+    const auto result = testing::run_command(vibscore_command({"list"}));
+    EXPECT_EQ(result.exit_code, 1);
+    EXPECT_NE(result.err.find("vibscore: cannot connect to the system bus"), std::string::npos)
+        << result.err;
+}
+
+class RateLimitedDaemon : public ::testing::Test {
+  protected:
+    DaemonFixture daemon{"requests-per-second = 5\nrequest-burst = 5"};
+};
+
+TEST_F(RateLimitedDaemon, AFloodingCallerIsRefusedAndTheDaemonStaysResponsive) {
+    auto flooder = daemon.client();
+    int refused = 0;
+    for (int i = 0; i < 20; ++i) {
+        try {
+            flooder->List("clef");
+        } catch (const sdbus::Error& error) {
+            EXPECT_EQ(error.getName(), "org.vibscore.Haptics1.Error.LimitExceeded");
+            ++refused;
+        }
+    }
+    EXPECT_GE(refused, 14);
+    // Another caller is not affected.
+    EXPECT_EQ(daemon.call({"List", "s", "clef"}).exit_code, 0);
+}
+
+}  // namespace
+}  // namespace vibscore

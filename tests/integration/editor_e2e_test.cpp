@@ -1,0 +1,260 @@
+// The real `vibscore edit` in a 40x12 tmux pane against the real vibscored (sim driver) on a
+// private bus: a tacton composed with the six buttons only, saved with Compose, read back with
+// Get and played; playback from the editor with its playback cursor; and `vibscore show` of a
+// registry score.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <random>
+#include <thread>
+
+#include "client/editor/documents.hpp"
+#include "client/editor/editor.hpp"
+#include "client/editor/press_planner.hpp"
+#include "tests/support/daemon_fixture.hpp"
+
+namespace vibscore {
+namespace {
+
+using editor::Button;
+using testing::DaemonFixture;
+using testing::run_command;
+using testing::SeenSignal;
+
+// A tmux server of its own with one pane running a command; killed with everything in it.
+// The shell in the pane writes the command's exit status to a file when it ends.
+class TmuxPane {
+  public:
+    TmuxPane(const std::string& command, int width, int height)
+        : socket_("vibscore-e2e-" + std::to_string(getpid()) + "-" +
+                  std::to_string(std::random_device{}())),
+          status_(dir_.path() / "status") {
+        const auto started = tmux({"-f", "/dev/null", "new-session", "-d", "-s", "editor", "-x",
+                                   std::to_string(width), "-y", std::to_string(height),
+                                   command + "; echo $? > " + status_.string()});
+        if (started.exit_code != 0) {
+            throw std::runtime_error("tmux new-session failed: " + started.err);
+        }
+    }
+    ~TmuxPane() { tmux({"kill-server"}); }
+
+    testing::CommandResult tmux(std::vector<std::string> args) const {
+        args.insert(args.begin(), {"/usr/bin/tmux", "-L", socket_});
+        return run_command(args);
+    }
+    std::string screen() const { return tmux({"capture-pane", "-p", "-t", "editor"}).out; }
+    void key(const std::string& name) const { tmux({"send-keys", "-t", "editor", name}); }
+    // The exit status of the pane's command once it has ended ("" if it runs on).
+    std::string wait_exit(std::chrono::milliseconds timeout = std::chrono::seconds(5)) const {
+        const auto deadline = std::chrono::steady_clock::now() + timeout;
+        while (std::chrono::steady_clock::now() < deadline) {
+            const auto status = testing::read_file(status_);
+            if (!status.empty() && status.back() == '\n') {
+                return status.substr(0, status.size() - 1);
+            }
+            std::this_thread::sleep_for(std::chrono::milliseconds(10));
+        }
+        return "";
+    }
+    bool wait_for_text(const std::string& text,
+                       std::chrono::milliseconds timeout = std::chrono::seconds(10)) const {
+        const auto deadline = std::chrono::steady_clock::now() + timeout;
+        while (std::chrono::steady_clock::now() < deadline) {
+            if (screen().find(text) != std::string::npos) {
+                return true;
+            }
+            std::this_thread::sleep_for(std::chrono::milliseconds(20));
+        }
+        return false;
+    }
+
+  private:
+    testing::TempDir dir_;
+    std::string socket_;
+    std::filesystem::path status_;
+};
+
+// The keys tmux sends for the six buttons: arrows, Enter for Select, Backspace for Back.
+std::string tmux_key(Button button) {
+    switch (button) {
+        case Button::up:
+            return "Up";
+        case Button::down:
+            return "Down";
+        case Button::left:
+            return "Left";
+        case Button::right:
+            return "Right";
+        case Button::select:
+            return "Enter";
+        case Button::back:
+            return "BSpace";
+    }
+    return "";
+}
+
+std::string edit_command(const std::string& name) {
+    return "env TERM=screen DBUS_SYSTEM_BUS_ADDRESS=" +
+           std::string(std::getenv("DBUS_SYSTEM_BUS_ADDRESS")) + " " +
+           testing::required_env("VIBSCORE") + " edit " + name;
+}
+
+// The presses that open the menu and bring `label` under the highlight, worked out on a copy
+// of the editor (which then is where the real one will be).
+std::vector<Button> menu_presses(editor::Editor& copy, const std::string& label) {
+    std::vector<Button> presses{Button::back};
+    copy.press(Button::back);
+    for (int i = 0; i < 40; ++i) {
+        const auto menu = copy.scheme.menu_view(copy.model);
+        if (menu.lines[static_cast<std::size_t>(menu.highlighted)] == label) {
+            break;
+        }
+        copy.press(Button::down);
+        presses.push_back(Button::down);
+    }
+    presses.push_back(Button::select);
+    copy.press(Button::select);
+    return presses;
+}
+
+void send(const TmuxPane& pane, const std::vector<Button>& presses) {
+    for (const Button button : presses) {
+        pane.key(tmux_key(button));
+        // ncurses reads the keys in order either way; a pause keeps a Backspace from being read
+        // as part of the arrow key sequence that follows it.
+        std::this_thread::sleep_for(std::chrono::milliseconds(15));
+    }
+}
+
+bool is_finished(const SeenSignal& seen, std::uint64_t id, std::string* reason) {
+    if (seen.name == "PlaybackFinished" && (id == 0 || seen.id == id)) {
+        *reason = seen.text;
+        return true;
+    }
+    return false;
+}
+
+class EditorEndToEnd : public ::testing::Test {
+  protected:
+    DaemonFixture daemon;
+    std::unique_ptr<testing::HapticsClient> client = daemon.client();
+};
+
+TEST_F(EditorEndToEnd, ComposesATactonWithSixButtonsSavesItAndPlaysIt) {
+    // The tacton to enter: a notification for the phone LRA with a rest, a hairpin and a tie.
+    const Score wanted =
+        read_score(
+            "<VibScore><Title>my-buzz</Title>"
+            "<Clef id=\"lra-phone\" href=\"lra-phone.clef.xml\"/><Bar clef=\"lra-phone\">"
+            "<Note length=\"8th\" number=\"6\" string=\"4\"/><Rest length=\"8th\"/>"
+            "<Note length=\"quarter\" number=\"8\" string=\"5\" dynamics=\"decrescendo\" "
+            "legato=\"1\"/><Note length=\"quarter\" number=\"9\" string=\"5\" "
+            "dynamics=\"decrescendo\" legato=\"1\"/></Bar></VibScore>",
+            "wanted.xml")
+            .score;
+
+    // What `vibscore edit my-buzz` starts with: a new score on lra-phone, the registry's clefs.
+    std::vector<std::string> clef_names;
+    for (const auto& entry : client->List("clef")) {
+        clef_names.push_back(entry.get<0>());
+    }
+    editor::Editor copy{editor::EditorModel(editor::EditorModel::blank_score(
+                                                "my-buzz", {"lra-phone", "lra-phone.clef.xml"}),
+                                            editor::registry_clefs(clef_names)),
+                        {}};
+    const auto plan = editor::plan_presses(copy, wanted);
+    ASSERT_TRUE(plan.reached);
+    for (const Button button : plan.presses) {
+        copy.press(button);
+    }
+    ASSERT_EQ(copy.model.score().bars, wanted.bars);
+    const auto save = menu_presses(copy, "save");
+    const auto play = menu_presses(copy, "play from this bar");
+
+    TmuxPane pane(edit_command("my-buzz"), 40, 12);
+    ASSERT_TRUE(pane.wait_for_text("new score my-buzz")) << pane.screen();
+    send(pane, plan.presses);
+    send(pane, save);
+    ASSERT_TRUE(pane.wait_for_text("saved as my-buzz")) << pane.screen();
+
+    // 40x12: all twelve lines used, none wider than the pane.
+    const auto screen = pane.screen();
+    EXPECT_EQ(std::count(screen.begin(), screen.end(), '\n'), 12) << screen;
+    EXPECT_NE(screen.find("[lra-phone 3]"), std::string::npos) << screen;
+    EXPECT_NE(screen.find("6━"), std::string::npos) << screen;
+    EXPECT_NE(screen.find("▬"), std::string::npos) << screen;
+
+    // The stored document is the tacton, titled by its name.
+    const auto stored = read_score(client->Get("score", "my-buzz"), "my-buzz").score;
+    EXPECT_EQ(stored.title, "my-buzz");
+    EXPECT_EQ(stored.clefs, wanted.clefs);
+    EXPECT_EQ(stored.bars, wanted.bars);
+    EXPECT_TRUE(client->wait_for([](const SeenSignal& seen) {
+        return seen.name == "RegistryChanged" && seen.text == "score/my-buzz";
+    }));
+
+    // And it plays from the editor: the daemon starts it, drives the actuator and finishes.
+    const auto rows_before = daemon.trace_rows().size();
+    send(pane, play);
+    std::string reason;
+    ASSERT_TRUE(client->wait_for([&](const SeenSignal& seen) {
+        return is_finished(seen, 0, &reason);
+    })) << pane.screen();
+    EXPECT_EQ(reason, "completed");
+    ASSERT_TRUE(pane.wait_for_text("playback completed")) << pane.screen();
+    const auto rows = daemon.trace_rows();
+    ASSERT_GT(rows.size(), rows_before + 4);
+    const bool vibrated =
+        std::any_of(rows.begin() + static_cast<std::ptrdiff_t>(rows_before), rows.end(),
+                    [](const auto& row) { return row.amplitude > 0; });
+    EXPECT_TRUE(vibrated);
+
+    send(pane, menu_presses(copy, "quit"));
+    EXPECT_EQ(pane.wait_exit(), "0") << pane.screen();
+}
+
+TEST_F(EditorEndToEnd, PlaysFromTheCursorsBarFollowsThePositionAndAnyButtonStops) {
+    TmuxPane pane(edit_command("ode-to-joy"), 40, 12);
+    ASSERT_TRUE(pane.wait_for_text("[shaker 4]")) << pane.screen();
+    // Into bar 3 (two bars of four quarters, their end positions, a step on), then play.
+    send(pane, std::vector<Button>(11, Button::right));
+    pane.key("Space");
+    ASSERT_TRUE(client->wait_for([](const SeenSignal& seen) {
+        return seen.name == "PlaybackPosition" && seen.text == "2.0";
+    })) << pane.screen();
+    // The first position played is bar 3's first note: start-bar 2.
+    for (const auto& seen : client->signals()) {
+        if (seen.name == "PlaybackPosition") {
+            EXPECT_EQ(seen.text, "2.0");
+            break;
+        }
+    }
+    ASSERT_TRUE(pane.wait_for_text("●")) << pane.screen();
+    EXPECT_TRUE(pane.wait_for_text("playing bar 3 on: any button stops")) << pane.screen();
+    pane.key("Up");
+    std::string reason;
+    ASSERT_TRUE(
+        client->wait_for([&](const SeenSignal& seen) { return is_finished(seen, 0, &reason); }));
+    EXPECT_EQ(reason, "stopped");
+    EXPECT_TRUE(pane.wait_for_text("stopped")) << pane.screen();
+    // Editing works again, and nothing was changed by the button that stopped playback.
+    EXPECT_EQ(pane.screen().find("*"), std::string::npos) << pane.screen();
+    pane.key("q");
+    EXPECT_EQ(pane.wait_exit(), "0") << pane.screen();
+}
+
+TEST_F(EditorEndToEnd, ShowDrawsARegistryScore) {
+    const auto shown =
+        run_command({testing::required_env("VIBSCORE"), "show", "success", "--width", "40"});
+    ASSERT_EQ(shown.exit_code, 0) << shown.err;
+    EXPECT_EQ(shown.out.substr(0, 8), "success\n");
+    EXPECT_NE(shown.out.find("[lra 2]"), std::string::npos) << shown.out;
+    EXPECT_NE(shown.out.find("~"), std::string::npos) << shown.out;  // the portamento
+    const auto missing = run_command({testing::required_env("VIBSCORE"), "show", "no-such-score"});
+    EXPECT_EQ(missing.exit_code, 1);
+    EXPECT_NE(missing.err.find("no-such-score"), std::string::npos) << missing.err;
+}
+
+}  // namespace
+}  // namespace vibscore

@@ -1,0 +1,242 @@
+#include "tests/support/daemon_fixture.hpp"
+
+#include <fcntl.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <thread>
+
+extern char** environ;
+
+namespace vibscore::testing {
+
+Process::Process(const std::vector<std::string>& argv, const std::filesystem::path& output) {
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
+    posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, output.c_str(),
+                                     O_WRONLY | O_CREAT | O_APPEND, 0644);
+    posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
+    std::vector<char*> args;
+    for (const auto& arg : argv) {
+        args.push_back(const_cast<char*>(arg.c_str()));
+    }
+    args.push_back(nullptr);
+    const int result = posix_spawn(&pid_, args[0], &actions, nullptr, args.data(), environ);
+    posix_spawn_file_actions_destroy(&actions);
+    if (result != 0) {
+        throw std::runtime_error("cannot start " + argv.at(0));
+    }
+}
+
+Process::~Process() {
+    if (running()) {
+        ::kill(pid_, SIGKILL);
+        wait();
+    }
+}
+
+void Process::signal(int signo) const {
+    ::kill(pid_, signo);
+}
+
+int Process::wait() {
+    if (status_ < 0) {
+        int status = 0;
+        waitpid(pid_, &status, 0);
+        status_ = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+    }
+    return status_;
+}
+
+bool Process::running() {
+    if (status_ >= 0) {
+        return false;
+    }
+    int status = 0;
+    if (waitpid(pid_, &status, WNOHANG) == pid_) {
+        status_ = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+        return false;
+    }
+    return true;
+}
+
+HapticsClient::HapticsClient(std::unique_ptr<sdbus::IConnection> connection)
+    : ProxyInterfaces(*connection, "org.vibscore.Haptics1", "/org/vibscore/Haptics1"),
+      connection_(std::move(connection)) {
+    registerProxy();
+    connection_->enterEventLoopAsync();
+}
+
+HapticsClient::~HapticsClient() {
+    connection_->leaveEventLoop();
+    unregisterProxy();
+}
+
+void HapticsClient::record(SeenSignal signal) {
+    std::lock_guard lock(mutex_);
+    signals_.push_back(std::move(signal));
+}
+
+std::vector<SeenSignal> HapticsClient::signals() {
+    std::lock_guard lock(mutex_);
+    return signals_;
+}
+
+bool HapticsClient::wait_for(const std::function<bool(const SeenSignal&)>& match,
+                             std::chrono::milliseconds timeout) {
+    const auto deadline = std::chrono::steady_clock::now() + timeout;
+    while (std::chrono::steady_clock::now() < deadline) {
+        for (const auto& seen : signals()) {
+            if (match(seen)) {
+                return true;
+            }
+        }
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+    return false;
+}
+
+bool HapticsClient::wait_finished(std::uint64_t id, std::string* reason,
+                                  std::chrono::milliseconds timeout) {
+    return wait_for(
+        [&](const SeenSignal& seen) {
+            if (seen.name == "PlaybackFinished" && seen.id == id) {
+                if (reason != nullptr)
+                    *reason = seen.text;
+                return true;
+            }
+            return false;
+        },
+        timeout);
+}
+
+void HapticsClient::onPlaybackStarted(const uint64_t& id, const std::string& score) {
+    record({"PlaybackStarted", id, score});
+}
+void HapticsClient::onPlaybackPosition(const uint64_t& id, const uint32_t& bar,
+                                       const uint32_t& symbol) {
+    record({"PlaybackPosition", id, std::to_string(bar) + "." + std::to_string(symbol)});
+}
+void HapticsClient::onPlaybackFinished(const uint64_t& id, const std::string& reason) {
+    record({"PlaybackFinished", id, reason});
+}
+void HapticsClient::onRegistryChanged(const std::string& kind, const std::string& name) {
+    record({"RegistryChanged", 0, kind + "/" + name});
+}
+
+DaemonFixture::DaemonFixture(const std::string& extra_config) {
+    trace_ = dir_.path() / "trace.csv";
+    store_ = dir_.path() / "store";
+    write_config(extra_config, "trace = " + trace_.string());
+    const auto socket = dir_.path() / "bus";
+    bus_address_ = "unix:path=" + socket.string();
+    bus_ = std::make_unique<Process>(
+        std::vector<std::string>{"/usr/bin/dbus-daemon",
+                                 "--config-file=" + required_env("VIBSCORE_PRIVATE_BUS_CONF"),
+                                 "--address=" + bus_address_, "--nofork", "--nopidfile"},
+        dir_.path() / "bus.log");
+    for (int i = 0; i < 500 && !std::filesystem::exists(socket); ++i) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    // Other users (the permission tests) must reach the socket and the trace.
+    std::filesystem::permissions(dir_.path(), std::filesystem::perms::all);
+    setenv("DBUS_SYSTEM_BUS_ADDRESS", bus_address_.c_str(), 1);
+    start_daemon();
+}
+
+DaemonFixture::~DaemonFixture() {
+    daemon_.reset();
+    bus_.reset();
+}
+
+void DaemonFixture::start_daemon() {
+    daemon_ =
+        std::make_unique<Process>(std::vector<std::string>{required_env("VIBSCORED"), "--config",
+                                                           config_.string(), "--verbose"},
+                                  dir_.path() / "daemon.log");
+    for (int i = 0; i < 1000; ++i) {
+        const auto names = busctl({"list", "--no-pager", "--no-legend"});
+        if (names.out.find("org.vibscore.Haptics1") != std::string::npos) {
+            return;
+        }
+        if (!daemon_->running()) {
+            throw std::runtime_error("vibscored exited at start:\n" + daemon_log());
+        }
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    throw std::runtime_error("vibscored did not take its bus name:\n" + daemon_log());
+}
+
+int DaemonFixture::stop_daemon() {
+    daemon_->signal(SIGTERM);
+    return daemon_->wait();
+}
+
+void DaemonFixture::write_config(const std::string& daemon_lines, const std::string& sim_lines) {
+    config_ = dir_.write("vibscored.conf",
+                         "[daemon]\ndriver = sim\nshipped = " + required_env("VIBSCORE_CLEFS") +
+                             "\nstore = " + store_.string() + "\n" + daemon_lines + "\n[sim]\n" +
+                             sim_lines + "\n");
+}
+
+void DaemonFixture::signal_daemon(int signo) const {
+    daemon_->signal(signo);
+}
+
+void DaemonFixture::kill_daemon() {
+    daemon_->signal(SIGKILL);
+    daemon_->wait();
+}
+
+std::string DaemonFixture::daemon_log() const {
+    std::ifstream in(dir_.path() / "daemon.log");
+    std::ostringstream text;
+    text << in.rdbuf();
+    return text.str();
+}
+
+std::unique_ptr<HapticsClient> DaemonFixture::client() const {
+    return std::make_unique<HapticsClient>(sdbus::createSystemBusConnection());
+}
+
+CommandResult DaemonFixture::busctl(const std::vector<std::string>& args, uid_t uid) const {
+    std::vector<std::string> argv;
+    if (uid != 0) {
+        argv = {"/usr/bin/setpriv", "--reuid=" + std::to_string(uid),
+                "--regid=" + std::to_string(uid), "--clear-groups", "--"};
+    }
+    argv.insert(argv.end(), {"/usr/bin/env", "DBUS_SYSTEM_BUS_ADDRESS=" + bus_address_,
+                             "/usr/bin/busctl", "--system"});
+    argv.insert(argv.end(), args.begin(), args.end());
+    return run_command(argv);
+}
+
+CommandResult DaemonFixture::call(const std::vector<std::string>& args, uid_t uid) const {
+    std::vector<std::string> full{"call", "org.vibscore.Haptics1", "/org/vibscore/Haptics1",
+                                  "org.vibscore.Haptics1"};
+    full.insert(full.end(), args.begin(), args.end());
+    return busctl(full, uid);
+}
+
+std::vector<DaemonFixture::TraceRow> DaemonFixture::trace_rows() const {
+    std::ifstream in(trace_);
+    std::string line;
+    std::getline(in, line);
+    std::vector<TraceRow> rows;
+    while (std::getline(in, line)) {
+        TraceRow row{};
+        if (std::sscanf(line.c_str(), "%ld,%lf,%lf,%lf", &row.time_ns, &row.amplitude,
+                        &row.frequency_hz, &row.response) == 4) {
+            rows.push_back(row);
+        }
+    }
+    return rows;
+}
+
+}  // namespace vibscore::testing

@@ -1,0 +1,170 @@
+// The actuator host without a bus: opening the configured backend, switching at run time with
+// the configured settings, falling back when a backend will not open, following a reloaded
+// configuration. Real backends: the simulated actuator, and sysfs ones on a temporary tree.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "daemon/actuator_host.hpp"
+#include "tests/support/support.hpp"
+
+namespace vibscore::daemon {
+namespace {
+
+using ::testing::ElementsAre;
+using ::testing::HasSubstr;
+
+class FinishedReasons : public PlayerListener {
+  public:
+    void playback_started(std::uint64_t, const std::string&) override {}
+    void playback_position(std::uint64_t, std::size_t, std::size_t) override {}
+    void playback_finished(std::uint64_t, const std::string& reason) override {
+        reasons.push_back(reason);
+    }
+    std::vector<std::string> reasons;
+};
+
+// A playback that goes on until something ends it.
+PlaybackRequest endless() {
+    PlaybackRequest request;
+    request.label = "endless";
+    render::Cue drive;
+    drive.amplitude = 0.5;
+    request.cues = {drive};
+    request.duration_s = 10.0;
+    request.repeat = -1;
+    return request;
+}
+
+class ActuatorHostTest : public ::testing::Test {
+  protected:
+    ActuatorHostTest() {
+        config.driver = "sim";
+        config.driver_settings["sim"] = {{"model", "lra"}, {"max-on-time-ms", "3000"}};
+        // A timed_output vibrator on a temporary sysfs tree, and an evdev device that is not
+        // there: a backend that opens, and one that never does.
+        std::filesystem::create_directories(sysfs.path() / "class/timed_output/vibrator");
+        sysfs.write("class/timed_output/vibrator/enable", "0");
+        config.driver_settings["timed-output"] = {{"sysfs-root", sysfs.path().string()}};
+        config.driver_settings["evdev"] = {{"device", "/nonexistent/event99"}};
+    }
+
+    // The host and a player on its actuator, as vibscored wires them.
+    void start() {
+        host.emplace(config);
+        player.emplace(loop, host->actuator(), listener);
+        host->attach(*player);
+        host->on_change([this] { ++changes; });
+    }
+
+    vibscore::testing::TempDir sysfs;
+    DaemonConfig config;
+    EventLoop loop;
+    FinishedReasons listener;
+    std::optional<ActuatorHost> host;
+    std::optional<Player> player;
+    int changes = 0;
+};
+
+TEST_F(ActuatorHostTest, OpensTheConfiguredDriverWithItsSettings) {
+    start();
+    EXPECT_EQ(host->driver(), "sim");
+    EXPECT_EQ(host->capabilities().max_on_time_s, 3.0);
+}
+
+TEST_F(ActuatorHostTest, AConfiguredDriverThatWillNotOpenIsAnError) {
+    config.driver = "evdev";
+    EXPECT_THROW(ActuatorHost{config}, drivers::DeviceError);
+}
+
+TEST_F(ActuatorHostTest, ListsTheBuiltInDrivers) {
+    start();
+    std::vector<std::string> names;
+    for (const auto& driver : host->drivers()) {
+        names.push_back(driver.name);
+    }
+    EXPECT_THAT(names, ::testing::IsSupersetOf({"sim", "evdev", "gpio-erm", "gpio-lra", "sysfs-pwm",
+                                                "led-vibrator", "timed-output"}));
+}
+
+TEST_F(ActuatorHostTest, ASwitchEndsPlaybackAndThePlayerPlaysOnTheNewBackend) {
+    start();
+    player->play(endless());
+    host->switch_to("timed-output");
+    EXPECT_EQ(host->driver(), "timed-output");
+    EXPECT_THAT(listener.reasons, ElementsAre("driver-switch"));
+    EXPECT_EQ(changes, 1);
+
+    player->play(endless());
+    EXPECT_EQ(vibscore::testing::read_file(sysfs.path() / "class/timed_output/vibrator/enable"),
+              "5000");  // the first drive reached the new backend: on for duration-ms at most
+}
+
+TEST_F(ActuatorHostTest, ASwitchTakesTheSettingsConfiguredForTheNewDriver) {
+    start();
+    config.driver_settings["sim"] = {{"model", "erm"}, {"max-on-time-ms", "1500"}};
+    host->switch_to("sim");
+    EXPECT_EQ(host->capabilities().max_on_time_s, 1.5);
+}
+
+TEST_F(ActuatorHostTest, ADriverThatWillNotOpenLeavesThePreviousOneRunning) {
+    start();
+    EXPECT_THROW(host->switch_to("evdev"), drivers::DeviceError);
+    EXPECT_EQ(host->driver(), "sim");
+    EXPECT_EQ(changes, 1);  // told even so: the backend was reopened
+    const auto id = player->play(endless());
+    EXPECT_EQ(player->current_id(), id);
+}
+
+TEST_F(ActuatorHostTest, AnUnknownDriverOrABadSettingIsAnInvalidArgument) {
+    start();
+    EXPECT_THROW(host->switch_to("no-such-driver"), std::invalid_argument);
+    config.driver_settings["timed-output"]["duration-ms"] = "forever";
+    EXPECT_THROW(host->switch_to("timed-output"), std::invalid_argument);
+    EXPECT_EQ(host->driver(), "sim");
+}
+
+TEST_F(ActuatorHostTest, WhenNeitherBackendOpensEveryPlaybackFailsWithBothReasons) {
+    config.driver = "timed-output";
+    start();
+    std::filesystem::remove_all(sysfs.path() / "class");  // the device went away
+    EXPECT_THROW(host->switch_to("evdev"), drivers::DeviceError);
+    EXPECT_EQ(host->driver(), "none");
+
+    listener.reasons.clear();
+    player->play(endless());
+    ASSERT_EQ(listener.reasons.size(), 1u);
+    EXPECT_THAT(listener.reasons[0], HasSubstr("device-error: no actuator: driver evdev failed"));
+    EXPECT_THAT(listener.reasons[0], HasSubstr("driver timed-output would not reopen"));
+
+    config.driver_settings["sim"] = {};
+    host->switch_to("sim");  // the next switch recovers
+    EXPECT_EQ(host->driver(), "sim");
+}
+
+TEST_F(ActuatorHostTest, FollowingTheConfigurationSwitchesOnlyWhenWhatRunsDiffers) {
+    start();
+    EXPECT_FALSE(host->follow_config());
+    EXPECT_EQ(changes, 0);
+
+    config.driver_settings["sim"]["q"] = "20";
+    EXPECT_TRUE(host->follow_config());
+    EXPECT_EQ(changes, 1);
+
+    config.driver = "timed-output";
+    EXPECT_TRUE(host->follow_config());
+    EXPECT_EQ(host->driver(), "timed-output");
+
+    config.drivers_dir = sysfs.path();
+    EXPECT_TRUE(host->follow_config());  // modules may have changed
+    EXPECT_FALSE(host->follow_config());
+}
+
+TEST_F(ActuatorHostTest, AfterASwitchOverTheBusAReloadReturnsToTheConfiguredDriver) {
+    start();
+    host->switch_to("timed-output");
+    EXPECT_TRUE(host->follow_config());
+    EXPECT_EQ(host->driver(), "sim");
+}
+
+}  // namespace
+}  // namespace vibscore::daemon

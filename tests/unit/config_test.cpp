@@ -1,0 +1,130 @@
+// vibscored.conf without a daemon: every [daemon] key, driver sections, and each error naming
+// the file, line and value.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "daemon/config.hpp"
+#include "tests/support/support.hpp"
+
+namespace vibscore::daemon {
+namespace {
+
+using ::testing::HasSubstr;
+using ::testing::StartsWith;
+
+std::string config_error(const std::string& text) {
+    try {
+        parse_config(text, "test.conf");
+    } catch (const ConfigError& error) {
+        return error.what();
+    }
+    return "<no error>";
+}
+
+TEST(Config, AnEmptyFileKeepsTheDefaults) {
+    DaemonConfig defaults;
+    defaults.shipped = "/usr/share/vibscore/clefs";
+    const DaemonConfig config = parse_config("# nothing\n\n   ; here either\n", "x", defaults);
+    EXPECT_EQ(config.driver, "sim");
+    EXPECT_EQ(config.store, "/var/lib/vibscore");
+    EXPECT_EQ(config.shipped, "/usr/share/vibscore/clefs");
+    EXPECT_EQ(config.separation_ms, 30.0);
+    EXPECT_EQ(config.requests_per_second, 50.0);
+    EXPECT_EQ(config.request_burst, 100.0);
+    EXPECT_TRUE(config.driver_settings.empty());
+}
+
+TEST(Config, EveryDaemonKeyIsRead) {
+    const DaemonConfig config = parse_config(
+        "[daemon]\n"
+        "driver = gpio-erm\n"
+        "drivers-dir = /opt/drivers\n"
+        "store = /tmp/store\n"
+        "shipped = /tmp/shipped\n"
+        "separation-ms = 12.5\n"
+        "requests-per-second = 7\n"
+        "request-burst = 9\n",
+        "x");
+    EXPECT_EQ(config.driver, "gpio-erm");
+    EXPECT_EQ(config.drivers_dir, "/opt/drivers");
+    EXPECT_EQ(config.store, "/tmp/store");
+    EXPECT_EQ(config.shipped, "/tmp/shipped");
+    EXPECT_EQ(config.separation_ms, 12.5);
+    EXPECT_EQ(config.requests_per_second, 7.0);
+    EXPECT_EQ(config.request_burst, 9.0);
+}
+
+TEST(Config, SpacesAndCommentsAroundKeysAndValuesAreDropped) {
+    const DaemonConfig config =
+        parse_config("  [ daemon ]  # the service\n\tdriver\t=  evdev   ; the vibra\n", "x");
+    EXPECT_EQ(config.driver, "evdev");
+}
+
+TEST(Config, OtherSectionsAreTheSettingsOfTheDriverTheyName) {
+    const DaemonConfig config = parse_config(
+        "[sim]\nmodel = erm\ntrace = /tmp/t.csv\n[evdev]\ndevice = /dev/input/event3\n", "x");
+    EXPECT_EQ(config.settings_of("sim"),
+              (std::map<std::string, std::string>{{"model", "erm"}, {"trace", "/tmp/t.csv"}}));
+    EXPECT_EQ(config.settings_of("evdev").at("device"), "/dev/input/event3");
+    EXPECT_TRUE(config.settings_of("gpio-lra").empty());
+}
+
+TEST(Config, ALaterValueOfAKeyWins) {
+    EXPECT_EQ(parse_config("[daemon]\ndriver = evdev\ndriver = sim\n", "x").driver, "sim");
+}
+
+TEST(Config, AMalformedLineIsAnErrorNamingFileAndLine) {
+    EXPECT_EQ(config_error("[daemon]\n\ndriver sim\n"),
+              "test.conf:3: expected \"key = value\", found \"driver sim\"");
+    EXPECT_EQ(config_error("[daemon\n"), "test.conf:1: malformed section header \"[daemon\"");
+    EXPECT_EQ(config_error("[]\n"), "test.conf:1: malformed section header \"[]\"");
+    EXPECT_EQ(config_error("driver = sim\n"), "test.conf:1: \"driver\" is outside any [section]");
+}
+
+TEST(Config, AnUnknownDaemonKeyIsAnErrorListingTheKnownOnes) {
+    const auto message = config_error("[daemon]\ndriverr = sim\n");
+    EXPECT_THAT(message, StartsWith("test.conf:2: unknown key \"driverr\" in [daemon]"));
+    EXPECT_THAT(message, HasSubstr("requests-per-second"));
+}
+
+TEST(Config, ANumberThatIsNotPositiveOrTooLargeOrNotANumberIsAnError) {
+    for (const auto* value : {"0", "-5", "abc", "12ms", "nan", "inf", "1001"}) {
+        EXPECT_THAT(config_error(std::string("[daemon]\nseparation-ms = ") + value + "\n"),
+                    StartsWith(std::string("test.conf:2: separation-ms = \"") + value +
+                               "\" is not a number above 0 and at most"))
+            << value;
+    }
+    EXPECT_THAT(config_error("[daemon]\nrequests-per-second = 0\n"),
+                StartsWith("test.conf:2: requests-per-second = \"0\""));
+    EXPECT_THAT(config_error("[daemon]\nrequest-burst = x\n"),
+                StartsWith("test.conf:2: request-burst = \"x\""));
+}
+
+TEST(Config, AKeyWithoutAValueIsAnError) {
+    EXPECT_EQ(config_error("[daemon]\nstore =\n"), "test.conf:2: store has no value");
+}
+
+TEST(Config, AFileThatCannotBeOpenedIsAnErrorNamingIt) {
+    try {
+        load_config("/nonexistent/vibscored.conf");
+        ADD_FAILURE() << "no error";
+    } catch (const ConfigError& error) {
+        EXPECT_THAT(error.what(), StartsWith("/nonexistent/vibscored.conf: "));
+    }
+}
+
+TEST(Config, AFileIsReadWithItsPathInErrors) {
+    vibscore::testing::TempDir dir;
+    const auto path = dir.write("vibscored.conf", "[daemon]\nrequest-burst = 3\n[daemon]\nx = 1\n");
+    EXPECT_EQ(load_config(dir.write("good.conf", "[daemon]\nrequest-burst = 3\n")).request_burst,
+              3.0);
+    try {
+        load_config(path);
+        ADD_FAILURE() << "no error";
+    } catch (const ConfigError& error) {
+        EXPECT_THAT(error.what(), StartsWith(path.string() + ":4: unknown key \"x\""));
+    }
+}
+
+}  // namespace
+}  // namespace vibscore::daemon

@@ -1,0 +1,110 @@
+// SIGHUP's work without a daemon: a reloaded configuration checked before it changes anything,
+// then applied to the request rate and the backend.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "daemon/reload.hpp"
+#include "tests/support/support.hpp"
+
+namespace vibscore::daemon {
+namespace {
+
+using ::testing::ElementsAre;
+using ::testing::IsEmpty;
+
+class Reasons : public PlayerListener {
+  public:
+    void playback_started(std::uint64_t, const std::string&) override {}
+    void playback_position(std::uint64_t, std::size_t, std::size_t) override {}
+    void playback_finished(std::uint64_t, const std::string& reason) override {
+        finished.push_back(reason);
+    }
+    std::vector<std::string> finished;
+};
+
+class ReloadTest : public ::testing::Test {
+  protected:
+    ReloadTest() {
+        running.driver = "sim";
+        running.store = "/var/lib/vibscore";
+        running.shipped = "/usr/share/vibscore/clefs";
+        running.driver_settings["sim"] = {{"model", "lra"}};
+        host.emplace(running);
+        player.emplace(loop, host->actuator(), reasons);
+        host->attach(*player);
+        PlaybackRequest request;
+        render::Cue drive;
+        drive.amplitude = 0.5;
+        request.cues = {drive};
+        request.duration_s = 10.0;
+        request.repeat = -1;
+        player->play(request);
+    }
+
+    DaemonConfig running;
+    EventLoop loop;
+    Reasons reasons;
+    CallerDirectory callers{50.0, 100.0};
+    std::optional<ActuatorHost> host;
+    std::optional<Player> player;
+};
+
+TEST_F(ReloadTest, TheSameConfigurationAgainChangesNothingAndPlaybackGoesOn) {
+    reload_config(running, running, *host, callers);
+    EXPECT_THAT(reasons.finished, IsEmpty());
+    EXPECT_TRUE(player->current_id().has_value());
+}
+
+TEST_F(ReloadTest, ANewRequestRateAppliesAtOnceWithoutTouchingTheBackend) {
+    DaemonConfig fresh = running;
+    fresh.requests_per_second = 5.0;
+    fresh.request_burst = 1.0;
+    reload_config(running, fresh, *host, callers);
+    EXPECT_EQ(callers.requests_per_second(), 5.0);
+    EXPECT_TRUE(callers.admit(":1.1", 1'000'000));
+    EXPECT_FALSE(callers.admit(":1.1", 1'000'000));
+    EXPECT_EQ(running.requests_per_second, 5.0);
+    EXPECT_THAT(reasons.finished, IsEmpty());
+}
+
+TEST_F(ReloadTest, NewSettingsOfTheRunningDriverReopenItEndingPlayback) {
+    DaemonConfig fresh = running;
+    fresh.driver_settings["sim"]["max-on-time-ms"] = "2000";
+    reload_config(running, fresh, *host, callers);
+    EXPECT_THAT(reasons.finished, ElementsAre("driver-switch"));
+    EXPECT_EQ(host->capabilities().max_on_time_s, 2.0);
+    EXPECT_EQ(running.settings_of("sim").at("max-on-time-ms"), "2000");
+}
+
+TEST_F(ReloadTest, ABadSettingChangesNothingAtAll) {
+    DaemonConfig fresh = running;
+    fresh.requests_per_second = 5.0;
+    fresh.driver_settings["sim"]["max-on-time-ms"] = "long";
+    EXPECT_THROW(reload_config(running, fresh, *host, callers), std::invalid_argument);
+    EXPECT_EQ(callers.requests_per_second(), 50.0);
+    EXPECT_EQ(running.requests_per_second, 50.0);
+    EXPECT_FALSE(running.settings_of("sim").contains("max-on-time-ms"));
+    EXPECT_THAT(reasons.finished, IsEmpty());
+}
+
+TEST_F(ReloadTest, TheStoreAndShippedDirectoriesKeepTheirRunningValues) {
+    DaemonConfig fresh = running;
+    fresh.store = "/elsewhere/store";
+    fresh.shipped = "/elsewhere/clefs";
+    fresh.separation_ms = 10.0;
+    reload_config(running, fresh, *host, callers);
+    EXPECT_EQ(running.store, "/var/lib/vibscore");
+    EXPECT_EQ(running.shipped, "/usr/share/vibscore/clefs");
+    EXPECT_EQ(running.separation_ms, 10.0);
+}
+
+TEST_F(ReloadTest, ADriverThatWillNotOpenLeavesThePreviousOneRunning) {
+    DaemonConfig fresh = running;
+    fresh.driver = "evdev";
+    fresh.driver_settings["evdev"] = {{"device", "/nonexistent/event99"}};
+    EXPECT_THROW(reload_config(running, fresh, *host, callers), drivers::DeviceError);
+    EXPECT_EQ(host->driver(), "sim");
+}
+
+}  // namespace
+}  // namespace vibscore::daemon

@@ -1,0 +1,320 @@
+#include "daemon/drivers/sim_actuator.hpp"
+
+#include <fcntl.h>
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdint>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "tests/support/support.hpp"
+
+namespace vibscore::drivers {
+namespace {
+
+using ::testing::HasSubstr;
+using ::testing::Not;
+using vibscore::testing::TempDir;
+
+// A clock the test advances by hand.
+struct FakeClock {
+    std::int64_t now_ns = 1'000'000'000;
+    MonotonicClock function() {
+        return [this] { return now_ns; };
+    }
+};
+
+struct TraceLine {
+    std::int64_t time_ns;
+    double amplitude;
+    double frequency_hz;
+    double response;
+};
+
+std::vector<std::string> lines_of(const std::filesystem::path& path) {
+    std::ifstream in(path);
+    std::vector<std::string> lines;
+    for (std::string line; std::getline(in, line);) {
+        lines.push_back(line);
+    }
+    return lines;
+}
+
+TraceLine parse(const std::string& line) {
+    TraceLine parsed{};
+    char comma = 0;
+    std::istringstream in(line);
+    in >> parsed.time_ns >> comma >> parsed.amplitude >> comma >> parsed.frequency_hz >> comma >>
+        parsed.response;
+    EXPECT_TRUE(in) << line;
+    return parsed;
+}
+
+// Everything written to a pipe's write end by f, read once f has returned (and closed up).
+template <typename F>
+std::string pipe_output(F&& f) {
+    int fds[2];
+    EXPECT_EQ(::pipe(fds), 0);
+    f(fds[1]);
+    ::close(fds[1]);
+    std::string text;
+    char buffer[4096];
+    for (ssize_t n; (n = ::read(fds[0], buffer, sizeof buffer)) > 0;) {
+        text.append(buffer, static_cast<std::size_t>(n));
+    }
+    ::close(fds[0]);
+    return text;
+}
+
+TEST(SimActuator, NameAndCapabilities) {
+    SimActuator sim({});
+    EXPECT_EQ(sim.driver_name(), "sim");
+    const auto capabilities = sim.capabilities();
+    EXPECT_TRUE(capabilities.amplitude_control);
+    EXPECT_TRUE(capabilities.frequency_control);
+    EXPECT_FALSE(capabilities.effect_memory);
+}
+
+TEST(SimActuator, FeedsTheModelAndCountsCommands) {
+    FakeClock clock;
+    SimSettings settings;
+    settings.model.kind = ActuatorKind::erm;
+    SimActuator sim(settings, clock.function());
+    sim.apply({0.5, 0.0});
+    EXPECT_EQ(sim.command_count(), 1u);
+    EXPECT_DOUBLE_EQ(sim.model().target(), 0.5);
+    clock.now_ns += 50'000'000;
+    EXPECT_NEAR(sim.model().response_at(1.050), 0.5 * (1.0 - std::exp(-1.0)), 1e-9);
+    sim.off();
+    EXPECT_EQ(sim.command_count(), 2u);
+    EXPECT_EQ(sim.model().target(), 0.0);
+}
+
+TEST(SimActuator, ClampsAmplitude) {
+    SimActuator sim({});
+    sim.apply({1.7, 0.0});
+    EXPECT_DOUBLE_EQ(sim.model().target(), 1.0);
+    sim.apply({-0.2, 0.0});
+    EXPECT_DOUBLE_EQ(sim.model().target(), 0.0);
+    sim.apply({NAN, 0.0});
+    EXPECT_DOUBLE_EQ(sim.model().target(), 0.0);
+}
+
+TEST(SimActuator, TraceHasAHeaderAndOneLinePerCommand) {
+    TempDir dir;
+    FakeClock clock;
+    SimSettings settings;
+    settings.trace = dir.path() / "trace.csv";
+    SimActuator sim(settings, clock.function());
+
+    sim.apply({0.8, 175.0});
+    clock.now_ns += 20'000'000;
+    sim.apply({1.5, 350.0});  // clamped
+    clock.now_ns += 10'000'000;
+    sim.off();
+
+    // Read while the actuator is still alive: every line is already in the file.
+    const auto lines = lines_of(*settings.trace);
+    ASSERT_EQ(lines.size(), 4u);
+    EXPECT_EQ(lines[0], "time_ns,amplitude,frequency_hz,response");
+    const TraceLine first = parse(lines[1]);
+    const TraceLine second = parse(lines[2]);
+    const TraceLine last = parse(lines[3]);
+
+    EXPECT_EQ(first.time_ns, 1'000'000'000);
+    EXPECT_EQ(second.time_ns, 1'020'000'000);
+    EXPECT_EQ(last.time_ns, 1'030'000'000);
+    EXPECT_LT(first.time_ns, second.time_ns);
+    EXPECT_LT(second.time_ns, last.time_ns);
+
+    EXPECT_EQ(first.amplitude, 0.8);
+    EXPECT_EQ(first.frequency_hz, 175.0);
+    EXPECT_EQ(first.response, 0.0);  // nothing moved before the first command
+
+    const double tau = ActuatorModel::lra_time_constant_s(175.0, 8.0);
+    EXPECT_EQ(second.amplitude, 1.0);
+    EXPECT_EQ(second.frequency_hz, 350.0);
+    EXPECT_NEAR(second.response, 0.8 * (1.0 - std::exp(-0.020 / tau)), 1e-12);
+
+    EXPECT_EQ(last.amplitude, 0.0);
+    EXPECT_EQ(last.frequency_hz, 0.0);
+    EXPECT_NEAR(last.response, sim.model().response_at(1.030), 1e-15);
+}
+
+TEST(SimActuator, OffAfterApplyTracesAZeroLine) {
+    TempDir dir;
+    SimSettings settings;
+    settings.trace = dir.path() / "t.csv";
+    SimActuator sim(settings);
+    sim.apply({0.6, 0.0});
+    sim.off();
+    const auto lines = lines_of(*settings.trace);
+    ASSERT_EQ(lines.size(), 3u);
+    const TraceLine on = parse(lines[1]);
+    const TraceLine off = parse(lines[2]);
+    EXPECT_EQ(off.amplitude, 0.0);
+    EXPECT_LE(on.time_ns, off.time_ns);  // the real monotonic clock
+}
+
+TEST(SimActuator, UnwritableTracePathThrowsNamingIt) {
+    TempDir dir;
+    SimSettings settings;
+    settings.trace = dir.path() / "missing" / "trace.csv";
+    try {
+        SimActuator sim(settings);
+        FAIL() << "no exception";
+    } catch (const std::runtime_error& error) {
+        EXPECT_THAT(error.what(), HasSubstr(settings.trace->string()));
+        EXPECT_THAT(error.what(), HasSubstr("No such file or directory"));
+    }
+}
+
+TEST(SimActuator, TraceWriteFailureThrowsFromApplyAndIsLoggedOnceFromOff) {
+    // A FIFO whose reader has gone makes every write fail with EPIPE.
+    TempDir dir;
+    const auto fifo = dir.path() / "fifo";
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    const int reader = ::open(fifo.c_str(), O_RDONLY | O_NONBLOCK);
+    ASSERT_GE(reader, 0);
+    SimSettings settings;
+    settings.trace = fifo;
+    SimActuator sim(settings);
+    ::close(reader);
+    struct sigaction ignore {};
+    struct sigaction previous {};
+    ignore.sa_handler = SIG_IGN;
+    ::sigaction(SIGPIPE, &ignore, &previous);
+
+    try {
+        sim.apply({0.5, 0.0});
+        ADD_FAILURE() << "no exception";
+    } catch (const DeviceError& error) {
+        EXPECT_THAT(error.what(), HasSubstr(fifo.string()));
+        EXPECT_THAT(error.what(), HasSubstr("Broken pipe"));
+    }
+
+    // Capture stderr, where vibscore::log writes, around two failing off() calls.
+    const std::string log = pipe_output([&](int fd) {
+        const int saved = ::dup(STDERR_FILENO);
+        ::dup2(fd, STDERR_FILENO);
+        sim.off();
+        sim.off();
+        ::dup2(saved, STDERR_FILENO);
+        ::close(saved);
+    });
+    ::sigaction(SIGPIPE, &previous, nullptr);
+
+    EXPECT_EQ(sim.command_count(), 3u);
+    EXPECT_THAT(log, HasSubstr(fifo.string()));
+    EXPECT_EQ(log.find(fifo.string()), log.rfind(fifo.string())) << log;
+}
+
+TEST(TerminalMeter, DrawsBarValueAndFrequencyInPlace) {
+    const std::string text = pipe_output([](int fd) {
+        TerminalMeter meter(fd, "sim lra", TerminalMeter::Glyphs::unicode);
+        meter.show(0.5, 180.0);
+        meter.show(1.0, 175.0);
+    });
+    EXPECT_THAT(text, HasSubstr("\rsim lra  ▕██████████          ▏ 0.50   180 Hz"));
+    EXPECT_THAT(text, HasSubstr("\rsim lra  ▕████████████████████▏ 1.00   175 Hz"));
+    EXPECT_EQ(text.back(), '\n');
+}
+
+TEST(TerminalMeter, AsciiFallbackAndPartialCells) {
+    const TerminalMeter ascii(-1, "sim erm", TerminalMeter::Glyphs::ascii);
+    EXPECT_EQ(ascii.line(0.25, -1.0), "sim erm  [#####               ] 0.25         ");
+    const TerminalMeter unicode(-1, "sim lra", TerminalMeter::Glyphs::unicode);
+    // 0.52 of 20 cells = 10.4 cells: ten full blocks and three eighths.
+    EXPECT_THAT(unicode.line(0.52, 180.0), HasSubstr("▕██████████▍         ▏ 0.52   180 Hz"));
+}
+
+TEST(TerminalMeter, EveryLineHasTheSameWidthSoRedrawsOverwrite) {
+    const TerminalMeter ascii(-1, "sim lra", TerminalMeter::Glyphs::ascii);
+    EXPECT_EQ(ascii.line(0.0, 0.0).size(), ascii.line(1.0, 1000.0).size());
+    EXPECT_EQ(ascii.line(0.3, -1.0).size(), ascii.line(1.0, 1000.0).size());
+}
+
+TEST(TerminalMeter, UnusedMeterWritesNothing) {
+    const std::string text = pipe_output(
+        [](int fd) { TerminalMeter meter(fd, "sim lra", TerminalMeter::Glyphs::unicode); });
+    EXPECT_EQ(text, "");
+}
+
+TEST(SimActuator, MeterShowsWhereTheActuatorIsHeading) {
+    const std::string text = pipe_output([](int fd) {
+        SimSettings settings;
+        settings.meter = true;
+        settings.meter_fd = fd;
+        SimActuator sim(settings);
+        sim.apply({0.52, 0.0});
+    });
+    EXPECT_THAT(text, HasSubstr("sim lra"));
+    EXPECT_THAT(text, HasSubstr(" 0.52   175 Hz"));
+    EXPECT_TRUE(text.find("▕") != std::string::npos || text.find('[') != std::string::npos);
+    EXPECT_EQ(text.back(), '\n');
+}
+
+TEST(MakeSimActuator, DefaultsToAnLraWithoutTraceOrMeter) {
+    const auto actuator = make_sim_actuator({});
+    const auto& sim = dynamic_cast<const SimActuator&>(*actuator);
+    EXPECT_EQ(sim.model().settings().kind, ActuatorKind::lra);
+    EXPECT_EQ(sim.model().settings().resonance_hz, 175.0);
+    EXPECT_EQ(sim.model().settings().q, 8.0);
+}
+
+TEST(MakeSimActuator, ReadsEverySetting) {
+    TempDir dir;
+    const auto trace = dir.path() / "trace.csv";
+    const auto actuator = make_sim_actuator({{"model", "erm"},
+                                             {"resonance-hz", "205.5"},
+                                             {"q", "12"},
+                                             {"spin-up-ms", "40"},
+                                             {"spin-down-ms", "120"},
+                                             {"trace", trace.string()},
+                                             {"meter", "false"}});
+    const auto& model = dynamic_cast<const SimActuator&>(*actuator).model().settings();
+    EXPECT_EQ(model.kind, ActuatorKind::erm);
+    EXPECT_EQ(model.resonance_hz, 205.5);
+    EXPECT_EQ(model.q, 12.0);
+    EXPECT_DOUBLE_EQ(model.spin_up_s, 0.040);
+    EXPECT_DOUBLE_EQ(model.spin_down_s, 0.120);
+    EXPECT_TRUE(std::filesystem::exists(trace));
+}
+
+TEST(MakeSimActuator, RejectsBadValuesNamingKeyAndValue) {
+    const std::vector<std::pair<std::string, std::string>> bad = {
+        {"model", "piezo"}, {"resonance-hz", "abc"}, {"resonance-hz", "-175"}, {"q", "0"},
+        {"q", "8x"},        {"spin-up-ms", ""},      {"spin-down-ms", "inf"},  {"meter", "yes"},
+        {"trace", ""},      {"colour", "blue"},
+    };
+    for (const auto& [key, value] : bad) {
+        try {
+            make_sim_actuator({{key, value}});
+            ADD_FAILURE() << key << " = " << value << " accepted";
+        } catch (const std::invalid_argument& error) {
+            EXPECT_THAT(error.what(), HasSubstr(key)) << error.what();
+            EXPECT_THAT(error.what(), HasSubstr("\"" + value + "\"")) << error.what();
+        }
+    }
+}
+
+TEST(MakeSimActuator, UnwritableTraceNamesThePath) {
+    TempDir dir;
+    const auto trace = dir.path() / "no" / "such" / "dir.csv";
+    EXPECT_THAT(
+        [&] {
+            make_sim_actuator({{"trace", trace.string()}});
+        },
+        ::testing::ThrowsMessage<std::runtime_error>(HasSubstr(trace.string())));
+}
+
+}  // namespace
+}  // namespace vibscore::drivers
