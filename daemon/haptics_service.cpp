@@ -2,8 +2,8 @@
 
 #include <algorithm>
 
-#include "config.h"
 #include "common/monotonic_clock.hpp"
+#include "config.h"
 #include "daemon/log.hpp"
 #include "daemon/play_request.hpp"
 #include "daemon/request_error.hpp"

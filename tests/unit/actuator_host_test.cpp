@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "daemon/actuator_host.hpp"
+#include "tests/support/finished_reasons.hpp"
 #include "tests/support/support.hpp"
 
 namespace vibscore::daemon {
@@ -12,16 +13,6 @@ namespace {
 
 using ::testing::ElementsAre;
 using ::testing::HasSubstr;
-
-class FinishedReasons : public PlayerListener {
-  public:
-    void playback_started(std::uint64_t, const std::string&) override {}
-    void playback_position(std::uint64_t, std::size_t, std::size_t) override {}
-    void playback_finished(std::uint64_t, const std::string& reason) override {
-        reasons.push_back(reason);
-    }
-    std::vector<std::string> reasons;
-};
 
 // A playback that goes on until something ends it.
 PlaybackRequest endless() {
@@ -59,7 +50,7 @@ class ActuatorHostTest : public ::testing::Test {
     vibscore::testing::TempDir sysfs;
     DaemonConfig config;
     EventLoop loop;
-    FinishedReasons listener;
+    vibscore::testing::FinishedReasons listener;
     std::optional<ActuatorHost> host;
     std::optional<Player> player;
     int changes = 0;

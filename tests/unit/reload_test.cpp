@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "daemon/reload.hpp"
+#include "tests/support/finished_reasons.hpp"
 #include "tests/support/support.hpp"
 
 namespace vibscore::daemon {
@@ -11,16 +12,6 @@ namespace {
 
 using ::testing::ElementsAre;
 using ::testing::IsEmpty;
-
-class Reasons : public PlayerListener {
-  public:
-    void playback_started(std::uint64_t, const std::string&) override {}
-    void playback_position(std::uint64_t, std::size_t, std::size_t) override {}
-    void playback_finished(std::uint64_t, const std::string& reason) override {
-        finished.push_back(reason);
-    }
-    std::vector<std::string> finished;
-};
 
 class ReloadTest : public ::testing::Test {
   protected:
@@ -43,7 +34,7 @@ class ReloadTest : public ::testing::Test {
 
     DaemonConfig running;
     EventLoop loop;
-    Reasons reasons;
+    vibscore::testing::FinishedReasons reasons;
     CallerDirectory callers{50.0, 100.0};
     std::optional<ActuatorHost> host;
     std::optional<Player> player;
@@ -51,7 +42,7 @@ class ReloadTest : public ::testing::Test {
 
 TEST_F(ReloadTest, TheSameConfigurationAgainChangesNothingAndPlaybackGoesOn) {
     reload_config(running, running, *host, callers);
-    EXPECT_THAT(reasons.finished, IsEmpty());
+    EXPECT_THAT(reasons.reasons, IsEmpty());
     EXPECT_TRUE(player->current_id().has_value());
 }
 
@@ -64,14 +55,14 @@ TEST_F(ReloadTest, ANewRequestRateAppliesAtOnceWithoutTouchingTheBackend) {
     EXPECT_TRUE(callers.admit(":1.1", 1'000'000));
     EXPECT_FALSE(callers.admit(":1.1", 1'000'000));
     EXPECT_EQ(running.requests_per_second, 5.0);
-    EXPECT_THAT(reasons.finished, IsEmpty());
+    EXPECT_THAT(reasons.reasons, IsEmpty());
 }
 
 TEST_F(ReloadTest, NewSettingsOfTheRunningDriverReopenItEndingPlayback) {
     DaemonConfig fresh = running;
     fresh.driver_settings["sim"]["max-on-time-ms"] = "2000";
     reload_config(running, fresh, *host, callers);
-    EXPECT_THAT(reasons.finished, ElementsAre("driver-switch"));
+    EXPECT_THAT(reasons.reasons, ElementsAre("driver-switch"));
     EXPECT_EQ(host->capabilities().max_on_time_s, 2.0);
     EXPECT_EQ(running.settings_of("sim").at("max-on-time-ms"), "2000");
 }
@@ -84,7 +75,7 @@ TEST_F(ReloadTest, ABadSettingChangesNothingAtAll) {
     EXPECT_EQ(callers.requests_per_second(), 50.0);
     EXPECT_EQ(running.requests_per_second, 50.0);
     EXPECT_FALSE(running.settings_of("sim").contains("max-on-time-ms"));
-    EXPECT_THAT(reasons.finished, IsEmpty());
+    EXPECT_THAT(reasons.reasons, IsEmpty());
 }
 
 TEST_F(ReloadTest, TheStoreAndShippedDirectoriesKeepTheirRunningValues) {
