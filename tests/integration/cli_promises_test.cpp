@@ -224,6 +224,23 @@ TEST_F(ClefRule, AFileThatFailsCheckFailsPlayWithTheSameMessage) {
     EXPECT_THAT(checked.err, HasSubstr(played.err));
 }
 
+TEST_F(ClefRule, StopSaysWhetherAnythingOfYoursWasPlaying) {
+    const auto idle = vibscore({"stop"});
+    EXPECT_EQ(idle.exit_code, 0) << idle.err;
+    EXPECT_EQ(idle.out, "none of your playbacks was playing\n");
+    // A repeating playback lasts as long as its caller stays: one waits in the background.
+    const auto output = work.path() / "playing.out";
+    testing::Process playing(command("VIBSCORE", {"play", "ringtone", "--repeat", "-1", "--wait"}),
+                             output);
+    for (int i = 0; i < 500 && testing::read_file(output).find("bar 1") == std::string::npos; ++i) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    const auto stopped = vibscore({"stop"});
+    EXPECT_EQ(stopped.out, "stopped your playback\n");
+    EXPECT_EQ(playing.wait(), 0);
+    EXPECT_THAT(testing::read_file(output), HasSubstr(" stopped\n"));
+}
+
 // The README's command lines (backslash continuations joined), from its ```sh blocks.
 std::vector<std::string> readme_commands(const std::filesystem::path& readme) {
     std::ifstream in(readme);
