@@ -5,13 +5,16 @@
 #include <string>
 #include <vector>
 
+#include "client/clef_search.hpp"
+
 namespace vibscore::client {
 
 // Exit codes shared by every verb.
 enum ExitCode : int { exit_ok = 0, exit_failed = 1, exit_usage = 2 };
 
-// vibscore check FILE...: validates scores (with their clefs) and clefs.
-int check_documents(const std::vector<std::string>& files, std::ostream& out, std::ostream& err);
+// vibscore check FILE...: validates scores (with their clefs, found by `clefs`) and clefs.
+int check_documents(const std::vector<std::string>& files, const ClefSearch& clefs,
+                    std::ostream& out, std::ostream& err);
 
 struct RenderRequest {
     std::string file;
@@ -22,9 +25,11 @@ struct RenderRequest {
 };
 
 // vibscore render FILE --rate HZ --out OUT.csv|OUT.wav [--plot]
-int render_document(const RenderRequest& request, std::ostream& out, std::ostream& err);
+int render_document(const RenderRequest& request, const ClefSearch& clefs, std::ostream& out,
+                    std::ostream& err);
 
 // vibscore info FILE: what a score or clef holds.
-int describe_document(const std::string& file, std::ostream& out, std::ostream& err);
+int describe_document(const std::string& file, const ClefSearch& clefs, std::ostream& out,
+                      std::ostream& err);
 
 }  // namespace vibscore::client

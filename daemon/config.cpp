@@ -1,9 +1,15 @@
 #include "daemon/config.hpp"
 
+#include <algorithm>
+#include <cerrno>
 #include <charconv>
 #include <cmath>
+#include <cstring>
 #include <fstream>
 #include <sstream>
+
+#include "common/closest_name.hpp"
+#include "common/number_text.hpp"
 
 namespace vibscore::daemon {
 
@@ -24,7 +30,7 @@ double positive_number(const std::string& value, const std::string& where, const
     if (error != std::errc() || end != value.data() + value.size() || !std::isfinite(number) ||
         number <= 0.0 || number > max) {
         throw ConfigError(where + ": " + key + " = \"" + value +
-                          "\" is not a number above 0 and at most " + std::to_string(max));
+                          "\" is not a number above 0 and at most " + number_text(max));
     }
     return number;
 }
@@ -35,6 +41,33 @@ const std::map<std::string, std::string>& DaemonConfig::settings_of(const std::s
     static const std::map<std::string, std::string> kNone;
     const auto found = driver_settings.find(name);
     return found == driver_settings.end() ? kNone : found->second;
+}
+
+std::string DaemonConfig::where(const std::string& driver, const std::string& key) const {
+    if (const auto section = setting_lines.find(driver); section != setting_lines.end()) {
+        if (const auto line = section->second.find(key); line != section->second.end()) {
+            return line->second + ": ";
+        }
+    }
+    const auto header = section_lines.find(driver);
+    return header == section_lines.end() ? std::string() : header->second + ": ";
+}
+
+std::vector<std::string> unknown_sections(const DaemonConfig& config,
+                                          const std::vector<std::string>& known) {
+    std::vector<std::string> warnings;
+    for (const auto& [section, where] : config.section_lines) {
+        if (std::find(known.begin(), known.end(), section) != known.end()) {
+            continue;
+        }
+        std::vector<std::string> candidates(known);
+        candidates.push_back("daemon");
+        const auto meant = closest_name(section, candidates);
+        warnings.push_back(where + ": unknown section [" + section +
+                           "]: no driver of that name, so its keys apply nowhere" +
+                           (meant ? " (did you mean [" + *meant + "]?)" : ""));
+    }
+    return warnings;
 }
 
 DaemonConfig parse_config(const std::string& text, const std::string& file, DaemonConfig config) {
@@ -54,6 +87,10 @@ DaemonConfig parse_config(const std::string& text, const std::string& file, Daem
                 throw ConfigError(where + ": malformed section header \"" + content + "\"");
             }
             section = trim(content.substr(1, content.size() - 2));
+            if (section != "daemon") {
+                config.driver_settings[section];  // an empty section still names a driver
+                config.section_lines.try_emplace(section, where);
+            }
             continue;
         }
         const auto equals = content.find('=');
@@ -67,6 +104,7 @@ DaemonConfig parse_config(const std::string& text, const std::string& file, Daem
         }
         if (section != "daemon") {
             config.driver_settings[section][key] = value;
+            config.setting_lines[section][key] = where;
             continue;
         }
         if (key == "driver") {
@@ -98,7 +136,7 @@ DaemonConfig parse_config(const std::string& text, const std::string& file, Daem
 DaemonConfig load_config(const std::filesystem::path& path, DaemonConfig defaults) {
     std::ifstream in(path);
     if (!in) {
-        throw ConfigError(path.string() + ": cannot open");
+        throw ConfigError(path.string() + ": cannot open: " + std::strerror(errno));
     }
     std::ostringstream text;
     text << in.rdbuf();

@@ -6,6 +6,7 @@
 #include <map>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace vibscore::daemon {
 
@@ -23,8 +24,14 @@ struct DaemonConfig {
     double requests_per_second = 50.0;
     double request_burst = 100.0;
     std::map<std::string, std::map<std::string, std::string>> driver_settings;  // by driver
+    // Where each [section] begins and each of its keys is set, as "file:line", for messages.
+    std::map<std::string, std::string> section_lines;
+    std::map<std::string, std::map<std::string, std::string>> setting_lines;
 
     const std::map<std::string, std::string>& settings_of(const std::string& driver) const;
+    // "file:line: " of a driver's setting (or of its section when the key is not set there);
+    // empty when the settings did not come from a file.
+    std::string where(const std::string& driver, const std::string& key) const;
 };
 
 // The file is wrong; the message is "path:line: what", naming the key and value.
@@ -35,6 +42,13 @@ class ConfigError : public std::runtime_error {
 
 DaemonConfig parse_config(const std::string& text, const std::string& file,
                           DaemonConfig defaults = {});
+// Throws ConfigError naming the path and the reason when the file cannot be read.
 DaemonConfig load_config(const std::filesystem::path& path, DaemonConfig defaults = {});
+
+// A warning for each section of `config` that is neither [daemon] nor one of `known` (the
+// drivers), whose keys therefore apply nowhere: "file:line: unknown section [x] ... (did you mean
+// [y]?)".
+std::vector<std::string> unknown_sections(const DaemonConfig& config,
+                                          const std::vector<std::string>& known);
 
 }  // namespace vibscore::daemon

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "common/monotonic_clock.hpp"
+#include "common/number_text.hpp"
 #include "config.h"
 #include "daemon/log.hpp"
 #include "daemon/play_request.hpp"
@@ -130,7 +131,7 @@ const Caller& HapticsService::admit_caller() {
     if (!callers_.admit(caller.sender, monotonic_now_us())) {
         throw RequestError(RequestError::Code::limit_exceeded,
                            "too many requests from " + caller.sender + "; the limit is " +
-                               std::to_string(callers_.requests_per_second()) + " per second");
+                               number_text(callers_.requests_per_second()) + " per second");
     }
     return caller;
 }
@@ -150,8 +151,8 @@ std::uint64_t HapticsService::Play(const std::string& score,
         const Caller& caller = admit_caller();
         const PlayOptions play_options = parse_play_options(options);
         PlaybackRequest request =
-            make_playback_request(find_score_to_play(registry_, score, play_options.clef),
-                                  play_options, config_.separation_ms / 1000.0);
+            make_playback_request(find_score_to_play(registry_, score, play_options), play_options,
+                                  config_.separation_ms / 1000.0);
         request.owner = caller.uid;
         request.sender = caller.sender;
         const auto label = request.label;
@@ -262,11 +263,10 @@ void HapticsService::Intensity(const double& value) {
         require_privileged(caller, "Setting Intensity");
         if (!(value >= 0.0 && value <= 1.0)) {
             throw RequestError(RequestError::Code::invalid,
-                               "Intensity " + std::to_string(value) + " is outside 0..1");
+                               "Intensity " + number_text(value) + " is outside 0..1");
         }
         player_.set_master_intensity(value);
-        log::info("uid " + std::to_string(caller.uid) + " set Intensity to " +
-                  std::to_string(value));
+        log::info("uid " + std::to_string(caller.uid) + " set Intensity to " + number_text(value));
     });
 }
 

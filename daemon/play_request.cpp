@@ -2,6 +2,7 @@
 
 #include <string>
 
+#include "common/number_text.hpp"
 #include "daemon/render/cue_schedule.hpp"
 #include "daemon/render/performance.hpp"
 #include "daemon/request_error.hpp"
@@ -46,32 +47,40 @@ PlayOptions parse_play_options(const std::map<std::string, sdbus::Variant>& opti
             parsed.repeat = option_value<std::int32_t>(key, value, "i", "an int32");
             if (parsed.repeat < -1) {
                 throw invalid("repeat " + std::to_string(parsed.repeat) +
-                              " is invalid (0 once, n more times, -1 forever)");
+                              " is invalid (0 once, n more times, -1 until stopped)");
             }
         } else if (key == "intensity") {
             parsed.intensity = option_value<double>(key, value, "d", "a double");
             if (!(parsed.intensity >= 0.0 && parsed.intensity <= 1.0)) {
-                throw invalid("intensity " + std::to_string(parsed.intensity) + " is outside 0..1");
+                throw invalid("intensity " + number_text(parsed.intensity) + " is outside 0..1");
             }
         } else if (key == "clef") {
             parsed.clef = option_value<std::string>(key, value, "s", "a string");
         } else if (key == "start-bar") {
             parsed.start_bar = option_value<std::uint32_t>(key, value, "u", "a uint32");
+        } else if (key == "clefs") {
+            parsed.clef_documents = option_value<std::map<std::string, std::string>>(
+                key, value, "a{ss}", "a dictionary of strings");
         } else {
             throw invalid("unknown option \"" + key +
-                          "\" (expected usage, repeat, intensity, clef, start-bar)");
+                          "\" (expected usage, repeat, intensity, clef, start-bar, clefs)");
         }
     }
     return parsed;
 }
 
 ScoreToPlay find_score_to_play(const Registry& registry, const std::string& score,
-                               const std::string& clef_override) {
+                               const PlayOptions& options) {
+    const std::string& clef_override = options.clef;
     ScoreToPlay found;
     if (is_inline_document(score)) {
-        found.bundle = registry.inline_score(score);
+        found.bundle = registry.inline_score(score, options.clef_documents);
         found.label = "<inline>";
     } else {
+        if (!options.clef_documents.empty()) {
+            throw invalid("option \"clefs\" goes with an inline score, not registry score \"" +
+                          score + "\"");
+        }
         found.bundle = registry.score(score);
         found.label = score;
     }

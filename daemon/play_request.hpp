@@ -26,6 +26,8 @@ struct PlayOptions {
     int repeat = 0;        // 0 once, n more times, -1 until stopped
     double intensity = 1;  // 0..1
     std::string clef;      // a registry clef every bar plays through; empty: the score's own
+    // VibClef documents sent along with an inline score, by the href that names each.
+    std::map<std::string, std::string> clef_documents;
     std::uint32_t start_bar = 0;
 };
 
@@ -39,12 +41,13 @@ struct ScoreToPlay {
     std::string label;  // registry name, or "<inline>"
 };
 
-// `score` is a registry name or, when it starts with '<', a whole VibScore document. A clef
-// override replaces every clef the score declares. Throws RegistryError (not_found,
-// invalid_document, limit_exceeded) as the registry does; a missing override clef is not_found
-// before anything else is looked at.
+// `score` is a registry name or, when it starts with '<', a whole VibScore document, whose clefs
+// are the documents sent along with it (options.clef_documents) or the registry's. A clef
+// override (options.clef) replaces every clef the score declares. Throws RegistryError
+// (not_found, invalid_document, limit_exceeded) as the registry does, RequestError (invalid) for
+// clef documents sent with a registry name.
 ScoreToPlay find_score_to_play(const Registry& registry, const std::string& score,
-                               const std::string& clef_override);
+                               const PlayOptions& options);
 
 // The player's request: the score's cue schedule from the start bar, with the caller's usage,
 // repeat and intensity (owner and sender are the caller's, for the bus service to fill in).

@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 
 #include "daemon/actuator_host.hpp"
+#include "daemon/config.hpp"
+#include "daemon/drivers/driver_settings.hpp"
 #include "tests/support/finished_reasons.hpp"
 #include "tests/support/support.hpp"
 
@@ -112,6 +114,31 @@ TEST_F(ActuatorHostTest, AnUnknownDriverOrABadSettingIsAnInvalidArgument) {
     config.driver_settings["timed-output"]["duration-ms"] = "forever";
     EXPECT_THROW(host->switch_to("timed-output"), std::invalid_argument);
     EXPECT_EQ(host->driver(), "sim");
+}
+
+TEST_F(ActuatorHostTest, ABadBackendSettingNamesTheFileAndLineItCameFrom) {
+    config = parse_config("[daemon]\ndriver = sim\n[sim]\nmodel = lra\nmax-on-time-ms = ever\n",
+                          "v.conf", config);
+    try {
+        ActuatorHost host_of_bad{config};
+        ADD_FAILURE() << "no error";
+    } catch (const drivers::SettingError& error) {
+        EXPECT_THAT(error.what(), ::testing::StartsWith("v.conf:5: "));
+        EXPECT_THAT(error.what(), HasSubstr("\"ever\""));
+    }
+}
+
+TEST_F(ActuatorHostTest, AnUnknownBackendKeyListsEveryKeyTheBackendTakesTheCommonOnesToo) {
+    config = parse_config("[daemon]\ndriver = sim\n[sim]\nmodle = erm\n", "v.conf", config);
+    try {
+        ActuatorHost host_of_bad{config};
+        ADD_FAILURE() << "no error";
+    } catch (const drivers::SettingError& error) {
+        EXPECT_THAT(error.what(), ::testing::StartsWith("v.conf:4: "));
+        EXPECT_THAT(error.what(), HasSubstr("model"));
+        EXPECT_THAT(error.what(), HasSubstr("max-on-time-ms"));
+        EXPECT_THAT(error.what(), HasSubstr("pulse-period-ms"));
+    }
 }
 
 TEST_F(ActuatorHostTest, WhenNeitherBackendOpensEveryPlaybackFailsWithBothReasons) {

@@ -104,13 +104,35 @@ TEST(Config, AKeyWithoutAValueIsAnError) {
     EXPECT_EQ(config_error("[daemon]\nstore =\n"), "test.conf:2: store has no value");
 }
 
-TEST(Config, AFileThatCannotBeOpenedIsAnErrorNamingIt) {
+TEST(Config, AFileThatCannotBeOpenedIsAnErrorNamingItAndTheReason) {
     try {
         load_config("/nonexistent/vibscored.conf");
         ADD_FAILURE() << "no error";
     } catch (const ConfigError& error) {
-        EXPECT_THAT(error.what(), StartsWith("/nonexistent/vibscored.conf: "));
+        EXPECT_EQ(std::string(error.what()),
+                  "/nonexistent/vibscored.conf: cannot open: No such file or directory");
     }
+}
+
+TEST(Config, EachSettingRemembersItsFileAndLine) {
+    const auto config =
+        parse_config("[daemon]\ndriver = sim\n\n[sim]\nmodel = erm\n[led-vibrator]\n", "t.conf");
+    EXPECT_EQ(config.where("sim", "model"), "t.conf:5: ");
+    EXPECT_EQ(config.where("sim", "max-on-time-ms"), "t.conf:4: ");
+    EXPECT_EQ(config.where("led-vibrator", "led"), "t.conf:6: ");
+    EXPECT_EQ(DaemonConfig{}.where("sim", "model"), "");
+}
+
+TEST(Config, AnUnknownSectionIsAWarningWithItsLineAndTheClosestName) {
+    const auto config =
+        parse_config("[daemon]\n[led-vibrater]\nled = x\n[sim]\n[zzzzzz]\n", "t.conf");
+    EXPECT_THAT(unknown_sections(config, {"sim", "led-vibrator", "evdev"}),
+                ::testing::ElementsAre(
+                    "t.conf:2: unknown section [led-vibrater]: no driver of that name, so its keys "
+                    "apply nowhere (did you mean [led-vibrator]?)",
+                    "t.conf:5: unknown section [zzzzzz]: no driver of that name, so its keys apply "
+                    "nowhere"));
+    EXPECT_THAT(unknown_sections(config, {"sim", "led-vibrater", "zzzzzz"}), ::testing::IsEmpty());
 }
 
 TEST(Config, AFileIsReadWithItsPathInErrors) {

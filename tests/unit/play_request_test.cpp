@@ -79,7 +79,7 @@ TEST(PlayOptions, AnUnknownUsageIsRefusedListingTheKnownOnes) {
 TEST(PlayOptions, RepeatTakesMinusOneForeverButNothingBelow) {
     EXPECT_EQ(parse_play_options({{"repeat", sdbus::Variant(std::int32_t{-1})}}).repeat, -1);
     EXPECT_THAT(invalid_options({{"repeat", sdbus::Variant(std::int32_t{-2})}}),
-                HasSubstr("repeat -2 is invalid (0 once, n more times, -1 forever)"));
+                HasSubstr("repeat -2 is invalid (0 once, n more times, -1 until stopped)"));
 }
 
 TEST(PlayOptions, AnIntensityOutsideZeroToOneIsRefused) {
@@ -109,7 +109,7 @@ TEST(PlayOptions, AValueOfTheWrongTypeIsRefusedNamingBothTypes) {
 TEST(PlayOptions, AnUnknownOptionIsRefusedListingTheKnownOnes) {
     EXPECT_THAT(invalid_options({{"volume", sdbus::Variant(1.0)}}),
                 HasSubstr("unknown option \"volume\" (expected usage, repeat, intensity, clef, "
-                          "start-bar)"));
+                          "start-bar, clefs)"));
 }
 
 class ScoreToPlayTest : public ::testing::Test {
@@ -128,13 +128,13 @@ class ScoreToPlayTest : public ::testing::Test {
 };
 
 TEST_F(ScoreToPlayTest, ARegistryScoreIsFoundByNameAndLabelledWithIt) {
-    const auto found = find_score_to_play(registry, "ringtone", "");
+    const auto found = find_score_to_play(registry, "ringtone", {});
     EXPECT_EQ(found.label, "ringtone");
     EXPECT_EQ(found.bundle.score.bars.size(), registry.score("ringtone").score.bars.size());
 }
 
 TEST_F(ScoreToPlayTest, TextStartingWithAnElementIsAnInlineDocumentOnRegistryClefs) {
-    const auto found = find_score_to_play(registry, inline_score(), "");
+    const auto found = find_score_to_play(registry, inline_score(), {});
     EXPECT_EQ(found.label, "<inline>");
     ASSERT_EQ(found.bundle.score.bars.size(), 2u);
     EXPECT_EQ(found.bundle.clefs.at("lra").tempo, registry.clef("lra-phone").tempo);
@@ -143,7 +143,7 @@ TEST_F(ScoreToPlayTest, TextStartingWithAnElementIsAnInlineDocumentOnRegistryCle
 TEST_F(ScoreToPlayTest, AMissingScoreOrOverrideClefIsNotFound) {
     const auto code_of = [&](const std::string& score, const std::string& clef) {
         try {
-            find_score_to_play(registry, score, clef);
+            find_score_to_play(registry, score, PlayOptions{.clef = clef});
         } catch (const RegistryError& error) {
             return error.code();
         }
@@ -154,9 +154,10 @@ TEST_F(ScoreToPlayTest, AMissingScoreOrOverrideClefIsNotFound) {
 }
 
 TEST_F(ScoreToPlayTest, AClefOverrideReplacesEveryClefTheScoreDeclares) {
-    const auto own = find_score_to_play(registry, "delete-folder", "");
+    const auto own = find_score_to_play(registry, "delete-folder", {});
     ASSERT_GE(own.bundle.clefs.size(), 2u);
-    const auto found = find_score_to_play(registry, "delete-folder", "erm-phone");
+    const auto found =
+        find_score_to_play(registry, "delete-folder", PlayOptions{.clef = "erm-phone"});
     const Clef erm = registry.clef("erm-phone");
     ASSERT_EQ(found.bundle.clefs.size(), own.bundle.clefs.size());
     for (const auto& [id, clef] : found.bundle.clefs) {
@@ -165,8 +166,53 @@ TEST_F(ScoreToPlayTest, AClefOverrideReplacesEveryClefTheScoreDeclares) {
     }
 }
 
+TEST(PlayOptions, ClefDocumentsComeAsADictionaryOfStrings) {
+    const std::map<std::string, std::string> clefs{{"my.clef.xml", "<VibClef/>"}};
+    EXPECT_EQ(parse_play_options({{"clefs", sdbus::Variant(clefs)}}).clef_documents, clefs);
+    EXPECT_THAT(invalid_options({{"clefs", sdbus::Variant(std::string("x"))}}),
+                HasSubstr("option \"clefs\" must be a dictionary of strings (a{ss}), not s"));
+}
+
+TEST_F(ScoreToPlayTest, AClefSentAlongWithAnInlineScoreIsUsedUnderItsHrefEvenAPath) {
+    PlayOptions options;
+    options.clef_documents["clefs/mine.clef.xml"] = vibscore::testing::sine_clef(
+        0.5, {60, 80, 100, 120, 140, 160}, {0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9});
+    std::string score = inline_score();
+    score.replace(score.find("lra-phone.clef.xml"), 18, "clefs/mine.clef.xml");
+    const auto found = find_score_to_play(registry, score, options);
+    EXPECT_EQ(found.bundle.clefs.at("lra").tempo, 0.5);
+}
+
+TEST_F(ScoreToPlayTest, AClefDocumentNoHrefNamesOrSentWithARegistryScoreIsRefused) {
+    PlayOptions options;
+    options.clef_documents["other.clef.xml"] = vibscore::testing::sine_clef(
+        0.5, {60, 80, 100, 120, 140, 160}, {0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9});
+    try {
+        find_score_to_play(registry, inline_score(), options);
+        ADD_FAILURE() << "no error";
+    } catch (const RegistryError& error) {
+        EXPECT_EQ(error.code(), RegistryError::Code::invalid_document);
+        EXPECT_THAT(error.what(), HasSubstr("\"other.clef.xml\" is not named by any"));
+    }
+    EXPECT_THAT(refusal(RequestError::Code::invalid,
+                        [&] { find_score_to_play(registry, "ringtone", options); }),
+                HasSubstr("option \"clefs\" goes with an inline score"));
+}
+
+TEST_F(ScoreToPlayTest, AnInvalidClefSentAlongIsAnInvalidDocumentNamingItsHref) {
+    PlayOptions options;
+    options.clef_documents["lra-phone.clef.xml"] = "<VibClef type=\"sine\"";
+    try {
+        find_score_to_play(registry, inline_score(), options);
+        ADD_FAILURE() << "no error";
+    } catch (const RegistryError& error) {
+        EXPECT_EQ(error.code(), RegistryError::Code::invalid_document);
+        EXPECT_THAT(error.what(), HasSubstr("<inline clef \"lra-phone.clef.xml\">"));
+    }
+}
+
 TEST_F(ScoreToPlayTest, TheRequestHoldsTheScoresCuesAndTheCallersChoices) {
-    const auto score = find_score_to_play(registry, "ringtone", "");
+    const auto score = find_score_to_play(registry, "ringtone", {});
     PlayOptions options;
     options.usage = Usage::ringtone;
     options.repeat = -1;
@@ -190,7 +236,7 @@ TEST_F(ScoreToPlayTest, TheRequestHoldsTheScoresCuesAndTheCallersChoices) {
 }
 
 TEST_F(ScoreToPlayTest, TheStartBarSkipsEarlierBarsAndTimeStartsThere) {
-    const auto score = find_score_to_play(registry, inline_score(), "");
+    const auto score = find_score_to_play(registry, inline_score(), {});
     PlayOptions options;
     options.start_bar = 1;
     const PlaybackRequest from_bar_1 = make_playback_request(score, options, 0.030);
@@ -208,7 +254,7 @@ TEST_F(ScoreToPlayTest, TheStartBarSkipsEarlierBarsAndTimeStartsThere) {
 }
 
 TEST_F(ScoreToPlayTest, AStartBarPastTheLastBarIsRefusedWithTheBarCount) {
-    const auto score = find_score_to_play(registry, inline_score(), "");
+    const auto score = find_score_to_play(registry, inline_score(), {});
     PlayOptions options;
     options.start_bar = 2;
     EXPECT_EQ(
@@ -217,7 +263,7 @@ TEST_F(ScoreToPlayTest, AStartBarPastTheLastBarIsRefusedWithTheBarCount) {
 }
 
 TEST_F(ScoreToPlayTest, TheSeparationCutsTheEndOfANoteFollowedByAnother) {
-    const auto score = find_score_to_play(registry, inline_score(), "");
+    const auto score = find_score_to_play(registry, inline_score(), {});
     const auto first_off = [](const PlaybackRequest& request) {
         for (const auto& cue : request.cues) {
             if (cue.kind == render::Cue::Kind::drive && cue.amplitude == 0.0) {
