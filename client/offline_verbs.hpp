@@ -19,9 +19,10 @@ struct RenderRequest {
     std::string out;  // .csv or .wav; empty for none
     bool plot = false;
     int plot_width = 72;
+    std::string svg, png;  // the signal and its envelope as a picture; empty for none
 };
 
-// vibscore render FILE --rate HZ --out OUT.csv|OUT.wav [--plot]
+// vibscore render FILE --rate HZ --out OUT.csv|OUT.wav [--plot] [--svg F] [--png F]
 int render_document(const RenderRequest& request, std::ostream& out, std::ostream& err);
 
 // vibscore info FILE: what a score or clef holds.
