@@ -90,8 +90,19 @@ StaffPicture::StaffPicture(const Score& score, const Options& options)
         top += kSystemHeight;
         widest = std::max(widest, end - begin);
     }
-    width_ = std::ceil(2 * kMargin + widest * kColumn);
+    // Wide enough for the title too.
+    const SurfacePtr scratch(cairo_image_surface_create(CAIRO_FORMAT_ARGB32, 1, 1),
+                             &cairo_surface_destroy);
+    const CairoPtr measure(cairo_create(scratch.get()), &cairo_destroy);
+    font(measure.get(), 14, true);
+    cairo_text_extents_t title;
+    cairo_text_extents(measure.get(), title_text().c_str(), &title);
+    width_ = std::ceil(2 * kMargin + std::max(widest * kColumn, title.x_advance));
     height_ = std::ceil(top + kMargin / 2);
+}
+
+std::string StaffPicture::title_text() const {
+    return score_.title.empty() ? "(untitled)" : score_.title;
 }
 
 double StaffPicture::column_x(const System& system, double column) const {
@@ -121,7 +132,7 @@ void StaffPicture::draw(cairo_t* cairo) const {
     cairo_set_source_rgb(cairo, 0, 0, 0);
     font(cairo, 14, true);
     cairo_move_to(cairo, kMargin, 20);
-    cairo_show_text(cairo, score_.title.empty() ? "(untitled)" : score_.title.c_str());
+    cairo_show_text(cairo, title_text().c_str());
     for (const auto& system : systems_) {
         draw_system(cairo, system);
     }

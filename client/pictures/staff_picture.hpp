@@ -1,5 +1,6 @@
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include "client/editor/staff_layout.hpp"
@@ -42,6 +43,7 @@ class StaffPicture : public Drawing {
         double top = 0.0;        // y of its clef-box row
     };
 
+    std::string title_text() const;
     double column_x(const System& system, double column) const;
     double string_y(const System& system, int string) const;
     void draw_system(cairo_t* cairo, const System& system) const;
