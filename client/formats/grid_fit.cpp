@@ -121,9 +121,10 @@ GridPlacement place_on_grid(std::vector<SoundEvent> events, double total, const 
         note.string = string_of(event);
 
         const double from = event.strength_start, to = event.strength_end;
-        const bool glides_on = tied[i] && (changes(event.pitch_start, event.pitch_end) ||
-                                           (changes(from, to) && to > kChangeSlack &&
-                                            !changes(to, events[i + 1].strength_start)));
+        const bool glides_pitch = tied[i] && changes(event.pitch_start, event.pitch_end);
+        const bool glides_strength = tied[i] && changes(from, to) && to > kChangeSlack &&
+                                     !changes(to, events[i + 1].strength_start);
+        const bool glides_on = glides_pitch || glides_strength;
         double own = from;
         if (!changes(from, to)) {
             note.dynamics = Dynamics::none;
@@ -141,9 +142,15 @@ GridPlacement place_on_grid(std::vector<SoundEvent> events, double total, const 
         }
         previous = note.dynamics;
         note.number = nearest_number(clef, own);
-        note.tie_to_next = !tied[i]    ? GridNote::Tie::none
-                           : glides_on ? GridNote::Tie::portamento
-                                       : GridNote::Tie::legato;
+        // Tied notes glide (portamento) when the pitch moves on, or when the strength does and
+        // no hairpin explains it; otherwise they are joined by legato.
+        if (!tied[i]) {
+            note.tie_to_next = GridNote::Tie::none;
+        } else if (glides_pitch || (glides_strength && note.dynamics == Dynamics::none)) {
+            note.tie_to_next = GridNote::Tie::portamento;
+        } else {
+            note.tie_to_next = GridNote::Tie::legato;
+        }
         placement.notes.push_back(note);
     }
     placement.total_ticks = tick(std::max(total, last_end));

@@ -93,7 +93,7 @@ class TreeBuilder : public nlohmann::json_sax<nlohmann::json> {
         object.members.push_back({std::move(value), offset, {}});
         return true;
     }
-    bool parse_error(std::size_t position, const std::string&,
+    bool parse_error(std::size_t, const std::string&,
                      const nlohmann::detail::exception& error) override {
         std::string message = error.what();
         // nlohmann prefixes "[json.exception...] parse error at line L, column C: "; the
@@ -103,8 +103,9 @@ class TreeBuilder : public nlohmann::json_sax<nlohmann::json> {
                 message = message.substr(colon + 2);
             }
         }
-        const auto offset = position > 0 ? static_cast<std::ptrdiff_t>(position - 1) : 0;
-        throw DocumentError(lines_.at(offset), "not JSON: " + message);
+        // nlohmann's position is where it stopped reading, past the token at fault; point at
+        // the token's start instead.
+        throw DocumentError(lines_.at(token_start()), "not JSON: " + message);
     }
 
   private:
