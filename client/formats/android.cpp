@@ -117,6 +117,12 @@ std::vector<SoundEvent> envelope_events(const std::vector<Envelope>& envelopes, 
         }
     }
     total = now;
+    // The writer ends a piece whose last note sounds to its very end with a release, the
+    // envelope's way back to silence; it is the note's end, not a longer piece.
+    if (!ramps.empty() && ramps.back().a0 > 0.0 && ramps.back().a1 <= 0.0 &&
+        ramps.back().t1 - ramps.back().t0 <= kShortRampS) {
+        total = ramps.back().t0;
+    }
     std::vector<SoundEvent> events;
     for (std::size_t i = 0; i < ramps.size(); ++i) {
         Ramp ramp = ramps[i];

@@ -317,6 +317,25 @@ TEST(Android, ReadsAnEnvelopesRampsAsHairpinsAndItsFrequenciesAsStrings) {
     EXPECT_EQ(notes[2].length, Length::half);
 }
 
+TEST(Android, AnEnvelopesReleaseAtThePiecesEndIsTheLastNotesEndNotARest) {
+    // At 140 bpm a quarter is 428.57 ms: the piece's end falls between two milliseconds.
+    const double quarter = 60.0 / 140.0;
+    formats::SoundTrack track;
+    track.duration = 3 * quarter;  // 1285.71 ms: written as 1286, and a release after it
+    track.events.push_back({0.0, quarter - 0.03, 1.0, 1.0, 1.0, 0.0, 0.0, 155, 155});
+    track.events.push_back({quarter, 2 * quarter, 1.0, 1.0, 1.0, 0.0, 0.0, 155, 155});
+    const auto xml = formats::write_android_envelope(track, {});
+    auto chosen = lra_phone();
+    chosen.clef.tempo = quarter;
+    const auto imported = formats::read_android_xml(xml, "e.xml", chosen);
+    EXPECT_FALSE(imported.clefs[0].retimed);
+    const auto notes = notes_in(imported.score);
+    ASSERT_EQ(notes.size(), 2u);
+    EXPECT_EQ(notes[1].length, Length::half);
+    ASSERT_EQ(imported.score.bars.size(), 1u);
+    EXPECT_EQ(imported.score.bars[0].symbols.size(), 2u);  // no rest after the last note
+}
+
 TEST(Android, TheEnvelopeFormNeedsSineClefs) {
     formats::SoundTrack track;
     track.events.push_back({0.0, 0.2, 1.0, 1.0, 1.0, 0, 0, 0, 0});  // a curve clef's note
