@@ -10,7 +10,8 @@ _vibscore() {
     COMPREPLY=()
     cur=${COMP_WORDS[COMP_CWORD]}
     prev=${COMP_WORDS[COMP_CWORD-1]}
-    local verbs="check render info play stop list get compose delete show edit drivers driver"
+    local verbs="check render info play stop list get compose delete show edit drivers driver convert"
+    local formats="score ahap android-json android-xml android-envelope rtttl midi"
 
     verb=
     for ((i = 1; i < COMP_CWORD; i++)); do
@@ -31,6 +32,17 @@ _vibscore() {
             return ;;
         --clef)
             COMPREPLY=($(compgen -W "$(_vibscore_registry clefs)" -- "$cur"))
+            # convert reads the clef itself: a clef file too.
+            [[ $verb == convert ]] &&
+                COMPREPLY+=($(compgen -f -X '!*.xml' -- "$cur") $(compgen -d -- "$cur"))
+            return ;;
+        --from|--to)
+            COMPREPLY=($(compgen -W "$formats" -- "$cur"))
+            return ;;
+        --svg|--png)
+            COMPREPLY=($(compgen -f -X "!*.${prev#--}" -- "$cur") $(compgen -d -- "$cur"))
+            return ;;
+        --track)
             return ;;
         --out)
             COMPREPLY=($(compgen -f -X '!*.@(csv|wav)' -- "$cur") $(compgen -d -- "$cur"))
@@ -43,9 +55,10 @@ _vibscore() {
     if [[ $cur == -* ]]; then
         local options="--help"
         case $verb in
-            render) options+=" --rate --out --plot --width" ;;
+            render) options+=" --rate --out --plot --width --svg --png" ;;
             play) options+=" --usage --repeat --clef --intensity --wait" ;;
-            show) options+=" --width --colour" ;;
+            show) options+=" --width --colour --svg --png" ;;
+            convert) options+=" --from --to --clef --track --loop" ;;
             edit) options+=" --buttons --keymap --grab --clef" ;;
         esac
         COMPREPLY=($(compgen -W "$options" -- "$cur"))
@@ -57,6 +70,7 @@ _vibscore() {
     for ((i = i + 1; i < COMP_CWORD; i++)); do
         case ${COMP_WORDS[i]} in
             --usage|--clef|--out|--rate|--repeat|--intensity|--width|--buttons|--keymap) ((i++)) ;;
+            --from|--to|--track|--svg|--png) ((i++)) ;;
             -*) ;;
             *) ((position++)) ;;
         esac
@@ -81,6 +95,13 @@ _vibscore() {
         compose)
             [[ $position -eq 1 ]] &&
                 COMPREPLY=($(compgen -f -X '!*.xml' -- "$cur") $(compgen -d -- "$cur")) ;;
+        convert)
+            if [[ $position -eq 0 ]]; then
+                COMPREPLY=($(compgen -f -X '!*.@(xml|ahap|json|rtttl|rtx|mid|midi)' -- "$cur")
+                           $(compgen -d -- "$cur"))
+            elif [[ $position -eq 1 ]]; then
+                COMPREPLY=($(compgen -f -- "$cur"))
+            fi ;;
         driver)
             [[ $position -eq 0 ]] &&
                 COMPREPLY=($(compgen -W "$(vibscore drivers 2>/dev/null | cut -c3- | cut -f1)" -- "$cur")) ;;
