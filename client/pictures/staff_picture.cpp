@@ -159,7 +159,9 @@ void StaffPicture::draw_system(cairo_t* cairo, const System& system) const {
             cairo_move_to(cairo, x, string_y(system, 6));
             cairo_line_to(cairo, x, string_y(system, 1) + 1);
             cairo_stroke(cairo);
-            if (span.bar < score_.bars.size()) {
+            // The bar line closing a system opens the next bar, whose clef box heads the next
+            // system.
+            if (span.bar < score_.bars.size() && span.x + 1 < system.end) {
                 draw_clef_box(cairo, system, span);
             }
             continue;

@@ -109,14 +109,9 @@ TEST(StaffPicture, ThePngHasItsSizeAndInkAtEveryNoteHead) {
     EXPECT_TRUE(pixel_at(image.get(), 2, picture.height() - 2).white());
 }
 
-TEST(StaffPicture, Figure23aFirstMeasureMatchesTheGoldenImage) {
-    TempDir dir;
-    const auto drawn = dir.path() / "figure.png";
-    const auto result =
-        testing::run_command({testing::required_env("VIBSCORE"), "show",
-                              golden("figure-2-3a.score.xml").string(), "--png", drawn.string()});
-    ASSERT_EQ(result.exit_code, 0) << result.err;
-    const auto expected = read_png(golden("figure-2-3a-staff.png"));
+// Compares a drawn PNG with a committed one: the same size, and all but a few pixels alike.
+void expect_like(const std::filesystem::path& committed, const std::filesystem::path& drawn) {
+    const auto expected = read_png(committed);
     const auto got = read_png(drawn);
     const int width = cairo_image_surface_get_width(expected.get());
     const int height = cairo_image_surface_get_height(expected.get());
@@ -134,8 +129,52 @@ TEST(StaffPicture, Figure23aFirstMeasureMatchesTheGoldenImage) {
             }
         }
     }
-    EXPECT_GT(inked, width * height / 20);  // the golden image is a drawing, not a blank
+    EXPECT_GT(inked, width * height / 20);  // the committed image is a drawing, not a blank
     EXPECT_LE(differing, width * height / 200) << "of " << width * height << " pixels";
+}
+
+TEST(StaffPicture, Figure23aFirstMeasureMatchesTheGoldenImage) {
+    TempDir dir;
+    const auto drawn = dir.path() / "figure.png";
+    const auto result =
+        testing::run_command({testing::required_env("VIBSCORE"), "show",
+                              golden("figure-2-3a.score.xml").string(), "--png", drawn.string()});
+    ASSERT_EQ(result.exit_code, 0) << result.err;
+    expect_like(golden("figure-2-3a-staff.png"), drawn);
+}
+
+// The README shows these two; the commands beside them must still draw them.
+TEST(Pictures, TheReadmePicturesAreWhatTheirCommandsDraw) {
+    TempDir dir;
+    const auto pictures = shipped("..") / "docs" / "pictures";
+    for (const char* verb : {"show", "render"}) {
+        SCOPED_TRACE(verb);
+        const auto name = std::string("ode-to-joy-") +
+                          (verb == std::string("show") ? "staff" : "signal") + ".png";
+        const auto drawn = dir.path() / name;
+        const auto result = testing::run_command({testing::required_env("VIBSCORE"), verb,
+                                                  shipped("ode-to-joy.score.xml").string(), "--png",
+                                                  drawn.string()});
+        ASSERT_EQ(result.exit_code, 0) << result.err;
+        expect_like(pictures / name, drawn);
+    }
+}
+
+TEST(StaffPicture, TheClefBoxOfABarStartingTheNextSystemIsDrawnThereOnly) {
+    TempDir dir;
+    const auto score = read_score(read_document_file(shipped("ode-to-joy.score.xml")), "ode").score;
+    const StaffPicture picture(score);
+    const auto png = dir.path() / "staff.png";
+    pictures::write_picture(picture, png);
+    const auto image = read_png(png);
+    // Every system ends at its closing bar line, inside the right margin: the margin's last
+    // columns hold no ink, not the start of a box for the bar that opens the next system.
+    const int width = cairo_image_surface_get_width(image.get());
+    for (int y = 0; y < cairo_image_surface_get_height(image.get()); ++y) {
+        for (int x = width - 6; x < width; ++x) {
+            ASSERT_TRUE(pixel_at(image.get(), x, y).white()) << x << "," << y;
+        }
+    }
 }
 
 TEST(SignalPicture, DrawsTheSignalWhereNotesSoundAndNothingInRests) {
