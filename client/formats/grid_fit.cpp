@@ -124,19 +124,20 @@ GridPlacement place_on_grid(std::vector<SoundEvent> events, double total, const 
         const bool glides_pitch = tied[i] && changes(event.pitch_start, event.pitch_end);
         const bool glides_strength = tied[i] && changes(from, to) && to > kChangeSlack &&
                                      !changes(to, events[i + 1].strength_start);
-        const bool glides_on = glides_pitch || glides_strength;
         double own = from;
         if (!changes(from, to)) {
             note.dynamics = Dynamics::none;
         } else if (to > from) {
             // A rise that starts from silence, or goes on from a crescendo, is a crescendo;
-            // one from a sounding strength into the next note is a glide.
+            // one from a sounding strength that glides in pitch into the next note is part of
+            // that glide. On one pitch a ramp is a hairpin: it sounds the same, and reads as
+            // the score most likely wrote it.
             const bool crescendo =
-                !glides_on || !changes(from, 0.0) || previous == Dynamics::crescendo;
+                !glides_pitch || !changes(from, 0.0) || previous == Dynamics::crescendo;
             note.dynamics = crescendo ? Dynamics::crescendo : Dynamics::none;
             own = crescendo ? to : from;
         } else {
-            note.dynamics = glides_on && changes(to, 0.0) && previous != Dynamics::decrescendo
+            note.dynamics = glides_pitch && changes(to, 0.0) && previous != Dynamics::decrescendo
                                 ? Dynamics::none
                                 : Dynamics::decrescendo;
         }

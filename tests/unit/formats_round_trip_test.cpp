@@ -23,6 +23,11 @@ struct Format {
     double tick_s;       // the format's time resolution
     bool keeps_length;   // carries the silence at the end of the piece
     bool keeps_strings;  // carries pitch (Android's waveform has only amplitude)
+    // Which ties and hairpins come back (docs/formats.md says why the others cannot):
+    // tied notes touch in every format but MIDI, whose notes all touch at their written
+    // lengths; a glide and a hairpin need a ramp, which Android's waveform steps lack.
+    bool keeps_ties;
+    bool keeps_glides_and_hairpins;
     std::function<std::string(const ScoreBundle&)> write;
     std::function<ImportedScore(const std::string&, const ChosenClef&)> read;
 };
@@ -30,31 +35,32 @@ struct Format {
 std::vector<Format> formats_under_test() {
     const formats::AndroidOptions android;
     return {
-        {"ahap", 1e-9, false, true,
+        {"ahap", 1e-9, false, true, true, true,
          [](const ScoreBundle& b) { return formats::write_ahap(formats::sound_track(b)); },
          [](const std::string& t, const ChosenClef& c) { return formats::read_ahap(t, "x", c); }},
-        {"android-json", 1e-3, true, false,
+        {"android-json", 1e-3, true, false, true, false,
          [=](const ScoreBundle& b) {
              return formats::write_android_json(formats::sound_track(b), android);
          },
          [](const std::string& t, const ChosenClef& c) {
              return formats::read_android_json(t, "x", c);
          }},
-        {"android-xml", 1e-3, true, false,
+        {"android-xml", 1e-3, true, false, true, false,
          [=](const ScoreBundle& b) {
              return formats::write_android_xml(formats::sound_track(b), android);
          },
          [](const std::string& t, const ChosenClef& c) {
              return formats::read_android_xml(t, "x", c);
          }},
-        {"android-envelope", 1e-3, true, true,
+        {"android-envelope", 1e-3, true, true, true, true,
          [=](const ScoreBundle& b) {
              return formats::write_android_envelope(formats::sound_track(b), android);
          },
          [](const std::string& t, const ChosenClef& c) {
              return formats::read_android_xml(t, "x", c);
          }},
-        {"midi", 0.2 / 480, true, true, [](const ScoreBundle& b) { return formats::write_midi(b); },
+        {"midi", 0.2 / 480, true, true, false, false,
+         [](const ScoreBundle& b) { return formats::write_midi(b); },
          [](const std::string& t, const ChosenClef& c) {
              return formats::read_midi(t, "x", c, std::nullopt);
          }},
@@ -167,6 +173,28 @@ TEST(FormatsRoundTrip, EveryShippedScoreKeepsItsTimingAndStrengths) {
             if (format.keeps_strings) {
                 for (std::size_t i = 0; i < got.size(); ++i) {
                     EXPECT_EQ(got[i].note->string, expected[i].note->string) << "note " << i + 1;
+                }
+            }
+            for (std::size_t i = 0; format.keeps_ties && i < got.size(); ++i) {
+                const Note &was = *expected[i].note, &is = *got[i].note;
+                EXPECT_EQ(is.legato != 0 || is.portamento != 0,
+                          was.legato != 0 || was.portamento != 0)
+                    << "tie of note " << i + 1;
+                if (format.keeps_glides_and_hairpins) {
+                    EXPECT_EQ(is.portamento != 0, was.portamento != 0) << "note " << i + 1;
+                    // A hairpin goes to the next tied note's strength, or to silence. One that
+                    // moves less than the readers' resolution (0.004 of the strongest, Android's
+                    // 1/255) comes back as a flat note: delete's last steps on its low clef.
+                    const auto amplitude_of = [](const Sounded& sounded) {
+                        return sounded.clef->numbers.at(
+                            static_cast<std::size_t>(sounded.note->number - 1));
+                    };
+                    const bool tied_on = was.legato != 0 && i + 1 < expected.size() &&
+                                         expected[i + 1].note->legato == was.legato;
+                    const double target = tied_on ? amplitude_of(expected[i + 1]) : 0.0;
+                    if (std::abs(amplitude_of(expected[i]) - target) / peak_before > 0.004) {
+                        EXPECT_EQ(is.dynamics, was.dynamics) << "note " << i + 1;
+                    }
                 }
             }
             compared += got.size();
