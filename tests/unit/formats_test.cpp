@@ -16,6 +16,8 @@
 namespace vibscore {
 namespace {
 
+using testing::notes_in;
+
 using formats::ChosenClef;
 using formats::GridNote;
 using ::testing::HasSubstr;
@@ -24,18 +26,6 @@ ChosenClef lra_phone() {
     const auto path =
         std::filesystem::path(testing::required_env("VIBSCORE_CLEFS")) / "lra-phone.clef.xml";
     return {"lra-phone", load_clef_file(path)};
-}
-
-std::vector<Note> notes_in(const Score& score) {
-    std::vector<Note> notes;
-    for (const auto& bar : score.bars) {
-        for (const auto& symbol : bar.symbols) {
-            if (const auto* note = std::get_if<Note>(&symbol)) {
-                notes.push_back(*note);
-            }
-        }
-    }
-    return notes;
 }
 
 template <typename F>

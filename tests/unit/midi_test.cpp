@@ -15,6 +15,8 @@
 namespace vibscore {
 namespace {
 
+using testing::notes_in;
+
 using ::testing::HasSubstr;
 
 formats::ChosenClef lra_phone() {
@@ -27,18 +29,6 @@ testing::CommandResult mido(const std::string& verb, const std::filesystem::path
     return testing::run_command({"/usr/bin/python3",
                                  testing::required_env("VIBSCORE_TEST_DATA") + "/midi_fixture.py",
                                  verb, file.string()});
-}
-
-std::vector<Note> notes_in(const Score& score) {
-    std::vector<Note> notes;
-    for (const auto& bar : score.bars) {
-        for (const auto& symbol : bar.symbols) {
-            if (const auto* note = std::get_if<Note>(&symbol)) {
-                notes.push_back(*note);
-            }
-        }
-    }
-    return notes;
 }
 
 std::string error_of(std::string_view bytes) {

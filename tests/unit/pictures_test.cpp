@@ -29,13 +29,7 @@ std::filesystem::path golden(const std::string& name) {
 }
 
 std::size_t count_notes(const Score& score) {
-    std::size_t notes = 0;
-    for (const auto& bar : score.bars) {
-        for (const auto& symbol : bar.symbols) {
-            notes += std::holds_alternative<Note>(symbol) ? 1 : 0;
-        }
-    }
-    return notes;
+    return testing::notes_in(score).size();
 }
 
 // cairo writes colours as percentages: rgb(8%,8%,25%).
@@ -91,13 +85,24 @@ TEST(StaffPicture, TheSvgParsesAndHoldsOneNoteHeadPerNote) {
     }
 }
 
-TEST(StaffPicture, ThePngHasItsSizeAndInkAtEveryNoteHead) {
+// Ode to Joy's staff, and the PNG it makes.
+struct OdeToJoyPng {
     TempDir dir;
-    const auto score = read_score(read_document_file(shipped("ode-to-joy.score.xml")), "ode").score;
-    const StaffPicture picture(score);
-    const auto png = dir.path() / "staff.png";
-    pictures::write_picture(picture, png);
-    const auto image = read_png(png);
+    Score score = read_score(read_document_file(shipped("ode-to-joy.score.xml")), "ode").score;
+    StaffPicture picture{score};
+    pictures::SurfacePtr image{nullptr, &cairo_surface_destroy};
+
+    OdeToJoyPng() {
+        const auto png = dir.path() / "staff.png";
+        pictures::write_picture(picture, png);
+        image = read_png(png);
+    }
+};
+
+TEST(StaffPicture, ThePngHasItsSizeAndInkAtEveryNoteHead) {
+    const OdeToJoyPng drawn;
+    const auto& picture = drawn.picture;
+    const auto& image = drawn.image;
     EXPECT_EQ(cairo_image_surface_get_width(image.get()), static_cast<int>(picture.width()));
     EXPECT_EQ(cairo_image_surface_get_height(image.get()), static_cast<int>(picture.height()));
     // A long score breaks into systems, so the picture is taller than one staff.
@@ -161,12 +166,8 @@ TEST(Pictures, TheReadmePicturesAreWhatTheirCommandsDraw) {
 }
 
 TEST(StaffPicture, TheClefBoxOfABarStartingTheNextSystemIsDrawnThereOnly) {
-    TempDir dir;
-    const auto score = read_score(read_document_file(shipped("ode-to-joy.score.xml")), "ode").score;
-    const StaffPicture picture(score);
-    const auto png = dir.path() / "staff.png";
-    pictures::write_picture(picture, png);
-    const auto image = read_png(png);
+    const OdeToJoyPng drawn;
+    const auto& image = drawn.image;
     // Every system ends at its closing bar line, inside the right margin: the margin's last
     // columns hold no ink, not the start of a box for the bar that opens the next system.
     const int width = cairo_image_surface_get_width(image.get());
