@@ -6,10 +6,12 @@
 #include <limits>
 
 #include "client/bus_verbs.hpp"
+#include "client/convert_verb.hpp"
 #include "client/editor/editor_app.hpp"
 #include "client/editor/verbs.hpp"
 #include "client/number_options.hpp"
 #include "client/offline_verbs.hpp"
+#include "client/picture_verbs.hpp"
 #include "common/closest_name.hpp"
 #include "config.h"
 
@@ -100,6 +102,33 @@ int main(int argc, char** argv) {
     render_verb->add_option("--width", render.plot_width, "plot width in columns (default 72)")
         ->check(number_between(10, 1000, NumberKind::whole));
     add_clefs_option(render_verb, clef_search);
+    render_verb->add_option("--svg", render.svg,
+                            "draw the signal and its envelope, with bar and note boundaries, "
+                            "as an SVG picture");
+    render_verb->add_option("--png", render.png, "the same picture as a PNG image");
+
+    ConvertRequest convert_request;
+    auto* convert_verb = app.add_subcommand(
+        "convert",
+        "Convert a score to AHAP, Android JSON or XML, or MIDI; or AHAP, Android, RTTTL or MIDI "
+        "to a score (docs/formats.md says what each format keeps).");
+    convert_verb->add_option("IN", convert_request.in, "file to read")->required();
+    convert_verb->add_option("OUT", convert_request.out, "file to write")->required();
+    convert_verb->add_option("--from", convert_request.from,
+                             "format of IN when its name does not tell: score, ahap, "
+                             "android-json, android-xml, rtttl, midi");
+    convert_verb->add_option("--to", convert_request.to,
+                             "format of OUT when its name does not tell: score, ahap, "
+                             "android-json, android-xml, android-envelope, midi");
+    convert_verb->add_option("--clef", convert_request.clef,
+                             "clef an import is written on: a clef file or a shipped clef's "
+                             "name (default lra-phone)");
+    convert_verb
+        ->add_option("--track", convert_request.track,
+                     "MIDI track to import, from 1 (default: the first with notes)")
+        ->check(number_between(1, 65535, NumberKind::whole));
+    convert_verb->add_flag("--loop", convert_request.loop,
+                           "Android: the pattern repeats (repeat index 0, <repeating>)");
 
     std::string info_file;
     auto* info = app.add_subcommand(
@@ -168,6 +197,9 @@ int main(int argc, char** argv) {
         ->check(number_between(20, 10000, NumberKind::whole));
     show_verb->add_flag("--colour,--color", show_request.colour,
                         "ANSI colours even when not writing to a terminal");
+    std::string show_svg, show_png;
+    show_verb->add_option("--svg", show_svg, "draw the staff as an SVG picture instead");
+    show_verb->add_option("--png", show_png, "draw the staff as a PNG image instead");
 
     vibscore::editor::EditOptions edit_options;
     auto* edit_verb = app.add_subcommand(
@@ -204,6 +236,9 @@ int main(int argc, char** argv) {
     if (render_verb->parsed()) {
         return render_document(render, clef_search, std::cout, std::cerr);
     }
+    if (convert_verb->parsed()) {
+        return convert(convert_request, std::cout, std::cerr);
+    }
     if (play_verb->parsed()) {
         return play(play_request, clef_search, std::cout, std::cerr);
     }
@@ -227,6 +262,9 @@ int main(int argc, char** argv) {
     }
     if (driver_verb->parsed()) {
         return driver(driver_name, std::cout, std::cerr);
+    }
+    if (show_verb->parsed() && (!show_svg.empty() || !show_png.empty())) {
+        return show_picture(show_request.score, show_svg, show_png, std::cout, std::cerr);
     }
     if (show_verb->parsed()) {
         return vibscore::editor::show_score(show_request, std::cout, std::cerr);

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <map>
 
+#include "client/pictures/signal_picture.hpp"
 #include "client/signal_output.hpp"
 #include "client/terminal_plot.hpp"
 #include "common/number_text.hpp"
@@ -141,17 +142,23 @@ int check_documents(const std::vector<std::string>& files, const ClefSearch& cle
 
 int render_document(const RenderRequest& request, const ClefSearch& clefs, std::ostream& out,
                     std::ostream& err) {
-    if (request.out.empty() && !request.plot) {
-        err << "render: nothing to do: give --out FILE.csv|FILE.wav and/or --plot\n";
+    if (request.out.empty() && !request.plot && request.svg.empty() && request.png.empty()) {
+        err << "render: nothing to do: give --out FILE.csv|FILE.wav, --plot, --svg FILE or "
+               "--png FILE\n";
         return exit_usage;
     }
-    if (!request.out.empty()) {
-        try {
+    try {
+        if (!request.out.empty()) {
             signal_format_for(request.out);
-        } catch (const std::invalid_argument& error) {
-            err << "render: " << error.what() << "\n";
-            return exit_usage;
         }
+        for (const auto& picture : {request.svg, request.png}) {
+            if (!picture.empty()) {
+                pictures::picture_format_for(picture);
+            }
+        }
+    } catch (const std::invalid_argument& error) {
+        err << "render: " << error.what() << "\n";
+        return exit_usage;
     }
     try {
         const auto text = read_document_file(request.file);
@@ -171,6 +178,16 @@ int render_document(const RenderRequest& request, const ClefSearch& clefs, std::
             const auto samples = write_signal(performance, request.rate, request.out);
             out << "wrote " << request.out << ": " << samples << " samples at " << request.rate
                 << " Hz, " << fixed(performance.duration()) << " s\n";
+        }
+        if (!request.svg.empty() || !request.png.empty()) {
+            const pictures::SignalPicture picture(
+                performance, bundle.score.title.empty() ? request.file : bundle.score.title);
+            for (const auto& path : {request.svg, request.png}) {
+                if (!path.empty()) {
+                    pictures::write_picture(picture, path);
+                    out << "wrote " << path << "\n";
+                }
+            }
         }
         return exit_ok;
     } catch (const DocumentError& error) {

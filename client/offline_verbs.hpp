@@ -22,9 +22,10 @@ struct RenderRequest {
     std::string out;  // .csv or .wav; empty for none
     bool plot = false;
     int plot_width = 72;
+    std::string svg, png;  // the signal and its envelope as a picture; empty for none
 };
 
-// vibscore render FILE --rate HZ --out OUT.csv|OUT.wav [--plot]
+// vibscore render FILE --rate HZ --out OUT.csv|OUT.wav [--plot] [--svg F] [--png F]
 int render_document(const RenderRequest& request, const ClefSearch& clefs, std::ostream& out,
                     std::ostream& err);
 

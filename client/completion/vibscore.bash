@@ -29,8 +29,9 @@ _vibscore() {
     cur=${COMP_WORDS[COMP_CWORD]}
     prev=${COMP_WORDS[COMP_CWORD-1]}
     program=${COMP_WORDS[0]}
-    local verbs="check render info play stop list get compose delete show edit drivers driver"
-    local valued="--usage|--clef|--clefs|--out|--rate|--repeat|--intensity|--width|--buttons|--keymap|--button-map"
+    local verbs="check render info play stop list get compose delete show edit drivers driver convert"
+    local formats="score ahap android-json android-xml android-envelope rtttl midi"
+    local valued="--usage|--clef|--clefs|--out|--rate|--repeat|--intensity|--width|--buttons|--keymap|--button-map|--from|--to|--track|--svg|--png"
 
     verb=
     for ((i = 1; i < COMP_CWORD; i++)); do
@@ -51,6 +52,14 @@ _vibscore() {
             return ;;
         --clef)
             COMPREPLY=($(compgen -W "$(_vibscore_registry "$program" clefs)" -- "$cur"))
+            # convert reads the clef itself: a clef file too.
+            [[ $verb == convert ]] && _vibscore_files "$cur" '*.xml'
+            return ;;
+        --from|--to)
+            COMPREPLY=($(compgen -W "$formats" -- "$cur"))
+            return ;;
+        --svg|--png)
+            _vibscore_files "$cur" "*.${prev#--}"
             return ;;
         --clefs)
             _vibscore_files "$cur" '*/'
@@ -61,7 +70,7 @@ _vibscore() {
         --buttons)
             _vibscore_files "${cur:-/dev/input/}" '*'
             return ;;
-        --rate|--repeat|--intensity|--width|--keymap|--button-map)
+        --rate|--repeat|--intensity|--width|--keymap|--button-map|--track)
             return ;;
     esac
 
@@ -69,10 +78,11 @@ _vibscore() {
         local options="--help"
         case $verb in
             check|info) options+=" --clefs" ;;
-            render) options+=" --rate --out --plot --width --clefs" ;;
+            render) options+=" --rate --out --plot --width --svg --png --clefs" ;;
             play) options+=" --usage --repeat --clef --intensity --wait --clefs" ;;
             compose) options+=" --clefs" ;;
-            show) options+=" --width --colour --color" ;;
+            show) options+=" --width --colour --color --svg --png" ;;
+            convert) options+=" --from --to --clef --track --loop" ;;
             edit) options+=" --buttons --keymap --button-map --grab --clef" ;;
         esac
         COMPREPLY=($(compgen -W "$options" -- "$cur"))
@@ -108,6 +118,12 @@ _vibscore() {
             fi ;;
         compose)
             [[ $position -eq 1 ]] && _vibscore_files "$cur" '*.xml' ;;
+        convert)
+            if [[ $position -eq 0 ]]; then
+                _vibscore_files "$cur" '*.@(xml|ahap|json|rtttl|rtx|mid|midi)'
+            elif [[ $position -eq 1 ]]; then
+                _vibscore_files "$cur" '*'
+            fi ;;
         driver)
             [[ $position -eq 0 ]] &&
                 COMPREPLY=($(compgen -W "$("$program" drivers 2>/dev/null | cut -c3- | cut -f1)" -- "$cur")) ;;

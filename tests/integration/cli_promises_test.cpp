@@ -49,12 +49,14 @@ TEST(WrongUsage, EachEndsWithTheReadmesStatusAndAMessageNamingWhatIsWrong) {
         {"VIBSCORE",
          {"frobnicate"},
          2,
-         "vibscore: unknown command \"frobnicate\"; the commands are: check render info play stop "
+         "vibscore: unknown command \"frobnicate\"; the commands are: check render convert info "
+         "play stop "
          "list get compose delete drivers driver show edit"},
         {"VIBSCORE",
          {"lsit"},
          2,
          "vibscore: unknown command \"lsit\" (did you mean list?); the commands are: check render "
+         "convert "
          "info play stop list get compose delete drivers driver show edit"},
         {"VIBSCORE",
          {"play", "x", "--usage", "bogus"},
@@ -275,7 +277,12 @@ TEST(Readme, EveryCommandItShowsWorksVerbatim) {
     // A daemon with the example driver module too, as installed.
     DaemonFixture daemon{"drivers-dir = " + testing::required_env("VIBSCORE_EXAMPLE_DRIVERS")};
     testing::TempDir work;
-    std::filesystem::create_directory_symlink(source / "clefs", work.path() / "clefs");
+    // The checkout's folders the commands read; docs/pictures/ fresh, so the README's picture
+    // commands do not rewrite the committed pictures.
+    for (const char* folder : {"clefs", "examples"}) {
+        std::filesystem::create_directory_symlink(source / folder, work.path() / folder);
+    }
+    std::filesystem::create_directories(work.path() / "docs" / "pictures");
     std::filesystem::create_directory_symlink(build, work.path() / "build");
     const std::string environment =
         "cd " + work.path().string() + " && export PATH=" + (build / "client").string() + ":" +

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "tests/support/daemon_fixture.hpp"
+#include "tests/support/support.hpp"
 
 namespace vibscore {
 namespace {
@@ -73,6 +74,23 @@ TEST_F(Completion, WorksForTheClientInTheBuildTreeNotOnPath) {
                               "source " + testing::required_env("VIBSCORE_COMPLETION") +
                                   " && complete -p build/client/vibscore"});
     EXPECT_EQ(registered.exit_code, 0) << registered.err;
+}
+
+TEST_F(Completion, OffersConvertItsOptionsFormatsAndPictureFiles) {
+    EXPECT_EQ(complete("vibscore conv"), "convert\n");
+    EXPECT_EQ(complete("vibscore convert --t"), "--to\n--track\n");
+    EXPECT_EQ(complete("vibscore convert a.mid b.score.xml --from "),
+              "ahap\nandroid-envelope\nandroid-json\nandroid-xml\nmidi\nrtttl\nscore\n");
+    EXPECT_EQ(complete("vibscore convert x.ahap --to android-"),
+              "android-envelope\nandroid-json\nandroid-xml\n");
+    EXPECT_EQ(complete("vibscore show ringtone --s"), "--svg\n");
+    EXPECT_EQ(complete("vibscore render x.xml --p"), "--plot\n--png\n");
+    // Pictures are offered by their extension.
+    testing::TempDir dir;
+    dir.write("staff.svg", "");
+    dir.write("staff.png", "");
+    EXPECT_EQ(complete("vibscore show ringtone --png " + (dir.path() / "st").string()),
+              (dir.path() / "staff.png").string() + "\n");
 }
 
 }  // namespace
