@@ -23,6 +23,7 @@
 #include "daemon/drivers/evdev_discovery.hpp"
 #include "tests/support/daemon_fixture.hpp"
 #include "tests/support/feedback_fixture.hpp"
+#include "tests/support/run_command.hpp"
 
 namespace vibscore::hil {
 namespace {
@@ -176,6 +177,27 @@ TEST_F(VirtualVibraTest, AdvertisesWhatFeedbackdAndGamesAskFor) {
         << "vibscored's evdev discovery must never drive its own virtual vibra";
 }
 
+// What udev would make of the device with the rule vibscore ships, and without it (feedbackd's
+// own rule wants a platform vibrator): udevadm test runs the rules without udevd.
+TEST_F(VirtualVibraTest, TheShippedUdevRuleTagsItForFeedbackd) {
+    const fs::path rules_dir = "/run/udev/rules.d";
+    const fs::path rule = testing::required_env("VIBSCORE_UDEV_RULES");
+    const auto device = fs::canonical(fs::path("/sys/class/input") / node->filename());
+    const auto udev_properties = [&] {
+        return testing::run_command({"/usr/bin/udevadm", "test", "--action=add", device.string()});
+    };
+    const auto without = udev_properties();
+    ASSERT_EQ(without.exit_code, 0) << without.err;
+    EXPECT_NE(without.out.find("ID_INPUT=1"), std::string::npos) << without.out;
+    EXPECT_EQ(without.out.find("FEEDBACKD_TYPE=vibra"), std::string::npos) << without.out;
+    fs::create_directories(rules_dir);
+    fs::copy_file(rule, rules_dir / rule.filename(), fs::copy_options::overwrite_existing);
+    const auto with = udev_properties();
+    fs::remove(rules_dir / rule.filename());
+    EXPECT_EQ(with.exit_code, 0) << with.err;
+    EXPECT_NE(with.out.find("FEEDBACKD_TYPE=vibra"), std::string::npos) << with.out << with.err;
+}
+
 TEST_F(VirtualVibraTest, EachEffectTypePlaysOnTheActuator) {
     FfClient ff(*node);
     ASSERT_TRUE(ff.is_open());
@@ -284,6 +306,37 @@ TEST_F(VirtualVibraTest, DebiansFftestPlaysItsRumble) {
     ASSERT_TRUE(client->wait_for(
         [](const SeenSignal& signal) { return signal.name == "PlaybackFinished"; }, 3s))
         << "fftest's end erased its effects" << daemon.daemon_log();
+}
+
+// A rumble as games and tools write it with python-evdev (Debian's python3-evdev): upload, play,
+// erase when done.
+constexpr const char* kPythonRumble = R"(
+import sys, time
+import evdev
+from evdev import ecodes, ff
+device = evdev.InputDevice(sys.argv[1])
+rumble = ff.Rumble(strong_magnitude=0, weak_magnitude=0xc000)
+effect = ff.Effect(ecodes.FF_RUMBLE, -1, 0, ff.Trigger(0, 0), ff.Replay(120, 0),
+                   ff.EffectType(ff_rumble_effect=rumble))
+effect_id = device.upload_effect(effect)
+device.write(ecodes.EV_FF, effect_id, 1)
+time.sleep(0.5)
+device.erase_effect(effect_id)
+)";
+
+TEST_F(VirtualVibraTest, APythonEvdevClientsRumblePlays) {
+    if (!fs::exists("/usr/lib/python3/dist-packages/evdev")) {
+        GTEST_SKIP() << "no python3-evdev";
+    }
+    const auto result = testing::run_command({"/usr/bin/python3", "-c", kPythonRumble, *node});
+    ASSERT_EQ(result.exit_code, 0) << result.err;
+    std::string reason, label;
+    ASSERT_NE(played(&reason, &label), 0u) << daemon.daemon_log();
+    EXPECT_TRUE(label.ends_with(": rumble 120 ms")) << label;
+    EXPECT_EQ(reason, "completed");
+    const auto rows = daemon.trace_rows();
+    EXPECT_NEAR(loudest(rows, 0), 0.75, 0.01) << "the weak motor at 0xc000";
+    EXPECT_NEAR(sounding_seconds(rows, 0), 0.12, 0.05);
 }
 
 TEST_F(VirtualVibraTest, DebiansFeedbackdDrivesItForFbcli) {
