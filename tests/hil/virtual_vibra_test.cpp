@@ -7,20 +7,18 @@
 #include <libevdev/libevdev.h>
 #include <linux/input.h>
 #include <sys/ioctl.h>
-#include <sys/stat.h>
-#include <sys/sysmacros.h>
 #include <unistd.h>
 
 #include <cerrno>
 #include <chrono>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <optional>
 #include <thread>
 
 #include "common/unique_fd.hpp"
 #include "daemon/drivers/evdev_discovery.hpp"
+#include "tests/hil/virtual_vibra_node.hpp"
 #include "tests/support/daemon_fixture.hpp"
 #include "tests/support/feedback_fixture.hpp"
 #include "tests/support/run_command.hpp"
@@ -35,31 +33,6 @@ using testing::SeenSignal;
 using TraceRow = DaemonFixture::TraceRow;
 
 constexpr const char* kVibraConfig = "\n[virtual-vibra]\nenabled = true\nusage = notification\n";
-
-std::string phys_of(const fs::path& node) {
-    UniqueFd fd(::open(node.c_str(), O_RDONLY | O_CLOEXEC));
-    char phys[128] = {};
-    if (fd.get() < 0 || ::ioctl(fd.get(), EVIOCGPHYS(sizeof phys - 1), phys) < 0) {
-        return {};
-    }
-    return phys;
-}
-
-// The event node whose phys is the virtual vibra's, once vibscored has made it.
-std::optional<fs::path> find_virtual_vibra() {
-    const auto deadline = std::chrono::steady_clock::now() + 10s;
-    while (std::chrono::steady_clock::now() < deadline) {
-        std::error_code error;
-        for (const auto& entry : fs::directory_iterator("/dev/input", error)) {
-            if (entry.path().filename().string().starts_with("event") &&
-                phys_of(entry.path()) == drivers::kVirtualVibraPhys) {
-                return entry.path();
-            }
-        }
-        std::this_thread::sleep_for(20ms);
-    }
-    return std::nullopt;
-}
 
 // A force-feedback client as fftest or a game is one: its own open file of the event node.
 class FfClient {
@@ -345,19 +318,13 @@ TEST_F(VirtualVibraTest, DebiansFeedbackdDrivesItForFbcli) {
     }
     // feedbackd finds its vibra in udev's database (docs/feedbackd.md): without udevd in the
     // guest, write what udev/61-vibscore-virtual-vibra.rules would have stored.
-    struct stat status {};
-    ASSERT_EQ(::stat(node->c_str(), &status), 0);
-    const fs::path data = "/run/udev/data";
-    fs::create_directories(data);
-    const auto record = data / ("c" + std::to_string(major(status.st_rdev)) + ":" +
-                                std::to_string(minor(status.st_rdev)));
-    std::ofstream(record) << "E:FEEDBACKD_TYPE=vibra\nE:ID_INPUT=1\n";
+    std::optional<FeedbackdVibraMark> mark(std::in_place, *node);
     testing::SessionBus bus;
     testing::FeedbackServer feedbackd(bus, testing::real_feedbackd());
     testing::Fbcli fbcli(bus, {"-E", "message-new-instant"});  // VibraRumble, 150 ms
     std::string reason, label;
     const auto id = played(&reason, &label);
-    fs::remove(record);
+    mark.reset();
     ASSERT_NE(id, 0u) << feedbackd.log() << fbcli.output() << daemon.daemon_log();
     EXPECT_TRUE(label.ends_with(": rumble 150 ms")) << label;
     const auto rows = daemon.trace_rows();
