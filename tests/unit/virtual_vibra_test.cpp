@@ -157,10 +157,11 @@ TEST(VirtualVibraSettings, ReadsEveryKeyAndRejectsWrongOnes) {
 class RecordingActuator : public drivers::Actuator {
   public:
     std::string_view driver_name() const override { return "recording"; }
-    drivers::Capabilities capabilities() const override { return {.frequency_control = true}; }
+    drivers::Capabilities capabilities() const override { return capabilities_; }
     void apply(const drivers::Drive& drive) override { applied.push_back(drive); }
     void off() noexcept override { applied.push_back({}); }
     std::vector<drivers::Drive> applied;
+    drivers::Capabilities capabilities_{.frequency_control = true};
 };
 
 class Finishes : public PlayerListener {
@@ -298,6 +299,18 @@ TEST_F(FfEffectPlayerTest, UnplayableEffectsAreRefusedAsTheKernelExpects) {
     EXPECT_EQ(effects.effects(), 0u);
     effects.play(0, 1);  // the kernel would not pass it on; nothing to play either way
     EXPECT_FALSE(player.current_id());
+}
+
+TEST_F(FfEffectPlayerTest, AnOnOffActuatorPlaysAHalfStrengthEffectAsPulses) {
+    actuator.capabilities_ = {.amplitude_control = false, .pulse_period_s = 0.02};
+    ASSERT_EQ(upload(rumble(0x8000, 0, 100), 0), 0);
+    actuator.applied.clear();
+    effects.play(0, 1);
+    loop.run();
+    const auto on = std::count_if(actuator.applied.begin(), actuator.applied.end(),
+                                  [](const drivers::Drive& d) { return d.amplitude == 1.0; });
+    EXPECT_GE(on, 4) << "about one pulse per 20 ms period over 100 ms";
+    EXPECT_FALSE(drove(0.5, 0)) << "no strength it cannot give";
 }
 
 TEST_F(FfEffectPlayerTest, AnUpdateReachesTheNextPlay) {
