@@ -57,11 +57,13 @@ std::vector<std::string> unknown_sections(const DaemonConfig& config,
                                           const std::vector<std::string>& known) {
     std::vector<std::string> warnings;
     for (const auto& [section, where] : config.section_lines) {
-        if (std::find(known.begin(), known.end(), section) != known.end()) {
-            continue;
-        }
         std::vector<std::string> candidates(known);
         candidates.push_back("daemon");
+        candidates.insert(candidates.end(), std::begin(kServiceSections),
+                          std::end(kServiceSections));
+        if (std::find(candidates.begin(), candidates.end(), section) != candidates.end()) {
+            continue;
+        }
         const auto meant = closest_name(section, candidates);
         warnings.push_back(where + ": unknown section [" + section +
                            "]: no driver of that name, so its keys apply nowhere" +

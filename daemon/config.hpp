@@ -48,6 +48,9 @@ DaemonConfig load_config(const std::filesystem::path& path, DaemonConfig default
 // A warning for each section of `config` that is neither [daemon] nor one of `known` (the
 // drivers), whose keys therefore apply nowhere: "file:line: unknown section [x] ... (did you mean
 // [y]?)".
+// Sections besides [daemon] and the backends' that configure parts of the service.
+inline constexpr const char* kServiceSections[] = {"virtual-vibra"};
+
 std::vector<std::string> unknown_sections(const DaemonConfig& config,
                                           const std::vector<std::string>& known);
 

@@ -18,6 +18,7 @@
 #include "daemon/player.hpp"
 #include "daemon/registry/registry.hpp"
 #include "daemon/reload.hpp"
+#include "daemon/virtual_vibra/virtual_vibra.hpp"
 #include "dbus/haptics1_names.hpp"
 
 using namespace vibscore;
@@ -53,6 +54,12 @@ int serve(const CommandLine& command_line) {
 
     auto connection = sdbus::createSystemBusConnection();
     HapticsService service(*connection, config, registry, player, callers, host);
+    // The kernel's vibra for programs that only know force feedback (feedbackd, games, fftest).
+    const auto vibra_settings = parse_virtual_vibra_settings(config.settings_of("virtual-vibra"));
+    std::optional<VirtualVibra> vibra;
+    if (vibra_settings.enabled) {
+        vibra.emplace(loop, player, vibra_settings, config.separation_ms / 1000.0);
+    }
     connection->requestName(haptics1::kBusName);
     BusLoopBinding binding(loop, *connection);
 

@@ -124,8 +124,8 @@ TEST(Config, EachSettingRemembersItsFileAndLine) {
 }
 
 TEST(Config, AnUnknownSectionIsAWarningWithItsLineAndTheClosestName) {
-    const auto config =
-        parse_config("[daemon]\n[led-vibrater]\nled = x\n[sim]\n[zzzzzz]\n", "t.conf");
+    const auto config = parse_config(
+        "[daemon]\n[led-vibrater]\nled = x\n[sim]\n[zzzzzz]\n[virtual-vibra]\n", "t.conf");
     EXPECT_THAT(unknown_sections(config, {"sim", "led-vibrator", "evdev"}),
                 ::testing::ElementsAre(
                     "t.conf:2: unknown section [led-vibrater]: no driver of that name, so its keys "
