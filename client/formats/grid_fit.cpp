@@ -124,6 +124,9 @@ GridPlacement place_on_grid(std::vector<SoundEvent> events, double total, const 
         const bool glides_pitch = tied[i] && changes(event.pitch_start, event.pitch_end);
         const bool glides_strength = tied[i] && changes(from, to) && to > kChangeSlack &&
                                      !changes(to, events[i + 1].strength_start);
+        // A hairpin goes on only through notes tied into this one: after a gap, a rise that
+        // glides in pitch is the glide's own, whatever the note before did.
+        const Dynamics before = i > 0 && tied[i - 1] ? previous : Dynamics::none;
         double own = from;
         if (!changes(from, to)) {
             note.dynamics = Dynamics::none;
@@ -133,11 +136,11 @@ GridPlacement place_on_grid(std::vector<SoundEvent> events, double total, const 
             // that glide. On one pitch a ramp is a hairpin: it sounds the same, and reads as
             // the score most likely wrote it.
             const bool crescendo =
-                !glides_pitch || !changes(from, 0.0) || previous == Dynamics::crescendo;
+                !glides_pitch || !changes(from, 0.0) || before == Dynamics::crescendo;
             note.dynamics = crescendo ? Dynamics::crescendo : Dynamics::none;
             own = crescendo ? to : from;
         } else {
-            note.dynamics = glides_pitch && changes(to, 0.0) && previous != Dynamics::decrescendo
+            note.dynamics = glides_pitch && changes(to, 0.0) && before != Dynamics::decrescendo
                                 ? Dynamics::none
                                 : Dynamics::decrescendo;
         }
