@@ -9,6 +9,10 @@ namespace vibscore::editor {
 
 namespace {
 
+// The registry's proposal is taken only when at least this many symbols (the score's start
+// counting as one) lead to it as they led to it in a registry score.
+constexpr int kShortestLearnedPhrase = 2;
+
 std::set<std::string> clefs_in_use(const Score& score) {
     std::set<std::string> ids;
     for (const auto& bar : score.bars) {
@@ -85,16 +89,23 @@ std::optional<Block> EditorModel::block() const {
 }
 
 Symbol EditorModel::proposed_symbol() const {
-    const auto recurring = recurrence_at(*score_, cursor_);
-    if (!recurring) {
-        return proposed_note();
+    if (const auto recurring = recurrence_at(*score_, cursor_)) {
+        if (recurring->pitch_known || std::holds_alternative<Rest>(recurring->next)) {
+            return recurring->next;
+        }
+        Note note = proposed_note();  // the rhythm that recurs, on the note the rules propose
+        note.length = length_of(recurring->next);
+        return note;
     }
-    if (recurring->pitch_known || std::holds_alternative<Rest>(recurring->next)) {
-        return recurring->next;
+    if (phrases_) {
+        // A phrase of one symbol (or the start alone) says too little: on the notification set
+        // following it cost more presses than the rules of proposed_note() (docs/performance.md).
+        const auto learned = phrases_->next_after(*score_, cursor_);
+        if (learned && learned->context >= kShortestLearnedPhrase) {
+            return learned->next;
+        }
     }
-    Note note = proposed_note();  // the rhythm that recurs, on the note the rules propose
-    note.length = length_of(recurring->next);
-    return note;
+    return proposed_note();
 }
 
 Note EditorModel::proposed_note() const {

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "client/editor/commands.hpp"
+#include "client/editor/phrase_book.hpp"
 #include "client/editor/position.hpp"
 #include "client/editor/score_edits.hpp"
 #include "client/editor/undo_history.hpp"
@@ -39,9 +40,12 @@ class EditorModel {
     bool modified() const { return *score_ != *saved_; }
     void mark_saved() { saved_ = score_; }
     void set_title(std::string title);
+    // The scores the proposals learn from besides the score itself (phrase_book.hpp).
+    void learn_from(std::shared_ptr<const PhraseBook> phrases) { phrases_ = std::move(phrases); }
 
     // What the six-button entry puts on an empty position: what followed the symbol before it
-    // where it came earlier (recurrence.hpp), else proposed_note().
+    // where it came earlier (recurrence.hpp), else what followed the last two or more symbols in
+    // a score learned from (phrase_book.hpp), else proposed_note().
     Symbol proposed_symbol() const;
     // The note proposed when the score does not say which: the last-used number and length on
     // the active string with the hairpin of the last note, the ties of a note directly before,
@@ -122,6 +126,7 @@ class EditorModel {
     std::shared_ptr<const Score> score_;
     std::shared_ptr<const Score> saved_;
     std::shared_ptr<const std::vector<ClefDeclaration>> available_clefs_;
+    std::shared_ptr<const PhraseBook> phrases_;
     UndoHistory history_;
     Position cursor_;
     int string_ = 3;
