@@ -247,13 +247,16 @@ Request ButtonScheme::command(const Command& command, EditorModel& model) {
 ButtonScheme::MenuView ButtonScheme::menu_view(const EditorModel& model) const {
     MenuView view;
     switch (mode_) {
-        case Mode::menu:
-            view.title = "menu";
-            for (const auto& entry : main_menu(model)) {
+        case Mode::menu: {
+            const auto entries = main_menu(model);
+            for (const auto& entry : entries) {
                 view.lines.push_back(entry.label);
             }
             view.highlighted = main_.index();
-            break;
+            const int group = entries[static_cast<std::size_t>(view.highlighted)].group;
+            view.title = "menu: " + std::string(group_name(group)) + " " +
+                         std::to_string(group + 1) + "/" + std::to_string(entries.back().group + 1);
+        } break;
         case Mode::clef_menu:
             view.title = "clef of bar " + std::to_string(model.cursor().bar + 1);
             for (const auto& clef : model.clef_choices()) {

@@ -310,6 +310,20 @@ std::vector<Button> to_menu_entry(editor::Editor& editor, const std::string& lab
     return presses;
 }
 
+TEST(EditorButtons, LeftFromInsideAGroupGoesToThePreviousGroupAndTheTitleNamesIt) {
+    // A newcomer pressed Left three times from "bar clef..." and landed on a hairpin.
+    auto editor = fresh_editor();
+    to_menu_entry(editor, "bar clef...");
+    EXPECT_EQ(editor.scheme.menu_view(editor.model).title, "menu: symbol, bar 3/7");
+    press(editor, {L});
+    EXPECT_EQ(highlighted(editor), "legato with previous");
+    EXPECT_EQ(editor.scheme.menu_view(editor.model).title, "menu: ties 2/7");
+    press(editor, {L, L});
+    EXPECT_EQ(highlighted(editor), "save");
+    press(editor, {R});
+    EXPECT_EQ(highlighted(editor), "decrescendo  >");
+}
+
 TEST(EditorButtons, ABlockMarkedWithButtonsIsCopiedPastedAndRaised) {
     auto editor = fresh_editor();
     press(editor, {S, S, B, S, U, S, B, B});  // two notes: 5 and 6
