@@ -606,14 +606,14 @@ bool EditorModel::set_length(Length length) {
     length_ = length;
     const auto marked = block();
     if (!marked) {
-        return done("length " + std::string(to_string(length)));
+        return done("length " + length_name(length));
     }
     const auto symbols = targets();
     Score& score = edit();
     for (const auto at : symbols) {
         set_length_of(*symbol_at(score, at), length);
     }
-    return done("block length " + std::string(to_string(length)));
+    return done("block length " + length_name(length));
 }
 
 bool EditorModel::toggle_dot() {

@@ -88,7 +88,7 @@ TEST(EditorButtons, RightAndLeftChangeByTwoAndBackOffersTheRest) {
     EXPECT_EQ(editor.scheme.hint(editor.model),
               "\u2191quarter \u2193"
               "16th \u2192half \u2190"
-              "32th S:ok B:more");
+              "32nd S:ok B:more");
     press(editor, {S});
     EXPECT_EQ(entered(editor).at(2), (Symbol{Note{Length::eighth, 6, 2}}));
 }
