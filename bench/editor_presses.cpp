@@ -58,9 +58,8 @@ const std::vector<std::string> kThesisTactons{"create",      "delete",
                                               "message",     "message-high-priority"};
 
 struct Tacton {
-    std::string name;       // the file name without .score.xml
-    std::string file_name;  // the leave-one-out compares it with the registry's
-    Score score;
+    std::string name;  // the file name without .score.xml
+    NamedScore file;   // by its file name: the leave-one-out compares it with the registry's
 };
 
 Tacton read_tacton(const fs::path& path) {
@@ -69,8 +68,8 @@ Tacton read_tacton(const fs::path& path) {
     if (name.ends_with(suffix)) {
         name.resize(name.size() - suffix.size());
     }
-    return {name, path.filename().string(),
-            read_score(read_document_file(path), path.string()).score};
+    return {name,
+            {path.filename().string(), read_score(read_document_file(path), path.string()).score}};
 }
 
 // The .score.xml files of a folder, by name; a file stands for itself.
@@ -89,28 +88,16 @@ std::vector<fs::path> score_files(const fs::path& path) {
 }
 
 // Every score the registry folder holds; one that does not read is left out, and said so.
-std::vector<Tacton> read_registry(const fs::path& folder) {
-    std::vector<Tacton> registry;
+std::vector<NamedScore> read_registry(const fs::path& folder) {
+    std::vector<NamedScore> registry;
     for (const auto& file : score_files(folder)) {
         try {
-            registry.push_back(read_tacton(file));
+            registry.push_back(read_tacton(file).file);
         } catch (const std::exception& error) {
             std::cerr << "editor_presses: registry: left out: " << error.what() << "\n";
         }
     }
     return registry;
-}
-
-// What the editor learns when the target is being entered: every other registry score.
-std::shared_ptr<const PhraseBook> leave_one_out(const std::vector<Tacton>& registry,
-                                                const Tacton& target) {
-    auto phrases = std::make_shared<PhraseBook>();
-    for (const auto& other : registry) {
-        if (other.file_name != target.file_name && other.score.bars != target.score.bars) {
-            phrases->learn(other.score);
-        }
-    }
-    return phrases;
 }
 
 struct Entered {
@@ -197,19 +184,19 @@ Entered enter(const Score& target, std::shared_ptr<const PhraseBook> phrases) {
     return entered;
 }
 
-Result measure(const Tacton& target, const std::vector<Tacton>* registry) {
+Result measure(const Tacton& target, const std::vector<NamedScore>* registry) {
     Result result{target.name};
-    for (const auto& bar : target.score.bars) {
+    for (const auto& bar : target.file.score.bars) {
         for (const auto& symbol : bar.symbols) {
             result.notes += std::holds_alternative<Note>(symbol) ? 1 : 0;
             result.symbols += std::holds_alternative<Blank>(symbol) ? 0 : 1;
         }
     }
-    result.alone = enter(target.score, nullptr);
+    result.alone = enter(target.file.score, nullptr);
     if (registry != nullptr) {
-        auto phrases = leave_one_out(*registry, target);
+        auto phrases = learned_from_others(*registry, target.file);
         result.learned_from = phrases->scores();
-        result.learning = enter(target.score, std::move(phrases));
+        result.learning = enter(target.file.score, std::move(phrases));
     }
     return result;
 }
@@ -344,7 +331,7 @@ int main(int argc, char** argv) {
 
     const auto began = std::chrono::steady_clock::now();
     std::vector<Set> sets;
-    std::vector<Tacton> registry;
+    std::vector<NamedScore> registry;
     bool with_registry = false;
     try {
         if (!no_registry && (registry_dir || targets.empty())) {
@@ -355,7 +342,7 @@ int main(int argc, char** argv) {
         if (targets.empty()) {
             Set notifications{"Fig. 2.3 + notification set"};
             notifications.results.push_back(measure(
-                {"fig-2.3-measure-1", "", read_score(kFigure23, "fig-2.3").score}, learning));
+                {"fig-2.3-measure-1", {"", read_score(kFigure23, "fig-2.3").score}}, learning));
             Set thesis{"the thesis' tactons (Figs. 5.1, 5.2)"};
             for (auto [set, names] : {std::pair{&notifications, &kNotifications},
                                       std::pair{&thesis, &kThesisTactons}}) {

@@ -15,6 +15,7 @@
 #include "client/editor/editor.hpp"
 #include "client/editor/evdev_buttons.hpp"
 #include "client/editor/ncurses_view.hpp"
+#include "client/editor/phrase_book.hpp"
 #include "common/device_error.hpp"
 #include "common/monotonic_clock.hpp"
 #include "score/document_error.hpp"
@@ -52,6 +53,7 @@ class Session {
             daemon_ = std::make_unique<DaemonLink>();
             registry_scores_ = daemon_->list("score");
             registry_clefs_ = daemon_->list("clef");
+            read_registry_scores();
         } catch (const DaemonError& error) {
             // Files can still be edited; playing and the registry wait for the daemon.
             daemon_.reset();
@@ -119,12 +121,27 @@ class Session {
                 source.kind == ScoreSource::Kind::file ? stem(source.name) : source.name;
             score = EditorModel::blank_score(title, default_clef(available));
         }
+        const std::string name = source.kind == ScoreSource::Kind::registry ? source.name : "";
+        auto phrases = learned_from_others(learned_, {name, *score});
         auto editor =
             std::make_unique<Editor>(Editor{EditorModel(std::move(*score), available), {}});
+        editor->model.learn_from(std::move(phrases));
         editor->scheme.set_openable(registry_scores_);
         editor_ = std::move(editor);
         source_ = source;
         message_ = is_new ? "new score " + source_.name : "";
+    }
+
+    // Every score the daemon lists (shipped, stored, composed before) teaches the proposals,
+    // as a phone keyboard learns words. One that does not read teaches nothing.
+    void read_registry_scores() {
+        for (const auto& name : registry_scores_) {
+            try {
+                learned_.push_back({name, read_score(daemon_->get("score", name), name).score});
+            } catch (const std::exception&) {
+                continue;  // `vibscore check` is where a broken score is reported
+            }
+        }
     }
 
     // A registry name no score has yet: tacton-1, tacton-2, ...
@@ -330,6 +347,7 @@ class Session {
     std::unique_ptr<DaemonLink> daemon_;
     std::vector<std::string> registry_scores_;
     std::vector<std::string> registry_clefs_;
+    std::vector<NamedScore> learned_;  // the registry's scores the proposals learn from
     std::unique_ptr<Editor> editor_;
     ScoreSource source_;
     std::vector<ButtonDevice> buttons_;

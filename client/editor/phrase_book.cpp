@@ -134,4 +134,15 @@ std::optional<PhraseBook::Prediction> PhraseBook::next_after(const Score& score,
     return *best;
 }
 
+std::shared_ptr<const PhraseBook> learned_from_others(const std::vector<NamedScore>& registry,
+                                                      const NamedScore& entering) {
+    auto phrases = std::make_shared<PhraseBook>();
+    for (const auto& other : registry) {
+        if (other.name != entering.name && other.score.bars != entering.score.bars) {
+            phrases->learn(other.score);
+        }
+    }
+    return phrases;
+}
+
 }  // namespace vibscore::editor

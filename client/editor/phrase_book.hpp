@@ -1,7 +1,9 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <optional>
+#include <string>
 #include <unordered_map>
 #include <vector>
 
@@ -50,5 +52,15 @@ class PhraseBook {
     // Where each symbol (by alike_key) was followed by another: the follower's place.
     std::unordered_map<std::uint64_t, std::vector<Place>> followers_;
 };
+
+// A score of a registry (a folder's file name or the daemon's name for it).
+struct NamedScore {
+    std::string name;
+    Score score;
+};
+// What entering `entering` learns from: every registry score but the one of the same name or
+// the same music (leave-one-out: a score never proposes itself back).
+std::shared_ptr<const PhraseBook> learned_from_others(const std::vector<NamedScore>& registry,
+                                                      const NamedScore& entering);
 
 }  // namespace vibscore::editor

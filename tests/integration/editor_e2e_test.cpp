@@ -163,6 +163,13 @@ TEST_F(EditorEndToEnd, ComposesATactonWithSixButtonsSavesItAndPlaysIt) {
                                                 "my-buzz", {"lra-phone", "lra-phone.clef.xml"}),
                                             editor::registry_clefs(clef_names)),
                         {}};
+    // ... and proposals learned from every score the daemon lists, as the editor learns them.
+    std::vector<editor::NamedScore> registry;
+    for (const auto& entry : client->List("score")) {
+        const std::string name = entry.get<0>();
+        registry.push_back({name, read_score(client->Get("score", name), name).score});
+    }
+    copy.model.learn_from(editor::learned_from_others(registry, {"my-buzz", copy.model.score()}));
     const auto plan = editor::plan_presses(copy, wanted);
     ASSERT_TRUE(plan.reached);
     for (const Button button : plan.presses) {

@@ -111,5 +111,15 @@ TEST(PhraseBook, TheEditorProposesTheLearnedNoteWhereTheScoreSaysNothing) {
     EXPECT_NE(unlearned.proposed_symbol(), (Symbol{Note{Length::quarter, 3, 2}}));
 }
 
+TEST(PhraseBook, AScoreIsNeverLearnedFromItselfByNameOrByMusic) {
+    const Score learned = score_of(kLearned);
+    const Score other = score_of("<Bar clef=\"lra\"><Rest length=\"half\"/></Bar>");
+    const std::vector<editor::NamedScore> registry{
+        {"ringtone", learned}, {"copy-of-ringtone", learned}, {"pause", other}};
+    EXPECT_EQ(editor::learned_from_others(registry, {"ringtone", learned})->scores(), 1u);
+    EXPECT_EQ(editor::learned_from_others(registry, {"pause", learned})->scores(), 0u);
+    EXPECT_EQ(editor::learned_from_others(registry, {"", Score{}})->scores(), 3u);
+}
+
 }  // namespace
 }  // namespace vibscore
