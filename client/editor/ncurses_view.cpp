@@ -148,6 +148,9 @@ void Screen::draw(const EditorModel& model, const ButtonScheme& scheme, const Vi
     options.cursor_string = model.string();
     options.block = model.block();
     options.playing = status.playing;
+    if (scheme.mode() == ButtonScheme::Mode::entry) {
+        options.entering = model.cursor();
+    }
     const auto layout = layout_staff(model.score(), options);
 
     // 40x12: eleven staff rows and a status line; taller screens get a title and a hint line.
