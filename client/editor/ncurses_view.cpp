@@ -186,6 +186,10 @@ void Screen::draw(const EditorModel& model, const ButtonScheme& scheme, const Vi
         mvaddstr(0, 0, fit(title, cols).c_str());
         attrset(A_NORMAL);
         mvaddstr(rows - 2, 0, fit(news, cols).c_str());
+        if (rows >= staff_rows + 4 && cols >= columns_of(keyboard_hint())) {
+            attrset(A_DIM);
+            mvaddstr(rows - 3, 0, keyboard_hint().c_str());
+        }
         attrset(A_DIM);
         mvaddstr(rows - 1, 0, fit(hint, cols).c_str());
         attrset(A_NORMAL);

@@ -41,6 +41,10 @@ std::string status_line(const StatusParts& parts, int width) {
     return fit(line, width);
 }
 
+std::string keyboard_hint() {
+    return "keys: 1-9 note 0 rest  Shift+1..0 length whole..32nd  . dot  Space play";
+}
+
 std::string symbol_entered(const EditorModel& model) {
     const Symbol* symbol = symbol_at(model.score(), model.cursor());
     if (symbol == nullptr) {

@@ -28,6 +28,10 @@ class ButtonScheme;
 // hint wins over it (what was undone before opening the list says nothing about the list).
 StatusParts status_of(const EditorModel& model, const ButtonScheme& scheme,
                       const std::string& news);
+// The keyboard's number keys in one line for a full keyboard's screen (80 columns): the keys a
+// newcomer cannot guess from the buttons' hints.
+std::string keyboard_hint();
+
 // The note or rest under the cursor while entering ("5 quarter s3", "rest 8th"), or "".
 std::string symbol_entered(const EditorModel& model);
 

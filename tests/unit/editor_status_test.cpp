@@ -87,5 +87,12 @@ TEST(StatusLine, TheShortestLengthIsA32nd) {
     EXPECT_NE(hint.find("\u219332nd"), std::string::npos) << hint;  // Down: still a 32nd
 }
 
+TEST(StatusLine, AFullKeyboardsScreenNamesTheDigitKeysInOneLine) {
+    const std::string keys = editor::keyboard_hint();
+    EXPECT_LE(columns_of(keys), 80);
+    EXPECT_NE(keys.find("1-9 note"), std::string::npos);
+    EXPECT_NE(keys.find("Shift+1..0 length"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace vibscore
