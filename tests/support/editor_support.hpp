@@ -42,6 +42,18 @@ inline std::vector<Bar> bars(const std::string& bars_xml) {
     return read_score(text, "expected.xml").score.bars;
 }
 
+// A score (no title, no clefs declared) of bars written as XML, all on clef "lra".
+inline Score score_of(const std::string& bars_xml) {
+    Score score;
+    score.bars = bars(bars_xml);
+    return score;
+}
+
+// The end of the last bar: where entering goes on.
+inline editor::Position end_of(const Score& score) {
+    return {score.bars.size() - 1, score.bars.back().symbols.size()};
+}
+
 // Types keys (ncurses codes; characters as themselves) into the editor.
 inline void type(editor::Editor& editor, std::initializer_list<int> keys) {
     for (const int key : keys) {

@@ -12,17 +12,9 @@ using editor::EditorModel;
 using editor::PhraseBook;
 using editor::Position;
 using testing::bars;
+using testing::end_of;
 using testing::kLra;
-
-Score score_of(const std::string& bars_xml) {
-    Score score;
-    score.bars = bars(bars_xml);
-    return score;
-}
-
-Position end_of(const Score& score) {
-    return {score.bars.size() - 1, score.bars.back().symbols.size()};
-}
+using testing::score_of;
 
 const std::string kLearned =
     "<Bar clef=\"lra\"><Note length=\"8th\" number=\"7\" string=\"5\"/>"
