@@ -82,10 +82,20 @@ std::vector<ClefDeclaration> EditorModel::clef_choices() const {
 }
 
 std::optional<Block> EditorModel::block() const {
-    if (!anchor_ || *anchor_ == cursor_) {
+    if (!anchor_) {
         return std::nullopt;
     }
-    return Block{std::min(*anchor_, cursor_), std::max(*anchor_, cursor_)};
+    const Position first = std::min(*anchor_, cursor_);
+    Position last = std::max(*anchor_, cursor_);
+    if (anchor_sticky_ && symbol_at(*score_, last) != nullptr) {
+        // Marked from the menu, both ends are symbols the user stood on: the block holds them,
+        // so a bar marked from its first symbol to its last is the whole bar.
+        ++last.symbol;
+    }
+    if (first == last) {
+        return std::nullopt;
+    }
+    return Block{first, last};
 }
 
 Symbol EditorModel::proposed_symbol() const {
@@ -691,7 +701,8 @@ bool EditorModel::shift_numbers(int delta) {
 bool EditorModel::copy() {
     if (const auto marked = block()) {
         clipboard_ = copy_block(*score_, *marked);
-        return done("block copied");
+        anchor_.reset();  // copied: moving the cursor to where it goes must not grow the block
+        return done("block copied: move, then paste");
     }
     const auto at = at_hand();
     if (!at) {
@@ -710,7 +721,7 @@ bool EditorModel::cut() {
         anchor_ = *at;
         cursor_ = {at->bar, at->symbol + 1};
     }
-    copy();
+    clipboard_ = copy_block(*score_, *block());
     delete_at_cursor();
     return done("cut");
 }

@@ -333,8 +333,8 @@ TEST(EditorButtons, ABlockMarkedWithButtonsIsCopiedPastedAndRaised) {
     ASSERT_TRUE(editor.model.block());
     to_menu_entry(editor, "copy");
     press(editor, {S});
-    to_menu_entry(editor, "unmark block");
-    press(editor, {S, R});  // past the end: a new bar
+    EXPECT_FALSE(editor.model.block());  // copied: the block is let go
+    press(editor, {R});                  // past the end: a new bar
     to_menu_entry(editor, "paste");
     press(editor, {S});
     press(editor, {L, L});
@@ -349,6 +349,23 @@ TEST(EditorButtons, ABlockMarkedWithButtonsIsCopiedPastedAndRaised) {
                    "<Note length=\"quarter\" number=\"6\" string=\"3\"/></Bar>"
                    "<Bar clef=\"lra\"><Note length=\"quarter\" number=\"6\" string=\"4\"/>"
                    "<Note length=\"quarter\" number=\"7\" string=\"4\"/></Bar>"));
+}
+
+TEST(EditorButtons, ABarMarkedFromItsFirstToItsLastSymbolIsCopiedWhole) {
+    // A newcomer marked a bar from its first note to its last rest: the rest was lost.
+    auto editor = fresh_editor();
+    testing::type(editor, "10");  // a note, then a rest
+    ASSERT_EQ(editor.model.score().bars[0].symbols.size(), 2u);
+    press(editor, {L, L});
+    to_menu_entry(editor, "mark block");
+    press(editor, {S, R});  // on the rest
+    ASSERT_TRUE(std::holds_alternative<Rest>(symbol(editor, 1)));
+    to_menu_entry(editor, "copy");
+    press(editor, {S, R, R});  // the block let go, Right moves on and past the end: a new bar
+    ASSERT_EQ(editor.model.score().bars.size(), 2u);
+    to_menu_entry(editor, "paste");
+    press(editor, {S});
+    EXPECT_EQ(editor.model.score().bars[1].symbols, editor.model.score().bars[0].symbols);
 }
 
 TEST(EditorButtons, TheBarClefFromTheMenu) {
