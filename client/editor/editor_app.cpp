@@ -127,6 +127,9 @@ class Session {
             std::make_unique<Editor>(Editor{EditorModel(std::move(*score), available), {}});
         editor->model.learn_from(std::move(phrases));
         editor->scheme.set_openable(registry_scores_);
+        if (editor_) {
+            editor->model.carry_over(editor_->model);
+        }
         editor_ = std::move(editor);
         source_ = source;
         message_ = is_new ? "new score " + source_.name : "";

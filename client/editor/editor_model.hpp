@@ -40,6 +40,9 @@ class EditorModel {
     bool modified() const { return *score_ != *saved_; }
     void mark_saved() { saved_ = score_; }
     void set_title(std::string title);
+    // What a session keeps when another score is opened or a new one started: the clipboard,
+    // so a bar copied in one score can be pasted into another.
+    void carry_over(const EditorModel& previous) { clipboard_ = previous.clipboard_; }
     // The scores the proposals learn from besides the score itself (phrase_book.hpp).
     void learn_from(std::shared_ptr<const PhraseBook> phrases) { phrases_ = std::move(phrases); }
 

@@ -368,6 +368,18 @@ TEST(EditorButtons, ABarMarkedFromItsFirstToItsLastSymbolIsCopiedWhole) {
     EXPECT_EQ(editor.model.score().bars[1].symbols, editor.model.score().bars[0].symbols);
 }
 
+TEST(EditorButtons, TheClipboardStaysWhenAnotherScoreIsOpened) {
+    auto first = fresh_editor();
+    testing::type(first, "10");  // a note, then a rest
+    first.model.apply(editor::Command{editor::Action::mark_block});
+    press(first, {L, L});
+    first.model.copy();
+    auto second = fresh_editor();  // what opening another score or a new one starts
+    second.model.carry_over(first.model);
+    ASSERT_TRUE(second.model.paste());
+    EXPECT_EQ(second.model.score().bars[0].symbols, first.model.score().bars[0].symbols);
+}
+
 TEST(EditorButtons, TheBarClefFromTheMenu) {
     auto editor = fresh_editor();
     press(editor, {S, S, B, B, R});  // bar 2
