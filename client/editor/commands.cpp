@@ -72,6 +72,8 @@ std::string_view to_string(Action action) {
             return "play";
         case Action::save:
             return "save";
+        case Action::save_as:
+            return "save as";
         case Action::open:
             return "open";
         case Action::new_score:

@@ -44,6 +44,7 @@ enum class Action {
     choose_clef,
     play_or_stop,
     save,
+    save_as,
     open,
     new_score,
     quit,

@@ -127,6 +127,8 @@ class Session {
             std::make_unique<Editor>(Editor{EditorModel(std::move(*score), available), {}});
         editor->model.learn_from(std::move(phrases));
         editor->scheme.set_openable(registry_scores_);
+        editor->scheme.set_taken(taken_names(source));
+        editor->scheme.set_destination(name_of(source), is_new);
         if (editor_) {
             editor->model.carry_over(editor_->model);
         }
@@ -145,6 +147,39 @@ class Session {
                 continue;  // `vibscore check` is where a broken score is reported
             }
         }
+    }
+
+    // The names save-as asks about before saving under them: the registry's scores, or the
+    // score files beside a file.
+    std::vector<std::string> taken_names(const ScoreSource& source) const {
+        if (source.kind == ScoreSource::Kind::registry) {
+            return registry_scores_;
+        }
+        std::vector<std::string> names;
+        const auto folder = std::filesystem::absolute(source.name).parent_path();
+        std::error_code error;
+        for (const auto& entry : std::filesystem::directory_iterator(folder, error)) {
+            if (entry.path().filename().string().ends_with(".score.xml")) {
+                names.push_back(stem(entry.path().string()));
+            }
+        }
+        return names;
+    }
+
+    // What save-as calls the score: its registry name, or its file name without .score.xml.
+    static std::string name_of(const ScoreSource& source) {
+        return source.kind == ScoreSource::Kind::registry ? source.name : stem(source.name);
+    }
+
+    // Where save-as stores a score named `name`: that registry name, or NAME.score.xml beside
+    // the file being edited.
+    ScoreSource renamed(const std::string& name) const {
+        if (source_.kind == ScoreSource::Kind::registry) {
+            return {ScoreSource::Kind::registry, name};
+        }
+        return {
+            ScoreSource::Kind::file,
+            (std::filesystem::path(source_.name).parent_path() / (name + ".score.xml")).string()};
     }
 
     // A registry name no score has yet: tacton-1, tacton-2, ...
@@ -260,6 +295,11 @@ class Session {
                     running_ = false;
                 }
                 return;
+            case Request::Kind::save_as:
+                if (save_as(request.name) && request.then_quit) {
+                    running_ = false;
+                }
+                return;
             case Request::Kind::quit:
                 running_ = false;
                 return;
@@ -323,11 +363,33 @@ class Session {
                 }
             }
             model.mark_saved();
+            editor_->scheme.set_destination(name_of(source_), true);
             return true;
         } catch (const std::exception& error) {
             message_ = "not saved: " + std::string(error.what());
             return false;
         }
+    }
+
+    // Saves under another name, which the editor then edits: the score opened stays as it was
+    // (a shipped one is never changed; a stored score of that name shadows it).
+    bool save_as(const std::string& name) {
+        const ScoreSource before = source_;
+        auto& model = editor_->model;
+        const std::string old_title = model.score().title;
+        if (old_title.empty() || old_title == name_of(before)) {
+            model.set_title(name);  // a score titled by its name keeps being so
+        }
+        source_ = renamed(name);
+        if (!save()) {
+            source_ = before;
+            if (model.score().title != old_title) {
+                model.set_title(old_title);
+            }
+            return false;
+        }
+        editor_->scheme.set_taken(taken_names(source_));
+        return true;
     }
 
     // Opens another score or a new one; unsaved changes need the request twice.

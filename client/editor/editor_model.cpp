@@ -869,6 +869,7 @@ bool EditorModel::apply(const Command& command) {
         case Action::choose_clef:
         case Action::play_or_stop:
         case Action::save:
+        case Action::save_as:
         case Action::open:
         case Action::new_score:
         case Action::quit:

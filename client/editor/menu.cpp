@@ -38,6 +38,7 @@ std::vector<MenuEntry> main_menu(const EditorModel& model) {
         {"undo", Action::undo, 5},
         {"redo", Action::redo, 5},
         {"save", Action::save, 6},
+        {"save as...", Action::save_as, 6},
         {"open...", Action::open, 6},
         {"new score", Action::new_score, 6},
         {"quit", Action::quit, 6},

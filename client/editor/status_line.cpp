@@ -65,7 +65,8 @@ StatusParts status_of(const EditorModel& model, const ButtonScheme& scheme,
     using Mode = ButtonScheme::Mode;
     const Mode mode = scheme.mode();
     const bool in_a_list = mode == Mode::menu || mode == Mode::clef_menu ||
-                           mode == Mode::open_menu || mode == Mode::quit_menu;
+                           mode == Mode::open_menu || mode == Mode::quit_menu ||
+                           mode == Mode::name_entry || mode == Mode::replace_menu;
     return {model.modified(),
             in_a_list ? "" : news,
             mode == Mode::entry ? symbol_entered(model) : "",

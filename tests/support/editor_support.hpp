@@ -72,6 +72,23 @@ inline void press(editor::Editor& editor, std::initializer_list<editor::Button> 
     }
 }
 
+// The highlighted line of the open menu or list, or "".
+inline std::string highlighted(const editor::Editor& editor) {
+    const auto menu = editor.scheme.menu_view(editor.model);
+    return menu.lines.empty() ? "" : menu.lines[static_cast<std::size_t>(menu.highlighted)];
+}
+
+// Opens the menu and moves down to `label`; returns the presses that took.
+inline std::vector<editor::Button> to_menu_entry(editor::Editor& editor, const std::string& label) {
+    std::vector<editor::Button> presses{editor::Button::back};
+    editor.press(editor::Button::back);
+    for (int i = 0; i < 40 && highlighted(editor) != label; ++i) {
+        editor.press(editor::Button::down);
+        presses.push_back(editor::Button::down);
+    }
+    return presses;
+}
+
 inline int ctrl(char letter) {
     return letter & 0x1f;
 }

@@ -13,7 +13,9 @@ using editor::Position;
 using editor::Request;
 using testing::bars;
 using testing::fresh_editor;
+using testing::highlighted;
 using testing::press;
+using testing::to_menu_entry;
 
 constexpr auto U = Button::up;
 constexpr auto D = Button::down;
@@ -21,11 +23,6 @@ constexpr auto L = Button::left;
 constexpr auto R = Button::right;
 constexpr auto S = Button::select;
 constexpr auto B = Button::back;
-
-std::string highlighted(const editor::Editor& editor) {
-    const auto menu = editor.scheme.menu_view(editor.model);
-    return menu.lines.empty() ? "" : menu.lines[static_cast<std::size_t>(menu.highlighted)];
-}
 
 const Symbol& symbol(const editor::Editor& editor, std::size_t index, std::size_t bar = 0) {
     return editor.model.score().bars.at(bar).symbols.at(index);
@@ -298,16 +295,6 @@ TEST(EditorButtons, TiesFromTheMenu) {
     EXPECT_EQ(std::get<Note>(symbols[2]).legato, 1);
     EXPECT_EQ(std::get<Note>(symbols[2]).portamento, 1);
     EXPECT_EQ(std::get<Note>(symbols[1]).portamento, 1);
-}
-
-std::vector<Button> to_menu_entry(editor::Editor& editor, const std::string& label) {
-    std::vector<Button> presses{B};
-    editor.press(B);
-    for (int i = 0; i < 40 && highlighted(editor) != label; ++i) {
-        editor.press(D);
-        presses.push_back(D);
-    }
-    return presses;
 }
 
 TEST(EditorButtons, LeftFromInsideAGroupGoesToThePreviousGroupAndTheTitleNamesIt) {
