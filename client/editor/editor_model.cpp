@@ -364,6 +364,19 @@ bool EditorModel::begin_entry(Continuing continuing) {
     return true;
 }
 
+EditorModel::Unlike EditorModel::unlike_last_entered() const {
+    if (!in_entry_) {
+        return {};
+    }
+    if (const Note* note = note_at(*score_, cursor_)) {
+        return {note->length != length_, note->string != string_};
+    }
+    if (const auto* rest = std::get_if<Rest>(symbol_at(*score_, cursor_))) {
+        return {rest_length_ && rest->length != *rest_length_, false};
+    }
+    return {};
+}
+
 bool EditorModel::at_end_of_full_bar() const {
     const Bar& bar = score_->bars[cursor_.bar];
     return cursor_.symbol == bar.symbols.size() && Score::beat_count(bar) >= beats_in_a_full_bar;

@@ -54,6 +54,14 @@ class EditorModel {
     // the active string with the hairpin of the last note, the ties of a note directly before,
     // and the step in number between the two notes directly before (a fade goes on fading).
     Note proposed_note() const;
+    // Where the symbol being entered is not what entering ran on with: a length other than the
+    // last note's (a rest's: the last rest's), a string other than the active one. A proposal
+    // that changes either is shown so, not to be taken by a thumb used to the last one.
+    struct Unlike {
+        bool length = false;
+        bool string = false;
+    };
+    Unlike unlike_last_entered() const;
     // The note or rest the symbol functions act on: the one under the cursor, or on an empty
     // position the one just before it.
     std::optional<Position> at_hand() const;

@@ -1,5 +1,8 @@
 #include "client/editor/status_line.hpp"
 
+#include <algorithm>
+#include <cctype>
+
 #include "client/editor/button_scheme.hpp"
 #include "client/editor/editor_model.hpp"
 
@@ -45,17 +48,32 @@ std::string keyboard_hint() {
     return "keys: 1-9 note 0 rest  Shift+1..0 length whole..32nd  . dot  Space play";
 }
 
+namespace {
+
+// Capitals: the same width, so the line still fits, and unlike every other word on it.
+std::string shouted(std::string text, bool shout) {
+    if (shout) {
+        std::transform(text.begin(), text.end(), text.begin(),
+                       [](unsigned char c) { return static_cast<char>(std::toupper(c)); });
+    }
+    return text;
+}
+
+}  // namespace
+
 std::string symbol_entered(const EditorModel& model) {
     const Symbol* symbol = symbol_at(model.score(), model.cursor());
     if (symbol == nullptr) {
         return "";
     }
+    const auto unlike = model.unlike_last_entered();
     if (const auto* note = std::get_if<Note>(symbol)) {
-        return std::to_string(note->number) + " " + length_name(note->length) + " s" +
-               std::to_string(note->string);
+        return std::to_string(note->number) + " " +
+               shouted(length_name(note->length), unlike.length) + " " +
+               shouted("s" + std::to_string(note->string), unlike.string);
     }
     if (const auto* rest = std::get_if<Rest>(symbol)) {
-        return "rest " + length_name(rest->length);
+        return "rest " + shouted(length_name(rest->length), unlike.length);
     }
     return "";
 }

@@ -87,6 +87,41 @@ TEST(StatusLine, TheShortestLengthIsA32nd) {
     EXPECT_NE(hint.find("\u219332nd"), std::string::npos) << hint;  // Down: still a 32nd
 }
 
+TEST(StatusLine, AProposalUnlikeTheLastEnteredLengthOrStringIsInCapitals) {
+    // A newcomer took an 8th proposed after quarters for another quarter: it looked the same.
+    auto editor = fresh_editor();
+    auto& model = editor.model;
+    for (const int delta : {0, -1, +1}) {  // a quarter, an 8th, a quarter
+        model.begin_entry();
+        model.entry_length(delta);
+        model.end_entry();
+    }
+    model.begin_entry();  // what followed a quarter before: an 8th
+    ASSERT_EQ(editor::length_of(*editor::symbol_at(model.score(), model.cursor())), Length::eighth);
+    EXPECT_EQ(editor::symbol_entered(model), "5 8TH s3");
+    model.entry_length(+1);  // changed to the running length: plain again
+    EXPECT_EQ(editor::symbol_entered(model), "5 quarter s3");
+    model.entry_string(+1);  // the user's own string is the active one
+    EXPECT_EQ(editor::symbol_entered(model), "5 quarter s4");
+    model.end_entry();
+}
+
+TEST(StatusLine, AProposalOnAnotherStringThanTheLastNoteIsInCapitals) {
+    auto editor = fresh_editor();
+    auto& model = editor.model;
+    for (const int delta : {0, +2, -2}) {  // strings 3, 5, 3
+        model.begin_entry();
+        model.entry_string(delta);
+        model.end_entry();
+    }
+    model.begin_entry();  // what followed string 3 before: string 5
+    EXPECT_EQ(editor::symbol_entered(model), "5 quarter S5");
+    model.cancel_entry();
+    model.begin_entry();
+    model.entry_string(-2);  // the thumb's own choice
+    EXPECT_EQ(editor::symbol_entered(model), "5 quarter s3");
+}
+
 TEST(StatusLine, AFullKeyboardsScreenNamesTheDigitKeysInOneLine) {
     const std::string keys = editor::keyboard_hint();
     EXPECT_LE(columns_of(keys), 80);
