@@ -214,6 +214,8 @@ Request ButtonScheme::perform(Action action, EditorModel& model) {
             return {Request::Kind::quit};
         case Action::play_or_stop:
             return {Request::Kind::play, {}, model.cursor().bar};
+        case Action::play_from_start:
+            return {Request::Kind::play, {}, 0};
         case Action::save:
             return save_under(destination_, false);
         case Action::save_as:
@@ -317,6 +319,7 @@ Request ButtonScheme::command(const Command& command, EditorModel& model) {
         case Action::open:
         case Action::quit:
         case Action::play_or_stop:
+        case Action::play_from_start:
         case Action::save:
         case Action::save_as:
         case Action::new_score:

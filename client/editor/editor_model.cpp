@@ -265,6 +265,24 @@ void EditorModel::move_right() {
     }
 }
 
+void EditorModel::to_first_bar() {
+    if (anchor_ && !anchor_sticky_) {
+        anchor_.reset();
+    }
+    message_.clear();
+    cursor_ = {0, 0};
+    land();
+}
+
+void EditorModel::to_last_bar() {
+    if (anchor_ && !anchor_sticky_) {
+        anchor_.reset();
+    }
+    message_.clear();
+    cursor_ = {score_->bars.size() - 1, score_->bars.back().symbols.size()};
+    land();
+}
+
 // The active string wraps around: from the highest string Up goes to the lowest, so any
 // string is at most three presses away.
 void EditorModel::move_up() {
@@ -806,6 +824,12 @@ bool EditorModel::set_bar_clef(const std::string& id) {
 
 bool EditorModel::apply(const Command& command) {
     switch (command.action) {
+        case Action::to_first_bar:
+            to_first_bar();
+            return true;
+        case Action::to_last_bar:
+            to_last_bar();
+            return true;
         case Action::move_left:
             move_left();
             return true;
@@ -881,6 +905,7 @@ bool EditorModel::apply(const Command& command) {
             return redo();
         case Action::choose_clef:
         case Action::play_or_stop:
+        case Action::play_from_start:
         case Action::save:
         case Action::save_as:
         case Action::open:

@@ -73,6 +73,8 @@ class EditorModel {
     void move_right();
     void move_up();
     void move_down();
+    void to_first_bar();  // the first position of the score
+    void to_last_bar();   // the end of the last bar
     void extend(int direction);
     bool insert_note(int number);
     bool insert_rest();

@@ -7,8 +7,8 @@
 namespace vibscore::editor {
 
 const char* group_name(int group) {
-    static const char* const names[] = {"hairpins", "ties",       "symbol, bar", "shift",
-                                        "block",    "play, undo", "file"};
+    static const char* const names[] = {
+        "hairpins", "ties", "symbol, bar", "shift", "block", "play, go to, undo", "file"};
     return group >= 0 && group < static_cast<int>(std::size(names)) ? names[group] : "";
 }
 
@@ -35,6 +35,9 @@ std::vector<MenuEntry> main_menu(const EditorModel& model) {
         {"cut", Action::cut, 4},
         {"paste", Action::paste, 4},
         {"play from this bar", Action::play_or_stop, 5},
+        {"play from the start", Action::play_from_start, 5},
+        {"to the first bar", Action::to_first_bar, 5},
+        {"to the last bar", Action::to_last_bar, 5},
         {"undo", Action::undo, 5},
         {"redo", Action::redo, 5},
         {"save", Action::save, 6},

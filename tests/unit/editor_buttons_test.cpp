@@ -426,6 +426,26 @@ TEST(EditorButtons, SessionEntriesAreRequests) {
     EXPECT_EQ(editor.press(S).kind, Request::Kind::save_and_quit);
 }
 
+TEST(EditorButtons, TheMenuGoesToTheFirstAndLastBarAndPlaysFromTheStart) {
+    // A newcomer pressed Left 15 times to play from the start.
+    auto editor = fresh_editor();
+    press(editor, {S, S, S, S, S, S, S, S, S, S, B, B});  // nine quarters: three bars
+    ASSERT_EQ(editor.model.score().bars.size(), 3u);
+    to_menu_entry(editor, "to the first bar");
+    EXPECT_EQ(editor.scheme.menu_view(editor.model).title, "menu: play, go to, undo 6/7");
+    EXPECT_EQ(editor.press(S).kind, Request::Kind::none);
+    EXPECT_EQ(editor.model.cursor(), (Position{0, 0}));
+    to_menu_entry(editor, "to the last bar");
+    press(editor, {S});
+    EXPECT_EQ(editor.model.cursor(), (Position{2, 1}));
+    // The menu reopens on the last choice: the same place again is Back, Select.
+    press(editor, {L, L});
+    press(editor, {B, S});
+    EXPECT_EQ(editor.model.cursor(), (Position{2, 1}));
+    to_menu_entry(editor, "play from the start");
+    EXPECT_EQ(editor.press(S), (Request{Request::Kind::play, {}, 0}));
+}
+
 TEST(PressPlanner, FindsAndVerifiesTheButtonsForFigure23) {
     const auto target =
         read_score(
