@@ -63,6 +63,29 @@ TEST(StatusLine, EveryHintFitsFortyColumns) {
     }
 }
 
+TEST(StatusLine, SaveAsHintsFitFortyColumnsAndHideTheLastAction) {
+    auto editor = fresh_editor();
+    editor.scheme.set_taken({"ringtone"});
+    editor.scheme.set_destination("ringtone", false);
+    testing::to_menu_entry(editor, "save as...");
+    press(editor, {S});  // the name entry
+    for (const bool more : {false, true}) {
+        if (more) {
+            press(editor, {B});  // delete, insert, cancel
+        }
+        const auto parts = status_of(editor.model, editor.scheme, "undone");
+        EXPECT_EQ(parts.message, "");
+        const auto line = status_line(parts, kSmallWidth);
+        EXPECT_NE(line.find(parts.hint), std::string::npos) << "cut: " << line;
+    }
+    press(editor, {B});  // cancelled
+    testing::to_menu_entry(editor, "save");
+    press(editor, {S});  // ringtone exists: another name, replace, cancel
+    const auto parts = status_of(editor.model, editor.scheme, "undone");
+    EXPECT_EQ(parts.message, "");
+    EXPECT_NE(status_line(parts, kSmallWidth).find("(shipped files stay)"), std::string::npos);
+}
+
 TEST(StatusLine, AListShowsItsHintNotWhatWasDoneBeforeIt) {
     auto editor = fresh_editor();
     editor.scheme.set_openable({"heartbeat", "ringtone"});
