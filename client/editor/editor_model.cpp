@@ -266,20 +266,19 @@ void EditorModel::move_right() {
 }
 
 void EditorModel::to_first_bar() {
-    if (anchor_ && !anchor_sticky_) {
-        anchor_.reset();
-    }
-    message_.clear();
-    cursor_ = {0, 0};
-    land();
+    jump_to({0, 0});
 }
 
 void EditorModel::to_last_bar() {
+    jump_to({score_->bars.size() - 1, score_->bars.back().symbols.size()});
+}
+
+void EditorModel::jump_to(Position position) {
     if (anchor_ && !anchor_sticky_) {
         anchor_.reset();
     }
     message_.clear();
-    cursor_ = {score_->bars.size() - 1, score_->bars.back().symbols.size()};
+    cursor_ = position;
     land();
 }
 

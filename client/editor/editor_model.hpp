@@ -127,6 +127,7 @@ class EditorModel {
     void restore(const Snapshot& snapshot);
     std::vector<Position> targets() const;  // the block's notes and rests, or the one at hand
     std::vector<Position> target_notes() const;
+    void jump_to(Position position);  // a move as the arrows make one, any distance
     void step_left();
     bool step_right();  // false at the end of the score
     void land();        // keeps the cursor valid and lets the active string follow a note under it

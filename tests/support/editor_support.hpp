@@ -28,6 +28,16 @@ namespace vibscore::testing {
 inline const ClefDeclaration kLra{"lra", "lra-phone.clef.xml"};
 inline const ClefDeclaration kErm{"erm", "erm-phone.clef.xml"};
 
+// The six buttons by their initials, for press sequences: `using namespace testing::buttons;`.
+namespace buttons {
+inline constexpr auto U = editor::Button::up;
+inline constexpr auto D = editor::Button::down;
+inline constexpr auto L = editor::Button::left;
+inline constexpr auto R = editor::Button::right;
+inline constexpr auto S = editor::Button::select;
+inline constexpr auto B = editor::Button::back;
+}  // namespace buttons
+
 // A new score on clef "lra", with "erm" available for bars too.
 inline editor::Editor fresh_editor() {
     return {editor::EditorModel(editor::EditorModel::blank_score("t", kLra), {kLra, kErm}), {}};

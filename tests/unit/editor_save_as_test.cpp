@@ -17,12 +17,7 @@ using testing::highlighted;
 using testing::press;
 using testing::to_menu_entry;
 
-constexpr auto U = Button::up;
-constexpr auto D = Button::down;
-constexpr auto L = Button::left;
-constexpr auto R = Button::right;
-constexpr auto S = Button::select;
-constexpr auto B = Button::back;
+using namespace testing::buttons;
 
 NameEntry::Outcome press_all(NameEntry& entry, std::initializer_list<Button> buttons) {
     NameEntry::Outcome outcome = NameEntry::Outcome::typing;

@@ -16,10 +16,7 @@ using editor::StatusParts;
 using testing::fresh_editor;
 using testing::press;
 
-constexpr auto U = Button::up;
-constexpr auto D = Button::down;
-constexpr auto S = Button::select;
-constexpr auto B = Button::back;
+using namespace testing::buttons;
 
 constexpr int kSmallWidth = 40;
 
