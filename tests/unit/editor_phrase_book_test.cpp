@@ -21,12 +21,15 @@ const std::string kLearned =
     "<Note length=\"quarter\" number=\"3\" string=\"2\"/>"
     "<Note length=\"half\" number=\"9\" string=\"6\"/></Bar>";
 
+// A score being entered that begins as kLearned does.
+const char* const kEnteringItsStart =
+    "<Bar clef=\"lra\"><Note length=\"8th\" number=\"7\" string=\"5\"/>"
+    "<Note length=\"quarter\" number=\"3\" string=\"2\"/></Bar>";
+
 TEST(PhraseBook, WhatFollowedTheSamePhraseInALearnedScoreComesNext) {
     PhraseBook book;
     book.learn(score_of(kLearned));
-    const auto entering = score_of(
-        "<Bar clef=\"lra\"><Note length=\"8th\" number=\"7\" string=\"5\"/>"
-        "<Note length=\"quarter\" number=\"3\" string=\"2\"/></Bar>");
+    const auto entering = score_of(kEnteringItsStart);
     const auto next = book.next_after(entering, end_of(entering));
     ASSERT_TRUE(next);
     EXPECT_EQ(next->next, (Symbol{Note{Length::half, 9, 6}}));
@@ -52,9 +55,7 @@ TEST(PhraseBook, TheLongestPhraseWinsOverTheMoreFrequentOne) {
         "<Bar clef=\"lra\"><Note length=\"quarter\" number=\"3\" string=\"2\"/><Rest "
         "length=\"8th\"/>"
         "<Note length=\"quarter\" number=\"3\" string=\"2\"/><Rest length=\"8th\"/></Bar>"));
-    const auto entering = score_of(
-        "<Bar clef=\"lra\"><Note length=\"8th\" number=\"7\" string=\"5\"/>"
-        "<Note length=\"quarter\" number=\"3\" string=\"2\"/></Bar>");
+    const auto entering = score_of(kEnteringItsStart);
     const auto next = book.next_after(entering, end_of(entering));
     ASSERT_TRUE(next);
     EXPECT_EQ(next->next, (Symbol{Note{Length::half, 9, 6}}));
