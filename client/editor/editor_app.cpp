@@ -128,7 +128,9 @@ class Session {
         editor->model.learn_from(std::move(phrases));
         editor->scheme.set_openable(registry_scores_);
         editor->scheme.set_taken(taken_names(source));
-        editor->scheme.set_destination(name_of(source), is_new);
+        // A file opened is the user's to save over; a registry name may be a shipped score.
+        editor->scheme.set_destination(name_of(source),
+                                       is_new || source.kind == ScoreSource::Kind::file);
         if (editor_) {
             editor->model.carry_over(editor_->model);
         }

@@ -356,6 +356,46 @@ TEST_F(EditorEndToEnd, PlaysFromTheCursorsBarFollowsThePositionAndAnyButtonStops
     EXPECT_EQ(pane.wait_exit(), "0") << pane.screen();
 }
 
+TEST_F(EditorEndToEnd, AFileOpenedSavesWithoutAskingAndSaveAsWritesANewFileBesideIt) {
+    testing::TempDir dir;
+    const auto file = dir.path() / "buzz.score.xml";
+    const auto shipped_file =
+        std::filesystem::path(testing::required_env("VIBSCORE_CLEFS")) / "success.score.xml";
+    std::filesystem::copy_file(shipped_file, file);
+    editor::Editor copy{editor::EditorModel(read_score(testing::read_file(file), "buzz").score, {}),
+                        {}};
+    copy.scheme.set_taken({"buzz"});
+    copy.scheme.set_destination("buzz", true);
+
+    TmuxPane pane(edit_command(file.string()), 40, 12);
+    ASSERT_TRUE(pane.wait_for_text("[lra")) << pane.screen();
+    send(pane, {Button::select, Button::up, Button::select, Button::select});  // a change
+    send(pane, {Button::back, Button::back});
+    ASSERT_TRUE(pane.wait_for_text("*")) << pane.screen();
+    for (const Button button :
+         {Button::select, Button::up, Button::select, Button::select, Button::back, Button::back}) {
+        copy.press(button);
+    }
+    send(pane, menu_presses(copy, "save"));
+    ASSERT_TRUE(pane.wait_for_text("saved /")) << pane.screen();  // the path, cut at 40
+    EXPECT_NE(testing::read_file(file), testing::read_file(shipped_file));
+
+    send(pane, menu_presses(copy, "save as..."));
+    ASSERT_TRUE(pane.wait_for_text("buzz-[2]")) << pane.screen();
+    send(pane, {Button::select});
+    const auto beside = dir.path() / "buzz-2.score.xml";
+    for (int i = 0; i < 500 && !std::filesystem::exists(beside); ++i) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    ASSERT_TRUE(std::filesystem::exists(beside)) << pane.screen();
+    EXPECT_EQ(pane.screen().find("exists"), std::string::npos) << pane.screen();
+    const auto saved = read_score(testing::read_file(beside), "buzz-2").score;
+    EXPECT_EQ(saved.bars, read_score(testing::read_file(file), "buzz").score.bars);
+    EXPECT_EQ(saved.title, "success");  // a title other than the name stays
+    pane.key("q");
+    EXPECT_EQ(pane.wait_exit(), "0") << pane.screen();
+}
+
 TEST_F(EditorEndToEnd, ShowDrawsARegistryScore) {
     const auto shown =
         run_command({testing::required_env("VIBSCORE"), "show", "success", "--width", "40"});
