@@ -173,6 +173,22 @@ TEST_F(DaemonBus, UsageDecidesWhichPlaybackWins) {
     client->Stop(alarm);
 }
 
+TEST_F(DaemonBus, ARequestThatWouldBeRefusedIsRefusedBeforeItsScoreIsRead) {
+    auto client = daemon.client();
+    const auto alarm =
+        client->Play("alarm", options({{"usage", sdbus::Variant(std::string("alarm"))},
+                                       {"repeat", sdbus::Variant(std::int32_t{-1})}}));
+    const auto touch = options({{"usage", sdbus::Variant(std::string("touch"))}});
+    // Neither a broken document nor a missing one is looked at: the answer is Busy.
+    EXPECT_EQ(error_name_of([&] { client->Play("<VibScore><Bar", touch); }).substr(0, 32),
+              "org.vibscore.Haptics1.Error.Busy");
+    EXPECT_EQ(error_name_of([&] { client->Play("no-such-score", touch); }).substr(0, 32),
+              "org.vibscore.Haptics1.Error.Busy");
+    client->Stop(alarm);
+    EXPECT_EQ(error_name_of([&] { client->Play("<VibScore><Bar", touch); }).substr(0, 43),
+              "org.vibscore.Haptics1.Error.InvalidDocument");
+}
+
 TEST_F(DaemonBus, OptionsChangeWhatPlays) {
     auto client = daemon.client();
     // The same score through the plain ERM clef: no frequency, strength from the line levels.

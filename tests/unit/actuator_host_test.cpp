@@ -20,7 +20,7 @@ PlaybackRequest endless() {
     request.label = "endless";
     render::Cue drive;
     drive.amplitude = 0.5;
-    request.cues = {drive};
+    request.cues = std::make_shared<render::CueList>(std::vector<render::Cue>{drive});
     request.duration_s = 10.0;
     request.repeat = -1;
     return request;
