@@ -11,6 +11,7 @@
 #include <thread>
 
 #include "client/daemon_errors.hpp"
+#include "client/daemon_watch.hpp"
 #include "client/offline_verbs.hpp"
 #include "dbus/haptics1_names.hpp"
 #include "haptics1-proxy.h"
@@ -35,6 +36,7 @@ class Haptics : public sdbus::ProxyInterfaces<org::vibscore::Haptics1_proxy> {
         unregisterProxy();
     }
     void listen() { connection_->enterEventLoopAsync(); }
+    sdbus::IConnection& connection() { return *connection_; }
 
     std::optional<std::string> finished(std::uint64_t id) {
         std::lock_guard lock(mutex_);
@@ -112,7 +114,9 @@ int play(const PlayRequest& request, std::ostream& out, std::ostream& err) {
             options["clef"] = sdbus::Variant(request.clef);
         if (request.intensity >= 0.0)
             options["intensity"] = sdbus::Variant(request.intensity);
+        std::optional<DaemonWatch> watch;
         if (request.wait) {
+            watch.emplace(haptics.connection());
             haptics.listen();
         }
         const auto id = haptics.Play(score_argument(request.score), options);
@@ -120,12 +124,24 @@ int play(const PlayRequest& request, std::ostream& out, std::ostream& err) {
             out << id << "\n";
             return exit_ok;
         }
+        watch->follow();
         // Ctrl-C stops the playback rather than leaving it to end as "client-vanished".
         g_interrupted = false;
         const auto previous = std::signal(SIGINT, [](int) { g_interrupted = true; });
         std::int64_t shown_bar = -1;
         std::optional<std::string> reason;
         while (!(reason = haptics.finished(id))) {
+            if (const auto gone = watch->gone()) {
+                // Signals are handled in the order they came: a Finished the daemon sent before
+                // it left (SIGTERM) has been seen by now.
+                if (!(reason = haptics.finished(id))) {
+                    std::signal(SIGINT, previous);
+                    err << "vibscore: " << *gone << " during playback " << id
+                        << "; it did not finish\n";
+                    return exit_failed;
+                }
+                break;
+            }
             if (g_interrupted.exchange(false)) {
                 haptics.Stop(id);
             }

@@ -15,6 +15,7 @@
 #include "daemon/event_loop.hpp"
 #include "daemon/haptics_service.hpp"
 #include "daemon/log.hpp"
+#include "daemon/playback_ids.hpp"
 #include "daemon/playback_thread.hpp"
 #include "daemon/registry/registry.hpp"
 #include "daemon/reload.hpp"
@@ -62,7 +63,8 @@ int serve(const CommandLine& command_line) {
               ")");
     CallerDirectory callers(config.requests_per_second, config.request_burst);
     // From here on every actuator call happens on the playback thread.
-    PlaybackThread playback(loop, host.actuator(), {1, config.rt_priority});
+    PlaybackThread playback(loop, host.actuator(),
+                            {first_playback_id(config.store), config.rt_priority});
     playback.call([&](Player& player) { host.attach(player); });
 
     auto connection = sdbus::createSystemBusConnection();
@@ -71,7 +73,7 @@ int serve(const CommandLine& command_line) {
     BusLoopBinding binding(loop, *connection);
 
     const auto stop_playback = [&] {
-        playback.call([](Player& player) { player.stop_all(kStopped); });
+        playback.call([](Player& player) { player.stop_all(kServiceStopped); });
     };
     const auto shut_down = [&] {
         log::info("stopping");

@@ -39,8 +39,9 @@ class PlayerListener {
 };
 
 // Why a playback ended, as PlaybackFinished says (dbus/org.vibscore.Haptics1.xml): a caller's
-// Stop.
+// Stop, and the service stopping (SIGTERM), which no caller asked for.
 inline constexpr const char* kStopped = "stopped";
+inline constexpr const char* kServiceStopped = "service-stopped";
 
 // A request lost arbitration against the playback in progress.
 class PlayerBusy : public std::runtime_error {

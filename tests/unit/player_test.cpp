@@ -213,6 +213,17 @@ TEST_F(PlayerTest, StopSilencesAtOnceAndReportsStopped) {
     EXPECT_EQ(player.stop(99, 1000, false), Player::StopResult::not_found);
 }
 
+TEST_F(PlayerTest, AnIdThisPlayerNeverGaveOutIsNotFound) {
+    Player later_run{loop, actuator, &listener, (std::uint64_t{3} << 32) + 1};
+    const auto id = later_run.play(request(Usage::ringtone, -1));
+    EXPECT_EQ(id, (std::uint64_t{3} << 32) + 1);
+    EXPECT_EQ(later_run.stop(1, 1000, true), Player::StopResult::not_found);
+    EXPECT_EQ(later_run.stop((std::uint64_t{2} << 32) + 1, 1000, true),
+              Player::StopResult::not_found);
+    EXPECT_EQ(later_run.current_id(), id);
+    EXPECT_EQ(later_run.stop(id, 1000, false), Player::StopResult::stopped);
+}
+
 TEST_F(PlayerTest, OnlyTheOwnerOrAPrivilegedCallerMayStop) {
     const auto id = player.play(request(Usage::ringtone, -1, 1000));
     EXPECT_EQ(player.stop(id, 1001, false), Player::StopResult::not_permitted);
