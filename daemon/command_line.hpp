@@ -16,6 +16,7 @@ struct CommandLine {
     std::string driver, store, shipped;
     bool verbose = false;
     bool list_drivers = false;
+    bool safe_off = false;  // switch the configured backend off and exit, without serving
 };
 
 // Parses the arguments. For --help, --version and wrong usage it prints what CLI11 prints and

@@ -39,6 +39,16 @@ int list_drivers(const CommandLine& command_line) {
     return 0;
 }
 
+// After the daemon ended, however it ended (SIGKILL, a crash): the configured backend, opened
+// and switched off (GPIO lines driven low), then closed again.
+int safe_off(const CommandLine& command_line) {
+    const DaemonConfig config = read_config(command_line);
+    ActuatorHost host(config);
+    host.actuator().off();
+    log::info("safe-off: " + host.driver() + " switched off");
+    return 0;
+}
+
 // The bus thread's loop takes these signals through a signalfd. Blocked before any other thread
 // starts (the playback thread, a GPIO backend's PWM thread), so that every thread inherits the
 // mask and the kernel never hands one to a thread that would die of it.
@@ -117,6 +127,9 @@ int main(int argc, char** argv) {
         return list_drivers(command_line);
     }
     try {
+        if (command_line.safe_off) {
+            return safe_off(command_line);
+        }
         return serve(command_line);
     } catch (const std::exception& error) {
         log::error(error.what());

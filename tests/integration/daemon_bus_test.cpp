@@ -308,6 +308,27 @@ TEST_F(DaemonBus, SigtermSwitchesTheActuatorOffAndExitsCleanly) {
     EXPECT_EQ(reason, "service-stopped") << "not a caller's Stop";
 }
 
+TEST_F(DaemonBus, SafeOffSwitchesTheActuatorOffAfterTheDaemonWasKilledMidNote) {
+    const char* const kLongNote =
+        "<VibScore><Title>long</Title><Clef id=\"l\" href=\"lra-phone.clef.xml\"/>"
+        "<Bar clef=\"l\"><Note length=\"whole\" number=\"9\" string=\"6\"/></Bar></VibScore>";
+    auto client = daemon.client();
+    client->Play(kLongNote, options());
+    for (int i = 0;
+         i < 500 && (daemon.trace_rows().empty() || daemon.trace_rows().back().amplitude == 0.0);
+         ++i) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    }
+    daemon.kill_daemon();
+    ASSERT_FALSE(daemon.trace_rows().empty());
+    ASSERT_GT(daemon.trace_rows().back().amplitude, 0.0) << "killed mid-note, left on";
+    const auto safe_off = testing::run_command(
+        {testing::required_env("VIBSCORED"), "--config", daemon.config().string(), "--safe-off"});
+    EXPECT_EQ(safe_off.exit_code, 0) << safe_off.err;
+    ASSERT_FALSE(daemon.trace_rows().empty());
+    EXPECT_EQ(daemon.trace_rows().back().amplitude, 0.0);
+}
+
 TEST_F(DaemonBus, PlaybackIdsOfARestartedDaemonAreNewAndOldOnesAreNotFound) {
     auto client = daemon.client();
     const auto first = client->Play("touch-tick", options());
