@@ -15,6 +15,7 @@
 #include <thread>
 
 #include "client/daemon_errors.hpp"
+#include "client/daemon_watch.hpp"
 #include "client/editor/documents.hpp"
 #include "client/offline_verbs.hpp"
 #include "dbus/haptics1_names.hpp"
@@ -53,6 +54,7 @@ class Haptics : public sdbus::ProxyInterfaces<org::vibscore::Haptics1_proxy> {
         return std::any_of(finished_.begin(), finished_.end(),
                            [](const auto& entry) { return entry.second == "stopped"; });
     }
+    sdbus::IConnection& connection() { return *connection_; }
 
     std::optional<std::string> finished(std::uint64_t id) {
         std::lock_guard lock(mutex_);
@@ -221,7 +223,9 @@ int play(const PlayRequest& request, const ClefSearch& clefs, std::ostream& out,
             options["clef"] = sdbus::Variant(request.clef);
         if (request.intensity >= 0.0)
             options["intensity"] = sdbus::Variant(request.intensity);
+        std::optional<DaemonWatch> watch;
         if (request.wait) {
+            watch.emplace(haptics.connection());
             haptics.listen();
         }
         const auto id = haptics.Play(argument.score, options);
@@ -229,12 +233,24 @@ int play(const PlayRequest& request, const ClefSearch& clefs, std::ostream& out,
             out << id << "\n";
             return exit_ok;
         }
+        watch->follow();
         // Ctrl-C stops the playback rather than leaving it to end as "client-vanished".
         g_interrupted = false;
         const auto previous = std::signal(SIGINT, [](int) { g_interrupted = true; });
         std::int64_t shown_bar = -1;
         std::optional<std::string> reason;
         while (!(reason = haptics.finished(id))) {
+            if (const auto gone = watch->gone()) {
+                // Signals are handled in the order they came: a Finished the daemon sent before
+                // it left (SIGTERM) has been seen by now.
+                if (!(reason = haptics.finished(id))) {
+                    std::signal(SIGINT, previous);
+                    err << "vibscore: " << *gone << " during playback " << id
+                        << "; it did not finish\n";
+                    return exit_failed;
+                }
+                break;
+            }
             if (g_interrupted.exchange(false)) {
                 haptics.Stop(id);
             }

@@ -29,6 +29,9 @@ std::variant<CommandLine, int> parse_command_line(int argc, const char* const* a
     app.add_flag("--verbose", command_line.verbose, "log every playback");
     app.add_flag("--list-drivers", command_line.list_drivers,
                  "list the actuator backends and exit");
+    app.add_flag("--safe-off", command_line.safe_off,
+                 "switch the configured actuator off and exit (the unit's ExecStopPost: it runs "
+                 "after a crash too)");
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& help) {

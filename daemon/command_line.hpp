@@ -19,6 +19,7 @@ struct CommandLine {
     std::string driver, store, shipped;
     bool verbose = false;
     bool list_drivers = false;
+    bool safe_off = false;  // switch the configured backend off and exit, without serving
 };
 
 // Parses the arguments. For --help and --version it prints them and returns 0 to end with; for

@@ -35,6 +35,16 @@ double positive_number(const std::string& value, const std::string& where, const
     return number;
 }
 
+int priority(const std::string& value, const std::string& where, const std::string& key) {
+    int number = 0;
+    const auto [end, error] = std::from_chars(value.data(), value.data() + value.size(), number);
+    if (error != std::errc() || end != value.data() + value.size() || number < 0 || number > 99) {
+        throw ConfigError(where + ": " + key + " = \"" + value +
+                          "\" is not a whole number from 0 to 99");
+    }
+    return number;
+}
+
 }  // namespace
 
 const std::map<std::string, std::string>& DaemonConfig::settings_of(const std::string& name) const {
@@ -123,10 +133,13 @@ DaemonConfig parse_config(const std::string& text, const std::string& file, Daem
             config.requests_per_second = positive_number(value, where, key, 1e6);
         } else if (key == "request-burst") {
             config.request_burst = positive_number(value, where, key, 1e6);
+        } else if (key == "rt-priority") {
+            config.rt_priority = priority(value, where, key);
         } else {
             throw ConfigError(where + ": unknown key \"" + key +
                               "\" in [daemon] (expected driver, drivers-dir, store, shipped, "
-                              "separation-ms, requests-per-second or request-burst)");
+                              "separation-ms, requests-per-second, request-burst or "
+                              "rt-priority)");
         }
         if (value.empty()) {
             throw ConfigError(where + ": " + key + " has no value");

@@ -12,8 +12,8 @@ namespace vibscore::daemon {
 
 // vibscored.conf: INI sections of "key = value" lines; '#' and ';' start comments.
 //   [daemon]  driver, drivers-dir, store, shipped, separation-ms, requests-per-second,
-//   request-burst [NAME]    the settings of driver NAME (e.g. [sim] model = erm), handed to that
-//   driver
+//             request-burst, rt-priority
+//   [NAME]    the settings of driver NAME (e.g. [sim] model = erm), handed to that driver
 // docs/daemon.md documents every key.
 struct DaemonConfig {
     std::string driver = "sim";
@@ -23,6 +23,7 @@ struct DaemonConfig {
     double separation_ms = 30.0;
     double requests_per_second = 50.0;
     double request_burst = 100.0;
+    int rt_priority = 40;  // SCHED_FIFO of the playback thread; 0: normal scheduling
     std::map<std::string, std::map<std::string, std::string>> driver_settings;  // by driver
     // Where each [section] begins and each of its keys is set, as "file:line", for messages.
     std::map<std::string, std::string> section_lines;

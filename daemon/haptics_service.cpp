@@ -82,16 +82,16 @@ DocumentKind kind_named(const std::string& kind) {
 }  // namespace
 
 HapticsService::HapticsService(sdbus::IConnection& connection, const DaemonConfig& config,
-                               Registry& registry, Player& player, CallerDirectory& callers,
-                               ActuatorHost& host)
+                               Registry& registry, PlaybackThread& playback,
+                               CallerDirectory& callers, ActuatorHost& host)
     : AdaptorInterfaces(connection, haptics1::kObjectPath),
       config_(config),
       registry_(registry),
-      player_(player),
+      playback_(playback),
       callers_(callers),
       host_(host),
-      announced_driver_(host.driver()),
-      announced_capabilities_(host.capabilities().names()) {
+      announced_driver_(Driver()),
+      announced_capabilities_(Capabilities()) {
     vanish_watch_ = connection.addMatch(
         "type='signal',sender='org.freedesktop.DBus',interface='org.freedesktop.DBus',"
         "member='NameOwnerChanged'",
@@ -99,24 +99,37 @@ HapticsService::HapticsService(sdbus::IConnection& connection, const DaemonConfi
             std::string name, old_owner, new_owner;
             message >> name >> old_owner >> new_owner;
             if (new_owner.empty() && !name.empty() && name.front() == ':') {
-                player_.sender_vanished(name);
+                playback_.call([&](Player& player) { player.sender_vanished(name); });
                 callers_.forget(name);
             }
         });
-    player_.set_listener(this);
-    host_.on_change([this] { driver_switched(); });
+    playback_.set_listener(this);
+    // A switch happens on the playback thread; the bus hears of it on the bus thread.
+    host_.on_change([this] { playback_.to_bus([this] { driver_switched(); }); });
     registerAdaptor();
 }
 
 HapticsService::~HapticsService() {
     unregisterAdaptor();
     host_.on_change(nullptr);
-    player_.set_listener(nullptr);
+    playback_.set_listener(nullptr);
+}
+
+std::string HapticsService::Driver() {
+    return playback_.call([&](Player&) { return host_.driver(); });
+}
+
+std::vector<std::string> HapticsService::Capabilities() {
+    return playback_.call([&](Player&) { return host_.capabilities().names(); });
+}
+
+double HapticsService::Intensity() {
+    return playback_.call([](Player& player) { return player.master_intensity(); });
 }
 
 void HapticsService::driver_switched() {
-    auto driver = host_.driver();
-    auto capabilities = host_.capabilities().names();
+    auto driver = Driver();
+    auto capabilities = Capabilities();
     if (driver == announced_driver_ && capabilities == announced_capabilities_) {
         return;
     }
@@ -150,13 +163,18 @@ std::uint64_t HapticsService::Play(const std::string& score,
     return guarded("Play", [&] {
         const Caller& caller = admit_caller();
         const PlayOptions play_options = parse_play_options(options);
+        // A request that would be refused is refused before its score is read or rendered.
+        playback_.call([&](Player& player) {
+            player.check_admission(play_options.usage, play_options.repeat);
+        });
         PlaybackRequest request =
             make_playback_request(find_score_to_play(registry_, score, play_options), play_options,
                                   config_.separation_ms / 1000.0);
         request.owner = caller.uid;
         request.sender = caller.sender;
         const auto label = request.label;
-        const auto id = player_.play(std::move(request));
+        const auto id =
+            playback_.call([&](Player& player) { return player.play(std::move(request)); });
         log::debug("playback " + std::to_string(id) + ": " + label + " (" +
                    std::string(to_string(play_options.usage)) + ") for uid " +
                    std::to_string(caller.uid));
@@ -167,7 +185,10 @@ std::uint64_t HapticsService::Play(const std::string& score,
 void HapticsService::Stop(const std::uint64_t& playback_id) {
     guarded("Stop", [&] {
         const Caller& caller = admit_caller();
-        switch (player_.stop(playback_id, caller.uid, caller.privileged)) {
+        const auto stopped = playback_.call([&](Player& player) {
+            return player.stop(playback_id, caller.uid, caller.privileged);
+        });
+        switch (stopped) {
             case Player::StopResult::stopped:
             case Player::StopResult::not_playing:
                 return;
@@ -250,7 +271,7 @@ void HapticsService::SwitchDriver(const std::string& driver) {
         }
         log::info("uid " + std::to_string(caller.uid) + " switches the driver to " + driver);
         try {
-            host_.switch_to(driver);
+            playback_.call([&](Player&) { host_.switch_to(driver); });
         } catch (const std::invalid_argument& error) {
             throw RequestError(RequestError::Code::invalid, error.what());
         }
@@ -265,7 +286,7 @@ void HapticsService::Intensity(const double& value) {
             throw RequestError(RequestError::Code::invalid,
                                "Intensity " + number_text(value) + " is outside 0..1");
         }
-        player_.set_master_intensity(value);
+        playback_.call([&](Player& player) { player.set_master_intensity(value); });
         log::info("uid " + std::to_string(caller.uid) + " set Intensity to " + number_text(value));
     });
 }

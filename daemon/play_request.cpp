@@ -1,5 +1,6 @@
 #include "daemon/play_request.hpp"
 
+#include <memory>
 #include <string>
 
 #include "common/number_text.hpp"
@@ -103,17 +104,12 @@ PlaybackRequest make_playback_request(const ScoreToPlay& score, const PlayOption
     render::RenderOptions render_options;
     render_options.separation_s = separation_s;
     render_options.start_bar = options.start_bar;
-    const render::Performance performance(score.bundle, render_options);
+    auto performance = std::make_shared<const render::Performance>(score.bundle, render_options);
 
     PlaybackRequest request;
     request.label = score.label;
-    request.cues = render::cue_schedule(performance);
-    if (request.cues.size() > kMaxCues) {
-        throw RequestError(RequestError::Code::limit_exceeded,
-                           "the score needs " + std::to_string(request.cues.size()) +
-                               " actuator commands; the limit is " + std::to_string(kMaxCues));
-    }
-    request.duration_s = performance.duration();
+    request.duration_s = performance->duration();
+    request.cues = std::make_shared<render::ScheduleSource>(std::move(performance));
     request.usage = options.usage;
     request.repeat = options.repeat;
     request.intensity = options.intensity;

@@ -2,7 +2,6 @@
 
 #include <sdbus-c++/Types.h>
 
-#include <cstddef>
 #include <cstdint>
 #include <map>
 #include <string>
@@ -16,9 +15,6 @@
 // turned into what the player runs. No bus and no device, so every rule is reachable from a unit
 // test; the bus service only adds who is calling.
 namespace vibscore::daemon {
-
-// A playback's cues are kept in memory; this bounds that memory for one hour of dense shapes.
-inline constexpr std::size_t kMaxCues = 2'000'000;
 
 // Play's options dictionary (a{sv}), checked. dbus/org.vibscore.Haptics1.xml documents each.
 struct PlayOptions {
@@ -49,10 +45,10 @@ struct ScoreToPlay {
 ScoreToPlay find_score_to_play(const Registry& registry, const std::string& score,
                                const PlayOptions& options);
 
-// The player's request: the score's cue schedule from the start bar, with the caller's usage,
-// repeat and intensity (owner and sender are the caller's, for the bus service to fill in).
-// Throws RequestError: invalid for a start bar past the last bar, limit_exceeded for a score
-// needing more than kMaxCues actuator commands.
+// The player's request: the score performed from the start bar, whose cues the player reads as
+// it plays them, with the caller's usage, repeat and intensity (owner and sender are the
+// caller's, for the bus service to fill in). Throws RequestError (invalid) for a start bar past
+// the last bar.
 PlaybackRequest make_playback_request(const ScoreToPlay& score, const PlayOptions& options,
                                       double separation_s);
 

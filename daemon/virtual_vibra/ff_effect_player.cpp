@@ -7,10 +7,12 @@
 #include "daemon/virtual_vibra/ff_effect_pattern.hpp"
 #include "score/document_error.hpp"
 
+#include <utility>
+
 namespace vibscore::daemon {
 
-FfEffectPlayer::FfEffectPlayer(Player& player, Usage usage, double separation_s)
-    : player_(player), usage_(usage), separation_s_(separation_s) {}
+FfEffectPlayer::FfEffectPlayer(PlayerAccess player, Usage usage, double separation_s)
+    : with_player_(std::move(player)), usage_(usage), separation_s_(separation_s) {}
 
 FfEffectPlayer::~FfEffectPlayer() {
     stop_playing();
@@ -45,7 +47,7 @@ void FfEffectPlayer::erase(int id) {
 void FfEffectPlayer::stop_playing() {
     if (playback_ != 0) {
         // As root: the vibra's playbacks belong to nobody on the bus.
-        player_.stop(playback_, 0, true);
+        with_player_([this](Player& player) { player.stop(playback_, 0, true); });
     }
     playback_ = 0;
     playing_effect_ = -1;
@@ -75,7 +77,7 @@ void FfEffectPlayer::play(int id, int count) {
         PlaybackRequest request = make_playback_request(score, options, separation_s_);
         request.owner = 0;
         request.sender.clear();  // not a bus client: it ends with its effect
-        playback_ = player_.play(std::move(request));
+        with_player_([&](Player& player) { playback_ = player.play(std::move(request)); });
         playing_effect_ = id;
     } catch (const PlayerBusy& busy) {
         log::debug("virtual-vibra: effect " + std::to_string(id) + " not played: " + busy.what());

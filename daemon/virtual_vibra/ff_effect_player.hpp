@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <string>
 
@@ -15,9 +16,14 @@ namespace vibscore::daemon {
 // clefs made for it: score/pattern_score.hpp), and played through the same path as Play: a
 // PlaybackRequest for the player, so arbitration by usage and adaptation to the backend apply.
 // The vibra plays one effect at a time: playing an effect ends the one it played before.
+// Runs work with the player where the player lives: at once in tests, on the playback thread in
+// vibscored (PlaybackThread::call), so the vibra, served on the bus thread, never touches the
+// player from the wrong thread.
+using PlayerAccess = std::function<void(const std::function<void(Player&)>&)>;
+
 class FfEffectPlayer final : public FfRequests {
   public:
-    FfEffectPlayer(Player& player, Usage usage, double separation_s);
+    FfEffectPlayer(PlayerAccess player, Usage usage, double separation_s);
     ~FfEffectPlayer() override;
     FfEffectPlayer(const FfEffectPlayer&) = delete;
     FfEffectPlayer& operator=(const FfEffectPlayer&) = delete;
@@ -38,7 +44,7 @@ class FfEffectPlayer final : public FfRequests {
   private:
     void stop_playing();
 
-    Player& player_;
+    PlayerAccess with_player_;
     Usage usage_;
     double separation_s_;
     double gain_ = 1.0;

@@ -38,9 +38,10 @@ VirtualVibraSettings parse_virtual_vibra_settings(
     return settings;
 }
 
-VirtualVibra::VirtualVibra(EventLoop& loop, Player& player, const VirtualVibraSettings& settings,
-                           double separation_s)
-    : effects_(player, settings.usage, separation_s), device_(device_setup(settings), effects_) {
+VirtualVibra::VirtualVibra(EventLoop& loop, PlayerAccess player,
+                           const VirtualVibraSettings& settings, double separation_s)
+    : effects_(std::move(player), settings.usage, separation_s),
+      device_(device_setup(settings), effects_) {
     sd_event_source* source = nullptr;
     if (sd_event_add_io(loop.get(), &source, device_.fd(), EPOLLIN, &VirtualVibra::on_request,
                         this) < 0) {

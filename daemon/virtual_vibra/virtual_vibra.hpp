@@ -35,7 +35,7 @@ VirtualVibraSettings parse_virtual_vibra_settings(
 class VirtualVibra {
   public:
     // Throws DeviceError when the device cannot be made (no uinput).
-    VirtualVibra(EventLoop& loop, Player& player, const VirtualVibraSettings& settings,
+    VirtualVibra(EventLoop& loop, PlayerAccess player, const VirtualVibraSettings& settings,
                  double separation_s);
     ~VirtualVibra();
     VirtualVibra(const VirtualVibra&) = delete;

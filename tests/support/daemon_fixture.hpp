@@ -95,6 +95,7 @@ class DaemonFixture {
     const std::string& bus_address() const { return bus_address_; }
     const std::filesystem::path& trace() const { return trace_; }
     const std::filesystem::path& store() const { return store_; }
+    const std::filesystem::path& config() const { return config_; }
     std::string daemon_log() const;
 
     std::unique_ptr<HapticsClient> client() const;

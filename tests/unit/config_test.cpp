@@ -43,7 +43,8 @@ TEST(Config, EveryDaemonKeyIsRead) {
         "shipped = /tmp/shipped\n"
         "separation-ms = 12.5\n"
         "requests-per-second = 7\n"
-        "request-burst = 9\n",
+        "request-burst = 9\n"
+        "rt-priority = 0\n",
         "x");
     EXPECT_EQ(config.driver, "gpio-erm");
     EXPECT_EQ(config.drivers_dir, "/opt/drivers");
@@ -52,6 +53,7 @@ TEST(Config, EveryDaemonKeyIsRead) {
     EXPECT_EQ(config.separation_ms, 12.5);
     EXPECT_EQ(config.requests_per_second, 7.0);
     EXPECT_EQ(config.request_burst, 9.0);
+    EXPECT_EQ(config.rt_priority, 0);
 }
 
 TEST(Config, SpacesAndCommentsAroundKeysAndValuesAreDropped) {
@@ -98,6 +100,17 @@ TEST(Config, ANumberThatIsNotPositiveOrTooLargeOrNotANumberIsAnError) {
                 StartsWith("test.conf:2: requests-per-second = \"0\""));
     EXPECT_THAT(config_error("[daemon]\nrequest-burst = x\n"),
                 StartsWith("test.conf:2: request-burst = \"x\""));
+}
+
+TEST(Config, ThePlaybackThreadsPriorityIsAWholeNumberUpTo99) {
+    EXPECT_EQ(parse_config("", "x").rt_priority, 40);
+    EXPECT_EQ(parse_config("[daemon]\nrt-priority = 99\n", "x").rt_priority, 99);
+    for (const auto* value : {"-1", "100", "5.5", "high"}) {
+        EXPECT_EQ(config_error(std::string("[daemon]\nrt-priority = ") + value + "\n"),
+                  std::string("test.conf:2: rt-priority = \"") + value +
+                      "\" is not a whole number from 0 to 99")
+            << value;
+    }
 }
 
 TEST(Config, AKeyWithoutAValueIsAnError) {

@@ -33,6 +33,11 @@ std::string refusal(RequestError::Code code, Body&& body) {
     return {};
 }
 
+// One pass of a request's cues, as the player reads them.
+std::vector<render::Cue> cues_of(const PlaybackRequest& request) {
+    return render::collect(*request.cues->pass());
+}
+
 std::string invalid_options(const Options& options) {
     return refusal(RequestError::Code::invalid, [&] { parse_play_options(options); });
 }
@@ -223,10 +228,11 @@ TEST_F(ScoreToPlayTest, TheRequestHoldsTheScoresCuesAndTheCallersChoices) {
     render_options.separation_s = 0.030;
     const render::Performance performance(score.bundle, render_options);
     const auto expected = render::cue_schedule(performance);
-    ASSERT_EQ(request.cues.size(), expected.size());
+    const auto cues = cues_of(request);
+    ASSERT_EQ(cues.size(), expected.size());
     for (std::size_t i = 0; i < expected.size(); ++i) {
-        EXPECT_EQ(request.cues[i].at, expected[i].at) << i;
-        EXPECT_EQ(request.cues[i].amplitude, expected[i].amplitude) << i;
+        EXPECT_EQ(cues[i].at, expected[i].at) << i;
+        EXPECT_EQ(cues[i].amplitude, expected[i].amplitude) << i;
     }
     EXPECT_EQ(request.duration_s, performance.duration());
     EXPECT_EQ(request.label, "ringtone");
@@ -244,10 +250,11 @@ TEST_F(ScoreToPlayTest, TheStartBarSkipsEarlierBarsAndTimeStartsThere) {
     const double tempo = registry.clef("lra-phone").tempo;
     EXPECT_NEAR(whole.duration_s, 4 * tempo, 1e-9);
     EXPECT_NEAR(from_bar_1.duration_s, 2 * tempo, 1e-9);
-    const auto first_position = std::find_if(
-        from_bar_1.cues.begin(), from_bar_1.cues.end(),
-        [](const render::Cue& cue) { return cue.kind == render::Cue::Kind::position; });
-    ASSERT_NE(first_position, from_bar_1.cues.end());
+    const auto cues = cues_of(from_bar_1);
+    const auto first_position = std::find_if(cues.begin(), cues.end(), [](const render::Cue& cue) {
+        return cue.kind == render::Cue::Kind::position;
+    });
+    ASSERT_NE(first_position, cues.end());
     EXPECT_EQ(first_position->at, 0.0);
     EXPECT_EQ(first_position->bar, 1u);
     EXPECT_EQ(first_position->symbol, 0u);
@@ -265,7 +272,7 @@ TEST_F(ScoreToPlayTest, AStartBarPastTheLastBarIsRefusedWithTheBarCount) {
 TEST_F(ScoreToPlayTest, TheSeparationCutsTheEndOfANoteFollowedByAnother) {
     const auto score = find_score_to_play(registry, inline_score(), {});
     const auto first_off = [](const PlaybackRequest& request) {
-        for (const auto& cue : request.cues) {
+        for (const auto& cue : cues_of(request)) {
             if (cue.kind == render::Cue::Kind::drive && cue.amplitude == 0.0) {
                 return cue.at;
             }

@@ -201,7 +201,7 @@ class FfEffectPlayerTest : public ::testing::Test {
     RecordingActuator actuator;
     Finishes listener{loop};
     Player player{loop, actuator, listener};
-    FfEffectPlayer effects{player, Usage::notification, 0.03};
+    FfEffectPlayer effects{[this](const auto& work) { work(player); }, Usage::notification, 0.03};
 };
 
 TEST_F(FfEffectPlayerTest, APlayedEffectDrivesTheActuatorAndCompletes) {
@@ -279,9 +279,10 @@ TEST_F(FfEffectPlayerTest, GainScalesEveryPlayFromThenOn) {
 TEST_F(FfEffectPlayerTest, AMoreImportantPlaybackKeepsTheActuator) {
     PlaybackRequest alarm;
     alarm.label = "alarm";
-    alarm.cues = {render::Cue{}, render::Cue{}};
-    alarm.cues[0].amplitude = 0.2;
-    alarm.cues[1].at = 10;  // off again at its end
+    std::vector<render::Cue> cues(2);
+    cues[0].amplitude = 0.2;
+    cues[1].at = 10;  // off again at its end
+    alarm.cues = std::make_shared<render::CueList>(std::move(cues));
     alarm.duration_s = 10;
     alarm.usage = Usage::alarm;
     const auto alarm_id = player.play(alarm);
