@@ -113,6 +113,7 @@ std::uint64_t Player::play(PlaybackRequest request) {
         }
     }
     // The first drive goes out before anything else: it is what the user feels.
+    bool drove = false;
     while (const PassCue* next = current_->cues.ahead(0)) {
         if (next->pass != 0 || next->cue.at > 0.0 || !is_drive(next->cue)) {
             break;
@@ -122,6 +123,13 @@ std::uint64_t Player::play(PlaybackRequest request) {
         if (!execute(cue)) {
             return id;
         }
+        drove = true;
+    }
+    if (drove) {
+        // The score's clock starts when its first drive has reached the actuator: a backend that
+        // first had to find its device again (replugged) can take longer than a short note, which
+        // would otherwise be cut off as overdue.
+        current_->start_us = monotonic_now_us();
     }
     listener_->playback_started(id, label);
     if (!on_since_us_) {
