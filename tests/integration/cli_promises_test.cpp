@@ -7,7 +7,6 @@
 #include <signal.h>
 
 #include <fstream>
-#include <regex>
 #include <thread>
 
 #include "client/editor/documents.hpp"
@@ -194,7 +193,11 @@ TEST_F(ClefRule, AFileNamingItsClefByARelativePathChecksPlaysAndComposes) {
 
 TEST_F(ClefRule, AClefFileOfItsOwnIsSentWithThePlayButComposeAsksToStoreItFirst) {
     std::string clef = testing::read_file(work.path() / "clefs" / "lra-phone.clef.xml");
-    clef = std::regex_replace(clef, std::regex("<Tempo>[^<]*</Tempo>"), "<Tempo>0.3</Tempo>");
+    // Not std::regex: GCC 12 warns maybe-uninitialized inside it under -O2 with sanitizers.
+    const auto open = clef.find("<Tempo>");
+    const auto close = clef.find("</Tempo>", open);
+    ASSERT_NE(close, std::string::npos) << clef;
+    clef.replace(open, close - open, "<Tempo>0.3");
     std::ofstream(work.path() / "clefs" / "slower.clef.xml") << clef;
     const auto file = work.path() / "scores" / "own.score.xml";
     std::ofstream(file) << "<VibScore><Clef id=\"l\" href=\"../clefs/slower.clef.xml\"/>" + bar +
