@@ -62,7 +62,8 @@ class Player {
     // Stops playback `id` (0: whatever `caller` has playing). Privileged callers may stop any.
     StopResult stop(std::uint64_t id, uid_t caller, bool privileged);
 
-    // The caller's bus connection went away.
+    // The caller's bus connection went away: a playback of its that repeats until stopped ends
+    // with "client-vanished"; one that ends by itself plays on.
     void sender_vanished(const std::string& sender);
 
     // Ends any playback with `reason` and switches the actuator off (shutdown, driver switch).

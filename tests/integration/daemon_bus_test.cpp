@@ -9,9 +9,12 @@
 
 #include <cstring>
 
+#include <algorithm>
 #include <fstream>
 #include <thread>
 
+#include "daemon/render/cue_schedule.hpp"
+#include "daemon/render/performance.hpp"
 #include "tests/support/daemon_fixture.hpp"
 
 namespace vibscore {
@@ -154,6 +157,53 @@ TEST_F(DaemonBus, APlaybackEndsWhenItsCallerLeavesTheBus) {
     }));
     EXPECT_EQ(reason, "client-vanished");
     EXPECT_EQ(daemon.trace_rows().back().amplitude, 0.0);
+}
+
+// The README's example: busctl leaves the bus as soon as Play returns, and the click still plays
+// whole, every drive of its schedule in the sim's trace.
+TEST_F(DaemonBus, TheReadmesBusctlPlayVibratesForTheWholeClickAfterBusctlLeaves) {
+    const auto click = load_score_file(std::filesystem::path(std::getenv("VIBSCORE_CLEFS")) /
+                                       "touch-click.score.xml");
+    std::vector<render::Cue> expected;
+    for (const auto& cue : render::cue_schedule(render::Performance(click))) {
+        // The decrescendo's last step is a rounding residue (1e-16): the actuator is off there.
+        if (cue.kind == render::Cue::Kind::drive && cue.amplitude > 1e-9) {
+            expected.push_back(cue);
+        }
+    }
+    ASSERT_GT(expected.size(), 2u);
+    auto watcher = daemon.client();
+    const auto played = daemon.call({"Play", "sa{sv}", "touch-click", "1", "usage", "s", "touch"});
+    ASSERT_EQ(played.exit_code, 0) << played.err;
+    std::string reason;
+    ASSERT_TRUE(watcher->wait_for([&](const SeenSignal& s) {
+        reason = s.text;
+        return s.name == "PlaybackFinished";
+    }));
+    EXPECT_EQ(reason, "completed");
+
+    std::vector<DaemonFixture::TraceRow> on;
+    const auto rows = daemon.trace_rows();
+    for (const auto& row : rows) {
+        if (row.amplitude > 0.0) {
+            on.push_back(row);
+        }
+    }
+    ASSERT_EQ(on.size(), expected.size());
+    for (std::size_t i = 0; i < on.size(); ++i) {
+        EXPECT_NEAR(on[i].amplitude, expected[i].amplitude, 1e-6) << "drive " << i;
+        EXPECT_NEAR(static_cast<double>(on[i].time_ns - on[0].time_ns) / 1e9,
+                    expected[i].at - expected[0].at, 0.02)
+            << "drive " << i;
+    }
+    EXPECT_EQ(rows.back().amplitude, 0.0);
+    // The last drive lasts until the click's end (50 ms), not cut off when busctl left.
+    const auto off = std::find_if(rows.begin(), rows.end(), [&](const auto& row) {
+        return row.time_ns > on.back().time_ns && row.amplitude == 0.0;
+    });
+    ASSERT_NE(off, rows.end());
+    EXPECT_NEAR(static_cast<double>(off->time_ns - on.front().time_ns) / 1e9,
+                render::Performance(click).duration(), 0.02);
 }
 
 TEST_F(DaemonBus, UsageDecidesWhichPlaybackWins) {
