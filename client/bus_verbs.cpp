@@ -15,6 +15,8 @@
 #include "dbus/haptics1_names.hpp"
 #include "haptics1-proxy.h"
 #include "score/bundle.hpp"
+#include "score/clef_xml.hpp"
+#include "score/score_xml.hpp"
 
 namespace vibscore::client {
 
@@ -92,14 +94,27 @@ int with_daemon(std::ostream& err, Body&& body) {
 
 // A file is sent whole, so the daemon needs no access to it; anything else is a registry name.
 std::string score_argument(const std::string& score) {
-    std::error_code ignored;
-    if (score.find('/') != std::string::npos || std::filesystem::is_regular_file(score, ignored)) {
-        return read_document_file(score);
+    return is_document_file(score) ? read_document_file(score) : score;
+}
+
+// The registry clef an href names: "lra-phone" for "lra-phone.clef.xml" or "lra-phone.xml".
+std::string registry_clef_name(std::string href) {
+    for (const std::string suffix : {".clef.xml", ".xml"}) {
+        if (href.ends_with(suffix)) {
+            href.resize(href.size() - suffix.size());
+            break;
+        }
     }
-    return score;
+    return href;
 }
 
 }  // namespace
+
+bool is_document_file(const std::string& argument) {
+    std::error_code ignored;
+    return argument.find('/') != std::string::npos ||
+           std::filesystem::is_regular_file(argument, ignored);
+}
 
 int play(const PlayRequest& request, std::ostream& out, std::ostream& err) {
     return with_daemon(err, [&](Haptics& haptics) {
@@ -180,6 +195,28 @@ int remove(const std::string& kind, const std::string& name, std::ostream& out, 
     return with_daemon(err, [&](Haptics& haptics) {
         haptics.Delete(kind, name);
         out << "deleted " << kind << " " << name << "\n";
+        return exit_ok;
+    });
+}
+
+int describe_registry_score(const std::string& name, std::ostream& out, std::ostream& err) {
+    return with_daemon(err, [&](Haptics& haptics) {
+        const std::string label = "score \"" + name + "\"";
+        const auto bundle =
+            bind_clefs(read_score(haptics.Get("score", name), label), label,
+                       [&](const ClefDeclaration& declaration, const SourceLocation&) {
+                           const auto clef = registry_clef_name(declaration.href);
+                           return read_clef(haptics.Get("clef", clef), "clef \"" + clef + "\"");
+                       });
+        describe_score(bundle, out);
+        out << "on this device:\n";
+        const auto bars = haptics.BarClefs(name);
+        for (std::size_t b = 0; b < bars.size(); ++b) {
+            const auto& written = bars[b].get<0>();
+            const auto& device = bars[b].get<1>();
+            out << "  " << b + 1 << "  " << written
+                << (device == written ? " (as written)" : " -> " + device) << "\n";
+        }
         return exit_ok;
     });
 }

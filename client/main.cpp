@@ -38,8 +38,11 @@ int main(int argc, char** argv) {
 
     std::string info_file;
     auto* info = app.add_subcommand(
-        "info", "Show a score's title, duration, bars and clefs, or a clef's mapping.");
-    info->add_option("FILE", info_file, "VibScore or VibClef document")->required();
+        "info",
+        "Show a score's title, duration, bars and clefs, or a clef's mapping; for a registry "
+        "score, also the clef each bar plays through on this device (asks vibscored).");
+    info->add_option("FILE", info_file, "VibScore or VibClef document, or a registry score name")
+        ->required();
 
     PlayRequest play_request;
     auto* play_verb = app.add_subcommand(
@@ -159,5 +162,8 @@ int main(int argc, char** argv) {
     if (edit_verb->parsed()) {
         return vibscore::editor::run_editor(edit_options, std::cerr);
     }
-    return describe_document(info_file, std::cout, std::cerr);
+    if (is_document_file(info_file)) {
+        return describe_document(info_file, std::cout, std::cerr);
+    }
+    return describe_registry_score(info_file, std::cout, std::cerr);
 }

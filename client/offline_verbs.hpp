@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "score/bundle.hpp"
+
 namespace vibscore::client {
 
 // Exit codes shared by every verb.
@@ -23,6 +25,9 @@ struct RenderRequest {
 
 // vibscore render FILE --rate HZ --out OUT.csv|OUT.wav [--plot]
 int render_document(const RenderRequest& request, std::ostream& out, std::ostream& err);
+
+// What a score holds: title, duration, clefs and bars (vibscore info).
+void describe_score(const ScoreBundle& bundle, std::ostream& out);
 
 // vibscore info FILE: what a score or clef holds.
 int describe_document(const std::string& file, std::ostream& out, std::ostream& err);

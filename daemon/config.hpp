@@ -1,6 +1,7 @@
 #pragma once
 
 #include "config.h"
+#include "daemon/device_clefs.hpp"
 
 #include <filesystem>
 #include <map>
@@ -11,8 +12,10 @@ namespace vibscore::daemon {
 
 // vibscored.conf: INI sections of "key = value" lines; '#' and ';' start comments.
 //   [daemon]  driver, drivers-dir, store, shipped, separation-ms, requests-per-second,
-//   request-burst [NAME]    the settings of driver NAME (e.g. [sim] model = erm), handed to that
-//   driver
+//   request-burst
+//   [clefs]   WRITTEN = DEVICE: the clef bars written for WRITTEN play through on this device;
+//             "* = DEVICE" for any other clef
+//   [NAME]    the settings of driver NAME (e.g. [sim] model = erm), handed to that driver
 // docs/daemon.md documents every key.
 struct DaemonConfig {
     std::string driver = "sim";
@@ -23,6 +26,7 @@ struct DaemonConfig {
     double requests_per_second = 50.0;
     double request_burst = 100.0;
     std::map<std::string, std::map<std::string, std::string>> driver_settings;  // by driver
+    DeviceClefs device_clefs;
 
     const std::map<std::string, std::string>& settings_of(const std::string& driver) const;
 };

@@ -150,7 +150,8 @@ std::uint64_t HapticsService::Play(const std::string& score,
         const Caller& caller = admit_caller();
         const PlayOptions play_options = parse_play_options(options);
         PlaybackRequest request =
-            make_playback_request(find_score_to_play(registry_, score, play_options.clef),
+            make_playback_request(find_score_to_play(registry_, score, play_options.clef,
+                                                     config_.device_clefs),
                                   play_options, config_.separation_ms / 1000.0);
         request.owner = caller.uid;
         request.sender = caller.sender;
@@ -219,6 +220,19 @@ std::string HapticsService::Get(const std::string& kind, const std::string& name
     return guarded("Get", [&] {
         admit_caller();
         return registry_.get(kind_named(kind), name);
+    });
+}
+
+std::vector<sdbus::Struct<std::string, std::string>> HapticsService::BarClefs(
+    const std::string& score) {
+    return guarded("BarClefs", [&] {
+        admit_caller();
+        std::vector<sdbus::Struct<std::string, std::string>> bars;
+        for (auto& bar :
+             bar_clefs(find_score_to_play(registry_, score, "").bundle, config_.device_clefs)) {
+            bars.emplace_back(std::move(bar.written), std::move(bar.device));
+        }
+        return bars;
     });
 }
 

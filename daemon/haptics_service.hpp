@@ -41,6 +41,8 @@ class HapticsService final : public sdbus::AdaptorInterfaces<org::vibscore::Hapt
     void Delete(const std::string& kind, const std::string& name) override;
     std::vector<sdbus::Struct<std::string, std::string>> List(const std::string& kind) override;
     std::string Get(const std::string& kind, const std::string& name) override;
+    std::vector<sdbus::Struct<std::string, std::string>> BarClefs(
+        const std::string& score) override;
     std::vector<sdbus::Struct<std::string, std::string>> ListDrivers() override;
     void SwitchDriver(const std::string& driver) override;
     std::string Driver() override { return host_.driver(); }

@@ -47,6 +47,9 @@ int serve(const CommandLine& command_line) {
               " scores, " + std::to_string(registry.list(DocumentKind::clef).size()) +
               " clefs (shipped " + config.shipped.string() + ", store " + config.store.string() +
               ")");
+    if (!config.device_clefs.empty()) {
+        log::info("device clefs: " + describe(config.device_clefs));
+    }
     CallerDirectory callers(config.requests_per_second, config.request_burst);
     Player player(loop, host.actuator());
     host.attach(player);

@@ -66,7 +66,7 @@ PlayOptions parse_play_options(const std::map<std::string, sdbus::Variant>& opti
 }
 
 ScoreToPlay find_score_to_play(const Registry& registry, const std::string& score,
-                               const std::string& clef_override) {
+                               const std::string& clef_override, const DeviceClefs& device_clefs) {
     ScoreToPlay found;
     if (is_inline_document(score)) {
         found.bundle = registry.inline_score(score);
@@ -80,6 +80,8 @@ ScoreToPlay find_score_to_play(const Registry& registry, const std::string& scor
         found.bundle =
             bind_clefs(ParsedScore{found.bundle.score, found.bundle.where}, found.bundle.file,
                        [&](const ClefDeclaration&, const SourceLocation&) { return clef; });
+    } else if (!device_clefs.empty()) {
+        found.bundle = bind_device_clefs(registry, found.bundle, device_clefs);
     }
     return found;
 }

@@ -7,6 +7,7 @@
 #include <map>
 #include <string>
 
+#include "daemon/device_clefs.hpp"
 #include "daemon/player.hpp"
 #include "daemon/registry/registry.hpp"
 #include "daemon/usage.hpp"
@@ -40,11 +41,13 @@ struct ScoreToPlay {
 };
 
 // `score` is a registry name or, when it starts with '<', a whole VibScore document. A clef
-// override replaces every clef the score declares. Throws RegistryError (not_found,
+// override replaces every clef the score declares; without one, each declared clef plays
+// through its device clef (vibscored.conf [clefs]). Throws RegistryError (not_found,
 // invalid_document, limit_exceeded) as the registry does; a missing override clef is not_found
 // before anything else is looked at.
 ScoreToPlay find_score_to_play(const Registry& registry, const std::string& score,
-                               const std::string& clef_override);
+                               const std::string& clef_override,
+                               const DeviceClefs& device_clefs = {});
 
 // The player's request: the score's cue schedule from the start bar, with the caller's usage,
 // repeat and intensity (owner and sender are the caller's, for the bus service to fill in).

@@ -66,31 +66,6 @@ std::string clef_title(const Clef& clef) {
            " s, " + std::to_string(strings) + (strings == 1 ? " string" : " strings");
 }
 
-// The registry name a score's <Clef href> refers to. Only a bare name is accepted: hrefs come
-// from clients, and resolving them as paths would let a document make the daemon read any file.
-std::string clef_name_of(const ClefDeclaration& declaration, const SourceLocation& declared_at) {
-    std::string_view name = declaration.href;
-    if (name.find('/') != std::string_view::npos) {
-        throw DocumentError(declared_at, "clef " + in_quotes(declaration.id) + ": href " +
-                                             in_quotes(declaration.href) +
-                                             " is a path; the registry finds clefs by name only "
-                                             "(NAME.clef.xml)");
-    }
-    if (name.ends_with(clef_suffix)) {
-        name.remove_suffix(clef_suffix.size());
-    } else if (name.ends_with(".xml")) {
-        name.remove_suffix(4);
-    }
-    if (!is_valid_name(name)) {
-        throw DocumentError(
-            declared_at, "clef " + in_quotes(declaration.id) + ": href " +
-                             in_quotes(declaration.href) +
-                             " does not name a registry clef (NAME.clef.xml, NAME.xml or NAME; " +
-                             std::string(name_rule) + ")");
-    }
-    return std::string(name);
-}
-
 // One log line per diagnostic, so each gets the journald priority prefix.
 void warn_skipped(const std::filesystem::path& path, const std::exception& error) {
     log::warning("registry: skipping " + path.string() + ":");
@@ -171,6 +146,31 @@ const Record* find_in(const std::map<std::string, Record, std::less<>>& records,
 }
 
 }  // namespace
+
+// Only a bare name is accepted: hrefs come from clients, and resolving them as paths would let a
+// document make the daemon read any file.
+std::string clef_name_of(const ClefDeclaration& declaration, const SourceLocation& declared_at) {
+    std::string_view name = declaration.href;
+    if (name.find('/') != std::string_view::npos) {
+        throw DocumentError(declared_at, "clef " + in_quotes(declaration.id) + ": href " +
+                                             in_quotes(declaration.href) +
+                                             " is a path; the registry finds clefs by name only "
+                                             "(NAME.clef.xml)");
+    }
+    if (name.ends_with(clef_suffix)) {
+        name.remove_suffix(clef_suffix.size());
+    } else if (name.ends_with(".xml")) {
+        name.remove_suffix(4);
+    }
+    if (!is_valid_name(name)) {
+        throw DocumentError(
+            declared_at, "clef " + in_quotes(declaration.id) + ": href " +
+                             in_quotes(declaration.href) +
+                             " does not name a registry clef (NAME.clef.xml, NAME.xml or NAME; " +
+                             std::string(name_rule) + ")");
+    }
+    return std::string(name);
+}
 
 std::string_view to_string(RegistryError::Code code) {
     switch (code) {

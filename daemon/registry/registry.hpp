@@ -48,6 +48,10 @@ struct StoreLimits {
     std::size_t total_bytes = std::size_t{64} << 20;
 };
 
+// The registry clef a score's <Clef href> names ("lra-phone" for "lra-phone.clef.xml"). Throws
+// DocumentError at declared_at for a path or an invalid name.
+std::string clef_name_of(const ClefDeclaration& declaration, const SourceLocation& declared_at);
+
 // Whether name is a valid registry name: 1-64 of [a-z0-9._-], starting with [a-z0-9].
 bool is_valid_name(std::string_view name);
 

@@ -422,6 +422,47 @@ TEST_F(DaemonBus, SighupReloadsTheDriverAndKeepsServingOnABadFile) {
     EXPECT_EQ(daemon.call({"List", "s", "clef"}).exit_code, 0);
 }
 
+// vibscored.conf's [clefs]: the device's own clef for the one a score names (thesis §4.4),
+// shown by BarClefs and `vibscore info`, played, and reloaded with SIGHUP.
+class DaemonDeviceClefs : public ::testing::Test {
+  protected:
+    DaemonFixture daemon{"[clefs]\nlra-phone = erm-phone\n"};
+};
+
+TEST_F(DaemonDeviceClefs, EachBarPlaysThroughTheMappedClefAsBarClefsAndInfoShow) {
+    const auto bars = daemon.call({"BarClefs", "s", "success"});
+    ASSERT_EQ(bars.exit_code, 0) << bars.err;
+    EXPECT_EQ(bars.out, "a(ss) 1 \"lra-phone\" \"erm-phone\"\n");
+    const auto info = vibscore::testing::run_command(
+        {vibscore::testing::required_env("VIBSCORE"), "info", "success"});
+    ASSERT_EQ(info.exit_code, 0) << info.err;
+    EXPECT_NE(info.out.find("on this device:\n  1  lra-phone -> erm-phone\n"), std::string::npos)
+        << info.out;
+
+    // lra-phone plays the click at 235 Hz; erm-phone is a line clef: drive levels, no frequency.
+    auto client = daemon.client();
+    ASSERT_TRUE(client->wait_finished(client->Play("touch-click", options())));
+    int driven = 0;
+    for (const auto& row : daemon.trace_rows()) {
+        if (row.amplitude > 0.0) {
+            ++driven;
+            EXPECT_NE(row.frequency_hz, 235.0);
+        }
+    }
+    EXPECT_GT(driven, 0);
+
+    daemon.write_config("", "");
+    daemon.signal_daemon(SIGHUP);
+    std::string shown;
+    for (int i = 0; i < 200 && shown.find("\"lra-phone\" \"lra-phone\"") == std::string::npos;
+         ++i) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+        shown = daemon.call({"BarClefs", "s", "success"}).out;
+    }
+    EXPECT_EQ(shown, "a(ss) 1 \"lra-phone\" \"lra-phone\"\n") << daemon.daemon_log();
+    EXPECT_NE(daemon.daemon_log().find("device clefs: none"), std::string::npos);
+}
+
 TEST_F(DaemonBus, TellsTheServiceManagerItIsReadyAndAlive) {
     const auto socket_path = daemon.store().parent_path() / "notify";
     const int fd = socket(AF_UNIX, SOCK_DGRAM | SOCK_CLOEXEC, 0);
