@@ -82,13 +82,14 @@ DocumentKind kind_named(const std::string& kind) {
 
 HapticsService::HapticsService(sdbus::IConnection& connection, const DaemonConfig& config,
                                Registry& registry, Player& player, CallerDirectory& callers,
-                               ActuatorHost& host)
+                               ActuatorHost& host, const Authorizer& authorizer)
     : AdaptorInterfaces(connection, haptics1::kObjectPath),
       config_(config),
       registry_(registry),
       player_(player),
       callers_(callers),
       host_(host),
+      authorizer_(authorizer),
       announced_driver_(host.driver()),
       announced_capabilities_(host.capabilities().names()) {
     vanish_watch_ = connection.addMatch(
@@ -135,24 +136,18 @@ const Caller& HapticsService::admit_caller() {
     return caller;
 }
 
-void HapticsService::require_privileged(const Caller& caller, const char* action) const {
-    if (!caller.privileged) {
-        throw RequestError(RequestError::Code::permission_denied,
-                           std::string(action) +
-                               " needs root or membership of group vibscore (caller uid " +
-                               std::to_string(caller.uid) + ")");
-    }
-}
-
 std::uint64_t HapticsService::Play(const std::string& score,
                                    const std::map<std::string, sdbus::Variant>& options) {
     return guarded("Play", [&] {
         const Caller& caller = admit_caller();
         const PlayOptions play_options = parse_play_options(options);
-        PlaybackRequest request =
-            make_playback_request(find_score_to_play(registry_, score, play_options.clef,
-                                                     config_.device_clefs),
-                                  play_options, config_.separation_ms / 1000.0);
+        if (needs_urgent_usage(play_options.usage)) {
+            authorizer_.require(caller, Action::urgent_usage,
+                                "Playing with usage " + std::string(to_string(play_options.usage)));
+        }
+        PlaybackRequest request = make_playback_request(
+            find_score_to_play(registry_, score, play_options.clef, config_.device_clefs),
+            play_options, config_.separation_ms / 1000.0);
         request.owner = caller.uid;
         request.sender = caller.sender;
         const auto label = request.label;
@@ -167,7 +162,12 @@ std::uint64_t HapticsService::Play(const std::string& score,
 void HapticsService::Stop(const std::uint64_t& playback_id) {
     guarded("Stop", [&] {
         const Caller& caller = admit_caller();
-        switch (player_.stop(playback_id, caller.uid, caller.privileged)) {
+        auto result = player_.stop(playback_id, caller.uid, false);
+        if (result == Player::StopResult::not_permitted &&
+            authorizer_.allowed(caller, Action::manage)) {
+            result = player_.stop(playback_id, caller.uid, true);
+        }
+        switch (result) {
             case Player::StopResult::stopped:
             case Player::StopResult::not_playing:
                 return;
@@ -177,7 +177,8 @@ void HapticsService::Stop(const std::uint64_t& playback_id) {
             case Player::StopResult::not_permitted:
                 throw RequestError(
                     RequestError::Code::permission_denied,
-                    "playback " + std::to_string(playback_id) + " belongs to another user");
+                    "playback " + std::to_string(playback_id) +
+                        " belongs to another user; stopping it needs org.vibscore.manage");
         }
     });
 }
@@ -185,7 +186,7 @@ void HapticsService::Stop(const std::uint64_t& playback_id) {
 void HapticsService::Compose(const std::string& name, const std::string& document) {
     guarded("Compose", [&] {
         const Caller& caller = admit_caller();
-        require_privileged(caller, "Compose");
+        authorizer_.require(caller, Action::compose, "Compose");
         const auto stored = registry_.compose(name, document);
         log::info("uid " + std::to_string(caller.uid) + " composed " +
                   std::string(to_string(stored)) + " \"" + name + "\"");
@@ -196,7 +197,7 @@ void HapticsService::Compose(const std::string& name, const std::string& documen
 void HapticsService::Delete(const std::string& kind, const std::string& name) {
     guarded("Delete", [&] {
         const Caller& caller = admit_caller();
-        require_privileged(caller, "Delete");
+        authorizer_.require(caller, Action::compose, "Delete");
         const auto which = kind_named(kind);
         registry_.remove(which, name);
         log::info("uid " + std::to_string(caller.uid) + " deleted " +
@@ -250,7 +251,7 @@ std::vector<sdbus::Struct<std::string, std::string>> HapticsService::ListDrivers
 void HapticsService::SwitchDriver(const std::string& driver) {
     guarded("SwitchDriver", [&] {
         const Caller& caller = admit_caller();
-        require_privileged(caller, "Switching the driver");
+        authorizer_.require(caller, Action::manage, "Switching the driver");
         const auto known = host_.drivers();
         if (std::none_of(known.begin(), known.end(),
                          [&](const drivers::DriverInfo& info) { return info.name == driver; })) {
@@ -273,7 +274,7 @@ void HapticsService::SwitchDriver(const std::string& driver) {
 void HapticsService::Intensity(const double& value) {
     guarded("Intensity", [&] {
         const Caller& caller = admit_caller();
-        require_privileged(caller, "Setting Intensity");
+        authorizer_.require(caller, Action::manage, "Setting Intensity");
         if (!(value >= 0.0 && value <= 1.0)) {
             throw RequestError(RequestError::Code::invalid,
                                "Intensity " + std::to_string(value) + " is outside 0..1");

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "daemon/actuator_host.hpp"
+#include "daemon/authority.hpp"
 #include "daemon/callers.hpp"
 #include "daemon/config.hpp"
 #include "daemon/player.hpp"
@@ -25,7 +26,8 @@ class HapticsService final : public sdbus::AdaptorInterfaces<org::vibscore::Hapt
     // `config` is the running configuration (a reload replaces its contents). The service
     // listens to the player and the host, and watches callers leave the bus, until destroyed.
     HapticsService(sdbus::IConnection& connection, const DaemonConfig& config, Registry& registry,
-                   Player& player, CallerDirectory& callers, ActuatorHost& host);
+                   Player& player, CallerDirectory& callers, ActuatorHost& host,
+                   const Authorizer& authorizer);
     ~HapticsService() override;
 
     // PlayerListener: playback events become signals.
@@ -53,7 +55,6 @@ class HapticsService final : public sdbus::AdaptorInterfaces<org::vibscore::Hapt
 
     // The caller of the method being handled; counts the request against its rate.
     const Caller& admit_caller();
-    void require_privileged(const Caller& caller, const char* action) const;
     // Driver and Capabilities changed with a switch: announced with PropertiesChanged.
     void driver_switched();
 
@@ -62,6 +63,7 @@ class HapticsService final : public sdbus::AdaptorInterfaces<org::vibscore::Hapt
     Player& player_;
     CallerDirectory& callers_;
     ActuatorHost& host_;
+    const Authorizer& authorizer_;
     std::string announced_driver_;
     std::vector<std::string> announced_capabilities_;
     sdbus::Slot vanish_watch_;  // NameOwnerChanged: a caller left the bus

@@ -9,6 +9,7 @@
 
 #include "config.h"
 #include "daemon/actuator_host.hpp"
+#include "daemon/authority.hpp"
 #include "daemon/callers.hpp"
 #include "daemon/command_line.hpp"
 #include "daemon/drivers/available.hpp"
@@ -16,6 +17,7 @@
 #include "daemon/haptics_service.hpp"
 #include "daemon/log.hpp"
 #include "daemon/player.hpp"
+#include "daemon/polkit_authority.hpp"
 #include "daemon/registry/registry.hpp"
 #include "daemon/reload.hpp"
 #include "dbus/haptics1_names.hpp"
@@ -55,7 +57,9 @@ int serve(const CommandLine& command_line) {
     host.attach(player);
 
     auto connection = sdbus::createSystemBusConnection();
-    HapticsService service(*connection, config, registry, player, callers, host);
+    BusPolkitAuthority polkit(*connection);
+    const Authorizer authorizer(polkit);
+    HapticsService service(*connection, config, registry, player, callers, host, authorizer);
     connection->requestName(haptics1::kBusName);
     BusLoopBinding binding(loop, *connection);
 
