@@ -10,6 +10,7 @@
 #include "config.h"
 #include "daemon/actuator_host.hpp"
 #include "daemon/authority.hpp"
+#include "daemon/bus_credentials.hpp"
 #include "daemon/callers.hpp"
 #include "daemon/command_line.hpp"
 #include "daemon/drivers/available.hpp"
@@ -52,11 +53,13 @@ int serve(const CommandLine& command_line) {
     if (!config.device_clefs.empty()) {
         log::info("device clefs: " + describe(config.device_clefs));
     }
-    CallerDirectory callers(config.requests_per_second, config.request_burst);
     Player player(loop, host.actuator());
     host.attach(player);
 
     auto connection = sdbus::createSystemBusConnection();
+    BusCredentials credentials(*connection);
+    CallerDirectory callers(config.requests_per_second, config.request_burst,
+                            [&](const std::string& sender) { return credentials.uid_of(sender); });
     BusPolkitAuthority polkit(*connection);
     const Authorizer authorizer(polkit);
     HapticsService service(*connection, config, registry, player, callers, host, authorizer);
