@@ -1,18 +1,26 @@
-// How many of the six buttons a person presses to enter real tactons in `vibscore edit`.
-// For each target score the planner drives the real editor (model and six-button scheme) from a
-// new score to the target, the result is checked to equal the target, and the presses are
-// counted. Prints a table, the averages (target: at most 4 presses per note) and one JSON line.
+// How many of the six buttons a person presses to enter tactons in `vibscore edit`, without and
+// with proposals learned from a registry of other scores. For each target score the planner
+// drives the real editor (model and six-button scheme) from a new score to the target, the
+// result is checked to equal the target, and the presses are counted. With a registry the
+// editor learns every registry score but the target itself (leave-one-out: not the same file
+// name, not the same music), as `vibscore edit` learns the daemon's registry. Prints a table,
+// the totals per note and per symbol, and one JSON line.
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
 #include <map>
+#include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "bench/report.hpp"
 #include "client/editor/editor.hpp"
+#include "client/editor/phrase_book.hpp"
 #include "client/editor/press_planner.hpp"
 #include "score/bundle.hpp"
 #include "score/score_xml.hpp"
@@ -23,6 +31,7 @@
 
 using namespace vibscore;
 using namespace vibscore::editor;
+namespace fs = std::filesystem;
 
 namespace {
 
@@ -48,16 +57,63 @@ const std::vector<std::string> kThesisTactons{"create",      "delete",
                                               "call",        "call-high-priority",
                                               "message",     "message-high-priority"};
 
-struct Result {
-    std::string name;
-    std::string group;
-    int notes = 0;
-    int symbols = 0;  // notes and rests
+struct Tacton {
+    std::string name;  // the file name without .score.xml
+    NamedScore file;   // by its file name: the leave-one-out compares it with the registry's
+};
+
+Tacton read_tacton(const fs::path& path) {
+    std::string name = path.filename().string();
+    const std::string_view suffix = ".score.xml";
+    if (name.ends_with(suffix)) {
+        name.resize(name.size() - suffix.size());
+    }
+    return {name,
+            {path.filename().string(), read_score(read_document_file(path), path.string()).score}};
+}
+
+// The .score.xml files of a folder, by name; a file stands for itself.
+std::vector<fs::path> score_files(const fs::path& path) {
+    if (!fs::is_directory(path)) {
+        return {path};
+    }
+    std::vector<fs::path> files;
+    for (const auto& entry : fs::directory_iterator(path)) {
+        if (entry.path().filename().string().ends_with(".score.xml")) {
+            files.push_back(entry.path());
+        }
+    }
+    std::sort(files.begin(), files.end());
+    return files;
+}
+
+// Every score the registry folder holds; one that does not read is left out, and said so.
+std::vector<NamedScore> read_registry(const fs::path& folder) {
+    std::vector<NamedScore> registry;
+    for (const auto& file : score_files(folder)) {
+        try {
+            registry.push_back(read_tacton(file).file);
+        } catch (const std::exception& error) {
+            std::cerr << "editor_presses: registry: left out: " << error.what() << "\n";
+        }
+    }
+    return registry;
+}
+
+struct Entered {
     std::size_t presses = 0;
     bool verified = false;
-    double seconds = 0.0;
     std::string sequence;
     std::map<std::string, std::size_t> spent;  // presses by what they were pressed in
+};
+
+struct Result {
+    std::string name;
+    int notes = 0;
+    int symbols = 0;  // notes and rests
+    std::size_t learned_from = 0;
+    Entered alone;
+    std::optional<Entered> learning;
 };
 
 // What a press is spent on: the editor's state when it is pressed.
@@ -107,32 +163,41 @@ char letter(Button button) {
     return '?';
 }
 
-Result measure(const std::string& name, const std::string& group, const Score& target) {
-    Result result{name, group};
-    for (const auto& bar : target.bars) {
+Entered enter(const Score& target, std::shared_ptr<const PhraseBook> phrases) {
+    // A new score named after the target, on the target's first clef, with the target's clefs
+    // to choose from: what `vibscore edit NAME` offers when those clefs are in the registry.
+    const ClefDeclaration& first = *target.find_clef(target.bars.front().clef);
+    Editor start{EditorModel(EditorModel::blank_score(target.title, first), target.clefs), {}};
+    start.model.learn_from(std::move(phrases));
+    const PressPlan plan = plan_presses(start, target);
+    Entered entered;
+    entered.presses = plan.presses.size();
+    // Replay the presses on a fresh editor: the plan must stand on its own.
+    Editor replay = start;
+    for (const Button button : plan.presses) {
+        ++entered.spent[spent_on(replay)];
+        replay.press(button);
+        entered.sequence += letter(button);
+    }
+    entered.verified = plan.reached && replay.model.score().bars == target.bars &&
+                       replay.model.score().clefs == target.clefs;
+    return entered;
+}
+
+Result measure(const Tacton& target, const std::vector<NamedScore>* registry) {
+    Result result{target.name};
+    for (const auto& bar : target.file.score.bars) {
         for (const auto& symbol : bar.symbols) {
             result.notes += std::holds_alternative<Note>(symbol) ? 1 : 0;
             result.symbols += std::holds_alternative<Blank>(symbol) ? 0 : 1;
         }
     }
-    // A new score named after the target, on the target's first clef, with the target's clefs
-    // to choose from: what `vibscore edit NAME` offers when those clefs are in the registry.
-    const ClefDeclaration& first = *target.find_clef(target.bars.front().clef);
-    Editor start{EditorModel(EditorModel::blank_score(target.title, first), target.clefs), {}};
-    const auto began = std::chrono::steady_clock::now();
-    const PressPlan plan = plan_presses(start, target);
-    result.seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
-    result.presses = plan.presses.size();
-    // Replay the presses on a fresh editor: the plan must stand on its own.
-    Editor replay = start;
-    for (const Button button : plan.presses) {
-        ++result.spent[spent_on(replay)];
-        replay.press(button);
-        result.sequence += letter(button);
+    result.alone = enter(target.file.score, nullptr);
+    if (registry != nullptr) {
+        auto phrases = learned_from_others(*registry, target.file);
+        result.learned_from = phrases->scores();
+        result.learning = enter(target.file.score, std::move(phrases));
     }
-    result.verified = plan.reached && replay.model.score().bars == target.bars &&
-                      replay.model.score().clefs == target.clefs;
     return result;
 }
 
@@ -140,93 +205,181 @@ double per(std::size_t presses, int count) {
     return count == 0 ? 0.0 : static_cast<double>(presses) / count;
 }
 
+struct Set {
+    std::string name;
+    std::vector<Result> results;
+};
+
+struct Totals {
+    int notes = 0, symbols = 0;
+    std::size_t alone = 0, learning = 0;
+    bool verified = true;
+};
+
+Totals totals_of(const Set& set) {
+    Totals totals;
+    for (const auto& r : set.results) {
+        totals.notes += r.notes;
+        totals.symbols += r.symbols;
+        totals.alone += r.alone.presses;
+        totals.verified = totals.verified && r.alone.verified;
+        if (r.learning) {
+            totals.learning += r.learning->presses;
+            totals.verified = totals.verified && r.learning->verified;
+        }
+    }
+    return totals;
+}
+
+void print_spent(const Set& set, bool learning) {
+    std::map<std::string, std::size_t> spent;
+    for (const auto& r : set.results) {
+        const Entered* entered = learning ? (r.learning ? &*r.learning : nullptr) : &r.alone;
+        if (entered != nullptr) {
+            for (const auto& [what, count] : entered->spent) {
+                spent[what] += count;
+            }
+        }
+    }
+    std::printf("  presses by what they were pressed in (%s):\n",
+                learning ? "with registry proposals" : "without");
+    for (const auto& [what, count] : spent) {
+        std::printf("    %-50s %4zu\n", what.c_str(), count);
+    }
+}
+
+// Prints a set's table and totals; returns its JSON object.
+std::string report(const Set& set, bool with_registry, bool sequences) {
+    std::printf("\n%s\n", set.name.c_str());
+    std::printf("  %-24s %5s %7s | %7s %8s %10s | %7s %8s %10s | %s\n", "score", "notes", "symbols",
+                "presses", "per note", "per symbol", "learned", "per note", "per symbol",
+                "checked");
+    for (const auto& r : set.results) {
+        const bool verified = r.alone.verified && (!r.learning || r.learning->verified);
+        std::printf("  %-24s %5d %7d | %7zu %8.2f %10.2f |", r.name.c_str(), r.notes, r.symbols,
+                    r.alone.presses, per(r.alone.presses, r.notes),
+                    per(r.alone.presses, r.symbols));
+        if (r.learning) {
+            std::printf(" %7zu %8.2f %10.2f |", r.learning->presses,
+                        per(r.learning->presses, r.notes), per(r.learning->presses, r.symbols));
+        } else {
+            std::printf(" %7s %8s %10s |", "-", "-", "-");
+        }
+        std::printf(" %s\n", verified ? "equal" : "DIFFERS");
+        if (sequences) {
+            std::printf("      %s\n", r.alone.sequence.c_str());
+            if (r.learning) {
+                std::printf("      %s (learned from %zu scores)\n", r.learning->sequence.c_str(),
+                            r.learned_from);
+            }
+        }
+    }
+    const Totals t = totals_of(set);
+    std::printf(
+        "  total: %d notes, %d symbols; without registry proposals %zu presses: %.2f per "
+        "note, %.2f per symbol\n",
+        t.notes, t.symbols, t.alone, per(t.alone, t.notes), per(t.alone, t.symbols));
+    if (with_registry) {
+        std::printf(
+            "  with registry proposals (leave-one-out) %zu presses: %.2f per note, %.2f "
+            "per symbol\n",
+            t.learning, per(t.learning, t.notes), per(t.learning, t.symbols));
+    }
+    print_spent(set, false);
+    if (with_registry) {
+        print_spent(set, true);
+    }
+    char json[512];
+    std::snprintf(json, sizeof json,
+                  "{\"set\":\"%s\",\"scores\":%zu,\"notes\":%d,\"symbols\":%d,\"presses\":%zu,"
+                  "\"per_note\":%.3f,\"per_symbol\":%.3f",
+                  bench::json_escape(set.name).c_str(), set.results.size(), t.notes, t.symbols,
+                  t.alone, per(t.alone, t.notes), per(t.alone, t.symbols));
+    std::string object = json;
+    if (with_registry) {
+        std::snprintf(json, sizeof json,
+                      ",\"registry_presses\":%zu,\"registry_per_note\":%.3f,"
+                      "\"registry_per_symbol\":%.3f",
+                      t.learning, per(t.learning, t.notes), per(t.learning, t.symbols));
+        object += json;
+    }
+    return object + (t.verified ? ",\"verified\":true}" : ",\"verified\":false}");
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-    CLI::App app{"Six-button presses needed to enter tactons in vibscore edit."};
+    CLI::App app{
+        "Six-button presses needed to enter tactons in vibscore edit, without and with proposals "
+        "learned from a registry of other scores (leave-one-out)."};
     std::string clefs = VIBSCORE_BENCH_CLEFS;
+    std::vector<std::string> targets;
+    std::optional<std::string> registry_dir;
+    bool no_registry = false;
     bool sequences = false;
-    app.add_option("--clefs", clefs, "directory of the shipped scores");
+    app.add_option("--clefs", clefs,
+                   "folder of the shipped scores: the default targets, and the default registry");
+    app.add_option("--targets", targets,
+                   "score files or folders of .score.xml files to enter instead of Fig. 2.3, the "
+                   "notification set and the thesis' tactons");
+    app.add_option("--registry", registry_dir,
+                   "folder of .score.xml files to learn proposals from (each target left out); "
+                   "default: --clefs when no --targets are given");
+    app.add_flag("--no-registry", no_registry, "measure without registry proposals only");
     app.add_flag("--sequences", sequences, "print each press sequence (U D L R S B)");
     CLI11_PARSE(app, argc, argv);
 
-    std::vector<Result> results;
+    const auto began = std::chrono::steady_clock::now();
+    std::vector<Set> sets;
+    std::vector<NamedScore> registry;
+    bool with_registry = false;
     try {
-        results.push_back(
-            measure("fig-2.3-measure-1", "thesis", read_score(kFigure23, "fig-2.3").score));
-        for (const auto* group : {&kNotifications, &kThesisTactons}) {
-            for (const auto& name : *group) {
-                const auto path = std::filesystem::path(clefs) / (name + ".score.xml");
-                const auto target = read_score(read_document_file(path), path.string()).score;
-                results.push_back(
-                    measure(name, group == &kNotifications ? "notification" : "thesis", target));
+        if (!no_registry && (registry_dir || targets.empty())) {
+            registry = read_registry(registry_dir.value_or(clefs));
+            with_registry = true;
+        }
+        const auto* learning = with_registry ? &registry : nullptr;
+        if (targets.empty()) {
+            Set notifications{"Fig. 2.3 + notification set"};
+            notifications.results.push_back(measure(
+                {"fig-2.3-measure-1", {"", read_score(kFigure23, "fig-2.3").score}}, learning));
+            Set thesis{"the thesis' tactons (Figs. 5.1, 5.2)"};
+            for (auto [set, names] : {std::pair{&notifications, &kNotifications},
+                                      std::pair{&thesis, &kThesisTactons}}) {
+                for (const auto& name : *names) {
+                    set->results.push_back(
+                        measure(read_tacton(fs::path(clefs) / (name + ".score.xml")), learning));
+                }
             }
+            sets.push_back(std::move(notifications));
+            sets.push_back(std::move(thesis));
+        } else {
+            Set given{"targets"};
+            for (const auto& target : targets) {
+                for (const auto& file : score_files(target)) {
+                    given.results.push_back(measure(read_tacton(file), learning));
+                }
+            }
+            sets.push_back(std::move(given));
         }
     } catch (const std::exception& error) {
         std::cerr << "editor_presses: " << error.what() << "\n";
         return 1;
     }
-
-    std::printf("%-24s %-12s %5s %7s %7s %11s %13s %8s\n", "score", "group", "notes", "symbols",
-                "presses", "per note", "per symbol", "checked");
-    struct Sum {
-        std::size_t presses = 0;
-        int notes = 0, symbols = 0, scores = 0;
-        double ratio_sum = 0.0;
-    };
-    Sum notification, all;
+    if (with_registry) {
+        std::printf("registry: %zu scores from %s; each target is left out of it\n",
+                    registry.size(), registry_dir.value_or(clefs).c_str());
+    }
+    std::string json = "{\"benchmark\":\"editor_presses\",\"sets\":[";
     bool all_verified = true;
-    for (const auto& r : results) {
-        std::printf("%-24s %-12s %5d %7d %7zu %11.2f %13.2f %8s\n", r.name.c_str(), r.group.c_str(),
-                    r.notes, r.symbols, r.presses, per(r.presses, r.notes),
-                    per(r.presses, r.symbols), r.verified ? "equal" : "DIFFERS");
-        if (sequences) {
-            std::printf("    %s\n", r.sequence.c_str());
-        }
-        all_verified = all_verified && r.verified;
-        for (Sum* sum :
-             {&all, r.group == "notification" || r.name == "fig-2.3-measure-1" ? &notification
-                                                                               : nullptr}) {
-            if (sum != nullptr) {
-                sum->presses += r.presses;
-                sum->notes += r.notes;
-                sum->symbols += r.symbols;
-                sum->scores += 1;
-                sum->ratio_sum += per(r.presses, r.notes);
-            }
-        }
+    for (std::size_t i = 0; i < sets.size(); ++i) {
+        json += (i > 0 ? "," : "") + report(sets[i], with_registry, sequences);
+        all_verified = all_verified && totals_of(sets[i]).verified;
     }
-    std::map<std::string, std::size_t> spent;
-    for (const auto& r : results) {
-        if (r.group == "notification" || r.name == "fig-2.3-measure-1") {
-            for (const auto& [what, count] : r.spent) {
-                spent[what] += count;
-            }
-        }
-    }
-    std::printf("\nFig. 2.3 + notification set, presses by what they were pressed in:\n");
-    for (const auto& [what, count] : spent) {
-        std::printf("  %-50s %4zu\n", what.c_str(), count);
-    }
-    std::printf(
-        "\nFig. 2.3 + notification set: %zu presses for %d notes (%d symbols): "
-        "%.2f per note, %.2f per symbol; mean of per-score ratios %.2f (target <= 4)\n",
-        notification.presses, notification.notes, notification.symbols,
-        per(notification.presses, notification.notes),
-        per(notification.presses, notification.symbols),
-        notification.ratio_sum / notification.scores);
-    std::printf(
-        "every score above: %zu presses for %d notes (%d symbols): %.2f per note, "
-        "%.2f per symbol\n",
-        all.presses, all.notes, all.symbols, per(all.presses, all.notes),
-        per(all.presses, all.symbols));
-    std::printf(
-        "{\"benchmark\":\"editor_presses\",\"fig_2_3_presses\":%zu,\"fig_2_3_per_note\":%.3f,"
-        "\"notification_presses\":%zu,\"notification_notes\":%d,\"notification_per_note\":%.3f,"
-        "\"notification_per_symbol\":%.3f,\"all_per_note\":%.3f,\"all_verified\":%s}\n",
-        results.front().presses, per(results.front().presses, results.front().notes),
-        notification.presses, notification.notes, per(notification.presses, notification.notes),
-        per(notification.presses, notification.symbols), per(all.presses, all.notes),
-        all_verified ? "true" : "false");
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
+    std::printf("\nplanned and replayed in %.1f s (a count: the machine does not change it)\n",
+                seconds);
+    std::printf("%s],\"all_verified\":%s}\n", json.c_str(), all_verified ? "true" : "false");
     return all_verified ? 0 : 1;
 }

@@ -2,20 +2,27 @@
 
 #include <sdbus-c++/sdbus-c++.h>
 
+#include <pugixml.hpp>
+
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <csignal>
 #include <filesystem>
 #include <map>
 #include <mutex>
+#include <sstream>
 #include <thread>
 
 #include "client/daemon_errors.hpp"
+#include "client/daemon_watch.hpp"
+#include "client/editor/documents.hpp"
 #include "client/offline_verbs.hpp"
 #include "dbus/haptics1_names.hpp"
 #include "haptics1-proxy.h"
 #include "score/bundle.hpp"
 #include "score/clef_xml.hpp"
+#include "score/registry_names.hpp"
 #include "score/score_xml.hpp"
 
 namespace vibscore::client {
@@ -37,6 +44,18 @@ class Haptics : public sdbus::ProxyInterfaces<org::vibscore::Haptics1_proxy> {
         unregisterProxy();
     }
     void listen() { connection_->enterEventLoopAsync(); }
+    // Handles the signals that came in before the last call's reply, in this thread: the daemon
+    // sends a playback's end before it answers the Stop that ended it.
+    void take_signals() {
+        while (connection_->processPendingRequest()) {
+        }
+    }
+    bool any_stopped() {
+        std::lock_guard lock(mutex_);
+        return std::any_of(finished_.begin(), finished_.end(),
+                           [](const auto& entry) { return entry.second == "stopped"; });
+    }
+    sdbus::IConnection& connection() { return *connection_; }
 
     std::optional<std::string> finished(std::uint64_t id) {
         std::lock_guard lock(mutex_);
@@ -88,37 +107,115 @@ int with_daemon(std::ostream& err, Body&& body) {
         err << "vibscore: " << explain(error) << "\n";
     } catch (const DocumentError& error) {
         err << error.what() << "\n";
+    } catch (const std::runtime_error& error) {
+        err << "vibscore: " << error.what() << "\n";
     }
     return exit_failed;
 }
 
-// A file is sent whole, so the daemon needs no access to it; anything else is a registry name.
-std::string score_argument(const std::string& score) {
-    return is_document_file(score) ? read_document_file(score) : score;
-}
+// What Play sends for its SCORE argument: a registry name as it is; a score file, checked by
+// the same rule as `check`, as its text with the clef files it names (registry clefs go by name).
+struct PlayArgument {
+    std::string score;
+    std::map<std::string, std::string> clef_documents;  // by href
+};
 
-// The registry clef an href names: "lra-phone" for "lra-phone.clef.xml" or "lra-phone.xml".
-std::string registry_clef_name(std::string href) {
-    for (const std::string suffix : {".clef.xml", ".xml"}) {
-        if (href.ends_with(suffix)) {
-            href.resize(href.size() - suffix.size());
-            break;
+PlayArgument play_argument(const std::string& argument, const ClefSearch& clefs) {
+    if (editor::classify_source(argument).kind == editor::ScoreSource::Kind::registry) {
+        return {argument, {}};
+    }
+    const auto loaded = load_score(argument, clefs);
+    PlayArgument sent{read_document_file(argument), {}};
+    for (const auto& declaration : loaded.bundle.score.clefs) {
+        const auto& origin = loaded.clef_origins.at(declaration.id);
+        if (origin != kRegistryOrigin) {
+            sent.clef_documents[declaration.href] = read_document_file(origin);
         }
     }
-    return href;
+    return sent;
+}
+
+// A score file as the registry stores it: every clef a registry clef, named by name. A clef found
+// as a file is renamed to the registry clef of its file name when that clef is the same.
+std::string document_to_compose(Haptics& haptics, const std::string& file,
+                                const ClefSearch& clefs) {
+    const auto text = read_document_file(file);
+    if (document_kind(text, file) == DocumentKind::clef) {
+        return text;
+    }
+    const auto loaded = load_score(file, clefs);
+    std::map<std::string, std::string> renamed;  // href -> NAME.clef.xml
+    for (const auto& declaration : loaded.bundle.score.clefs) {
+        const auto& origin = loaded.clef_origins.at(declaration.id);
+        if (origin == kRegistryOrigin) {
+            continue;
+        }
+        const std::string where = "clef \"" + declaration.id + "\" (" + origin + ")";
+        const auto name =
+            clef_name_in_href(std::filesystem::path(declaration.href).filename().string());
+        if (!name) {
+            throw std::runtime_error(where +
+                                     ": its file name names no registry clef; store the "
+                                     "clef first (vibscore compose NAME " +
+                                     origin + ") and name it NAME.clef.xml");
+        }
+        std::optional<Clef> stored;
+        try {
+            stored = read_clef(haptics.Get("clef", *name), "registry clef \"" + *name + "\"");
+        } catch (const sdbus::Error& error) {
+            if (error.getName() != haptics1::errors::kNotFound) {
+                throw;
+            }
+        }
+        if (!stored) {
+            throw std::runtime_error(where + ": the registry has no clef \"" + *name +
+                                     "\"; store it first: vibscore compose " + *name + " " +
+                                     origin);
+        }
+        if (!(*stored == loaded.bundle.clefs.at(declaration.id))) {
+            throw std::runtime_error(where + " differs from registry clef \"" + *name +
+                                     "\"; store it under its own name first (vibscore compose "
+                                     "NAME " +
+                                     origin + ") and name that in the score");
+        }
+        renamed[declaration.href] = *name + std::string(kClefSuffix);
+    }
+    if (renamed.empty()) {
+        return text;
+    }
+    pugi::xml_document document;
+    document.load_buffer(text.data(), text.size(), pugi::parse_full);
+    for (auto clef : document.document_element().children("Clef")) {
+        if (const auto found = renamed.find(clef.attribute("href").value());
+            found != renamed.end()) {
+            clef.attribute("href").set_value(found->second.c_str());
+        }
+    }
+    std::ostringstream rewritten;
+    document.save(rewritten, "", pugi::format_raw | pugi::format_no_declaration);
+    return rewritten.str();
 }
 
 }  // namespace
 
-bool is_document_file(const std::string& argument) {
-    std::error_code ignored;
-    return argument.find('/') != std::string::npos ||
-           std::filesystem::is_regular_file(argument, ignored);
-}
-
-int play(const PlayRequest& request, std::ostream& out, std::ostream& err) {
+int play(const PlayRequest& request, const ClefSearch& clefs, std::ostream& out,
+         std::ostream& err) {
+    // A file is read and checked before the bus is reached: a missing or invalid file reads the
+    // same as in `show` and `check`, whether the daemon runs or not.
+    PlayArgument argument;
+    try {
+        argument = play_argument(request.score, clefs);
+    } catch (const DocumentError& error) {
+        err << error.what() << "\n";
+        return exit_failed;
+    } catch (const std::runtime_error& error) {
+        err << "vibscore: " << error.what() << "\n";
+        return exit_failed;
+    }
     return with_daemon(err, [&](Haptics& haptics) {
         std::map<std::string, sdbus::Variant> options;
+        if (!argument.clef_documents.empty())
+            options["clefs"] = sdbus::Variant(argument.clef_documents);
         if (!request.usage.empty())
             options["usage"] = sdbus::Variant(request.usage);
         if (request.repeat != 0)
@@ -127,20 +224,34 @@ int play(const PlayRequest& request, std::ostream& out, std::ostream& err) {
             options["clef"] = sdbus::Variant(request.clef);
         if (request.intensity >= 0.0)
             options["intensity"] = sdbus::Variant(request.intensity);
+        std::optional<DaemonWatch> watch;
         if (request.wait) {
+            watch.emplace(haptics.connection());
             haptics.listen();
         }
-        const auto id = haptics.Play(score_argument(request.score), options);
+        const auto id = haptics.Play(argument.score, options);
         if (!request.wait) {
             out << id << "\n";
             return exit_ok;
         }
+        watch->follow();
         // Ctrl-C stops the playback rather than leaving it to end as "client-vanished".
         g_interrupted = false;
         const auto previous = std::signal(SIGINT, [](int) { g_interrupted = true; });
         std::int64_t shown_bar = -1;
         std::optional<std::string> reason;
         while (!(reason = haptics.finished(id))) {
+            if (const auto gone = watch->gone()) {
+                // Signals are handled in the order they came: a Finished the daemon sent before
+                // it left (SIGTERM) has been seen by now.
+                if (!(reason = haptics.finished(id))) {
+                    std::signal(SIGINT, previous);
+                    err << "vibscore: " << *gone << " during playback " << id
+                        << "; it did not finish\n";
+                    return exit_failed;
+                }
+                break;
+            }
             if (g_interrupted.exchange(false)) {
                 haptics.Stop(id);
             }
@@ -160,8 +271,16 @@ int play(const PlayRequest& request, std::ostream& out, std::ostream& err) {
 int stop(std::uint64_t id, std::ostream& out, std::ostream& err) {
     return with_daemon(err, [&](Haptics& haptics) {
         haptics.Stop(id);
-        out << (id == 0 ? std::string("stopped your playbacks") : "stopped " + std::to_string(id))
-            << "\n";
+        haptics.take_signals();
+        if (!haptics.any_stopped()) {
+            out << (id == 0 ? std::string("none of your playbacks was playing")
+                            : "playback " + std::to_string(id) + " had already ended")
+                << "\n";
+        } else {
+            out << (id == 0 ? std::string("stopped your playback")
+                            : "stopped playback " + std::to_string(id))
+                << "\n";
+        }
         return exit_ok;
     });
 }
@@ -182,10 +301,10 @@ int get(const std::string& kind, const std::string& name, std::ostream& out, std
     });
 }
 
-int compose(const std::string& name, const std::string& file, std::ostream& out,
-            std::ostream& err) {
+int compose(const std::string& name, const std::string& file, const ClefSearch& clefs,
+            std::ostream& out, std::ostream& err) {
     return with_daemon(err, [&](Haptics& haptics) {
-        haptics.Compose(name, read_document_file(file));
+        haptics.Compose(name, document_to_compose(haptics, file, clefs));
         out << "stored " << name << "\n";
         return exit_ok;
     });
@@ -202,13 +321,19 @@ int remove(const std::string& kind, const std::string& name, std::ostream& out, 
 int describe_registry_score(const std::string& name, std::ostream& out, std::ostream& err) {
     return with_daemon(err, [&](Haptics& haptics) {
         const std::string label = "score \"" + name + "\"";
-        const auto bundle =
+        LoadedScore loaded;
+        loaded.bundle =
             bind_clefs(read_score(haptics.Get("score", name), label), label,
-                       [&](const ClefDeclaration& declaration, const SourceLocation&) {
-                           const auto clef = registry_clef_name(declaration.href);
-                           return read_clef(haptics.Get("clef", clef), "clef \"" + clef + "\"");
+                       [&](const ClefDeclaration& declaration, const SourceLocation& where) {
+                           const auto clef = clef_name_in_href(declaration.href);
+                           if (!clef) {
+                               throw DocumentError(where, "href \"" + declaration.href +
+                                                              "\" names no registry clef");
+                           }
+                           loaded.clef_origins[declaration.id] = kRegistryOrigin;
+                           return read_clef(haptics.Get("clef", *clef), "clef \"" + *clef + "\"");
                        });
-        describe_score(bundle, out);
+        describe_score(loaded, out);
         out << "on this device:\n";
         const auto bars = haptics.BarClefs(name);
         for (std::size_t b = 0; b < bars.size(); ++b) {
@@ -244,6 +369,42 @@ int driver(const std::string& name, std::ostream& out, std::ostream& err) {
         out << "\n";
         return exit_ok;
     });
+}
+
+}  // namespace vibscore::client
+
+namespace vibscore::client {
+
+std::function<std::optional<std::string>(const std::string& name)> registry_clef_fetcher() {
+    // One connection for every clef a command looks up, opened at the first.
+    struct Link {
+        std::unique_ptr<sdbus::IConnection> connection;
+        std::unique_ptr<sdbus::IProxy> proxy;
+        bool tried = false;
+    };
+    auto link = std::make_shared<Link>();
+    return [link](const std::string& name) -> std::optional<std::string> {
+        try {
+            if (!link->tried) {
+                link->tried = true;
+                link->connection = sdbus::createSystemBusConnection();
+                link->proxy = sdbus::createProxy(*link->connection, haptics1::kBusName,
+                                                 haptics1::kObjectPath);
+            }
+            if (!link->proxy) {
+                return std::nullopt;
+            }
+            std::string text;
+            link->proxy->callMethod("Get")
+                .onInterface(haptics1::kInterface)
+                .withTimeout(std::chrono::seconds(2))
+                .withArguments(std::string("clef"), name)
+                .storeResultsTo(text);
+            return text;
+        } catch (const sdbus::Error&) {
+            return std::nullopt;  // no bus, no daemon, no such clef: the next place is looked at
+        }
+    };
 }
 
 }  // namespace vibscore::client

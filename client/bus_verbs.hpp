@@ -1,8 +1,12 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
+#include <optional>
 #include <ostream>
 #include <string>
+
+#include "client/clef_search.hpp"
 
 namespace vibscore::client {
 
@@ -15,17 +19,18 @@ struct PlayRequest {
     bool wait = false;
 };
 
-// A score argument that is a file rather than a registry name: it has a '/' or names a regular
-// file in the working directory.
-bool is_document_file(const std::string& argument);
-
 // The verbs that talk to vibscored on the system bus (DBUS_SYSTEM_BUS_ADDRESS may point
 // elsewhere). Each returns an exit code and explains failures in plain words on err.
-int play(const PlayRequest& request, std::ostream& out, std::ostream& err);
+// A score file is loaded by the clef rule of ClefSearch, exactly as `check` loads it: clefs found
+// as files are sent along with it, registry clefs go by name.
+int play(const PlayRequest& request, const ClefSearch& clefs, std::ostream& out, std::ostream& err);
 int stop(std::uint64_t id, std::ostream& out, std::ostream& err);
 int list(const std::string& kind, std::ostream& out, std::ostream& err);
 int get(const std::string& kind, const std::string& name, std::ostream& out, std::ostream& err);
-int compose(const std::string& name, const std::string& file, std::ostream& out, std::ostream& err);
+// A score's clefs must be registry clefs in the store: each href that names a clef file is
+// rewritten to the registry clef of the same name when that clef is the same, else refused.
+int compose(const std::string& name, const std::string& file, const ClefSearch& clefs,
+            std::ostream& out, std::ostream& err);
 int remove(const std::string& kind, const std::string& name, std::ostream& out, std::ostream& err);
 // vibscore info NAME: a registry score as the daemon holds it, and the clef each bar plays
 // through on this device (the daemon's [clefs] map).
@@ -34,5 +39,9 @@ int describe_registry_score(const std::string& name, std::ostream& out, std::ost
 int list_drivers(std::ostream& out, std::ostream& err);
 // Without a name: the driver in use and its capabilities. With one: switch to it.
 int driver(const std::string& name, std::ostream& out, std::ostream& err);
+
+// For ClefSearch::registry: asks vibscored for registry clef NAME (within a second or two);
+// nullopt when it has none or is not there.
+std::function<std::optional<std::string>(const std::string& name)> registry_clef_fetcher();
 
 }  // namespace vibscore::client

@@ -2,14 +2,77 @@
 #include <CLI/CLI.hpp>
 
 #include <iostream>
+#include <iterator>
+#include <limits>
 
 #include "client/bus_verbs.hpp"
+#include "client/convert_verb.hpp"
+#include "client/editor/documents.hpp"
 #include "client/editor/editor_app.hpp"
 #include "client/editor/verbs.hpp"
+#include "client/number_options.hpp"
 #include "client/offline_verbs.hpp"
+#include "client/picture_verbs.hpp"
+#include "common/closest_name.hpp"
 #include "config.h"
 
 using namespace vibscore::client;
+
+namespace {
+
+constexpr const char* kUsages[] = {"ringtone",      "alarm",         "notification",
+                                   "communication", "accessibility", "hardware-feedback",
+                                   "touch",         "media"};
+constexpr const char* kKindHelp = "score or clef (scores and clefs work too)";
+
+// Registry kinds, the plural too, as vibscored takes them.
+CLI::Validator kind_validator() {
+    return CLI::IsMember({"score", "scores", "clef", "clefs"});
+}
+
+// `--clefs DIR` (repeatable) on the verbs that load score files: where registry clef names are
+// looked up first (docs/score-format.md).
+void add_clefs_option(CLI::App* verb, ClefSearch& search) {
+    verb->add_option("--clefs", search.folders,
+                     "folder of NAME.clef.xml files where a clef the score names by registry "
+                     "name is looked up first (repeatable; then vibscored, then the shipped clefs)")
+        ->check(CLI::ExistingDirectory);
+}
+
+// "unknown command "x"" with the commands, instead of CLI11's "arguments were not expected".
+std::string unknown_verb_message(const CLI::App& app, const std::string& word) {
+    std::vector<std::string> verbs;
+    for (const auto* verb : app.get_subcommands({})) {
+        verbs.push_back(verb->get_name());
+    }
+    std::string message = "unknown command \"" + word + "\"";
+    if (const auto meant = vibscore::closest_name(word, verbs)) {
+        message += " (did you mean " + *meant + "?)";
+    }
+    message += "; the commands are:";
+    for (const auto& verb : verbs) {
+        message += " " + verb;
+    }
+    return message;
+}
+
+// CLI11 says only "A subcommand is required" both when no verb is given and when the verb is
+// misspelt; name the word instead.
+std::string usage_error_message(const CLI::App& app, const CLI::ParseError& error) {
+    const auto extras = app.remaining();
+    if (!app.get_subcommands().empty()) {
+        return error.what();
+    }
+    if (extras.empty()) {
+        return "a command is required (see --help for the commands)";
+    }
+    if (extras.front().starts_with("-")) {
+        return "unknown option " + extras.front();
+    }
+    return unknown_verb_message(app, extras.front());
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
     CLI::App app{
@@ -19,22 +82,54 @@ int main(int argc, char** argv) {
     app.set_version_flag("--version", std::string("vibscore ") + VIBSCORE_VERSION);
     app.require_subcommand(1);
 
+    ClefSearch clef_search;
+    clef_search.registry = registry_clef_fetcher();
+
     std::vector<std::string> check_files;
     auto* check = app.add_subcommand(
         "check", "Validate scores (with the clefs they name) and clefs; list every problem.");
     check->add_option("FILE", check_files, "VibScore or VibClef documents")->required();
+    add_clefs_option(check, clef_search);
 
     RenderRequest render;
     auto* render_verb = app.add_subcommand(
         "render", "Render a score's drive signal (clef units) to CSV or WAV, or plot it.");
     render_verb->add_option("FILE", render.file, "VibScore document")->required();
     render_verb->add_option("--rate", render.rate, "samples per second (default 8000)")
-        ->check(CLI::Range(1u, 384000u));
+        ->check(number_between(1, 384000, NumberKind::whole));
     render_verb->add_option("--out", render.out,
                             "OUT.csv (header t,y; one row per sample) or OUT.wav (32-bit float)");
     render_verb->add_flag("--plot", render.plot, "draw the strength over time in the terminal");
     render_verb->add_option("--width", render.plot_width, "plot width in columns (default 72)")
-        ->check(CLI::Range(10, 1000));
+        ->check(number_between(10, 1000, NumberKind::whole));
+    add_clefs_option(render_verb, clef_search);
+    render_verb->add_option("--svg", render.svg,
+                            "draw the signal and its envelope, with bar and note boundaries, "
+                            "as an SVG picture");
+    render_verb->add_option("--png", render.png, "the same picture as a PNG image");
+
+    ConvertRequest convert_request;
+    auto* convert_verb = app.add_subcommand(
+        "convert",
+        "Convert a score to AHAP, Android JSON or XML, or MIDI; or AHAP, Android, RTTTL or MIDI "
+        "to a score (docs/formats.md says what each format keeps).");
+    convert_verb->add_option("IN", convert_request.in, "file to read")->required();
+    convert_verb->add_option("OUT", convert_request.out, "file to write")->required();
+    convert_verb->add_option("--from", convert_request.from,
+                             "format of IN when its name does not tell: score, ahap, "
+                             "android-json, android-xml, rtttl, midi");
+    convert_verb->add_option("--to", convert_request.to,
+                             "format of OUT when its name does not tell: score, ahap, "
+                             "android-json, android-xml, android-envelope, midi");
+    convert_verb->add_option("--clef", convert_request.clef,
+                             "clef an import is written on: a clef file or a shipped clef's "
+                             "name (default lra-phone)");
+    convert_verb
+        ->add_option("--track", convert_request.track,
+                     "MIDI track to import, from 1 (default: the first with notes)")
+        ->check(number_between(1, 65535, NumberKind::whole));
+    convert_verb->add_flag("--loop", convert_request.loop,
+                           "Android: the pattern repeats (repeat index 0, <repeating>)");
 
     std::string info_file;
     auto* info = app.add_subcommand(
@@ -43,41 +138,50 @@ int main(int argc, char** argv) {
         "score, also the clef each bar plays through on this device (asks vibscored).");
     info->add_option("FILE", info_file, "VibScore or VibClef document, or a registry score name")
         ->required();
+    add_clefs_option(info, clef_search);
 
     PlayRequest play_request;
     auto* play_verb = app.add_subcommand(
         "play", "Play a registry score, or a score file, on the device (through vibscored).");
     play_verb->add_option("SCORE", play_request.score, "registry name or VibScore file")
         ->required();
-    play_verb->add_option("--usage", play_request.usage,
-                          "ringtone, alarm, notification (default), communication, "
-                          "accessibility, hardware-feedback, touch or media");
-    play_verb->add_option("--repeat", play_request.repeat,
-                          "0 once (default), n more times, -1 until stopped");
+    play_verb
+        ->add_option("--usage", play_request.usage,
+                     "ringtone, alarm, notification (default), communication, "
+                     "accessibility, hardware-feedback, touch or media")
+        ->check(CLI::IsMember(std::vector<std::string>(std::begin(kUsages), std::end(kUsages))));
+    play_verb
+        ->add_option("--repeat", play_request.repeat,
+                     "0 once (default), n more times, -1 until stopped")
+        ->check(number_between(-1, std::numeric_limits<int>::max(), NumberKind::whole));
     play_verb->add_option("--clef", play_request.clef, "play every bar with this registry clef");
     play_verb->add_option("--intensity", play_request.intensity, "0..1")
-        ->check(CLI::Range(0.0, 1.0));
+        ->check(number_between(0, 1));
+    add_clefs_option(play_verb, clef_search);
     play_verb->add_flag("--wait", play_request.wait,
                         "stay until it ends, showing each bar; Ctrl-C stops it");
 
     std::uint64_t stop_id = 0;
     auto* stop_verb = app.add_subcommand("stop", "Stop a playback (default: all of yours).");
-    stop_verb->add_option("ID", stop_id, "playback id printed by play");
+    stop_verb->add_option("ID", stop_id, "playback id printed by play")
+        ->check(number_between(1, std::numeric_limits<double>::infinity(), NumberKind::whole));
 
     std::string kind = "score";
     std::string name;
     std::string file;
     auto* list_verb = app.add_subcommand("list", "List the registry's scores or clefs.");
-    list_verb->add_option("KIND", kind, "scores (default) or clefs");
+    list_verb->add_option("KIND", kind, std::string(kKindHelp) + "; default score")
+        ->check(kind_validator());
     auto* get_verb = app.add_subcommand("get", "Print a registry score or clef.");
-    get_verb->add_option("KIND", kind, "score or clef")->required();
+    get_verb->add_option("KIND", kind, kKindHelp)->required()->check(kind_validator());
     get_verb->add_option("NAME", name, "registry name")->required();
     auto* compose_verb = app.add_subcommand(
         "compose", "Store a score or clef file in the registry (root or group vibscore).");
     compose_verb->add_option("NAME", name, "registry name")->required();
     compose_verb->add_option("FILE", file, "VibScore or VibClef file")->required();
+    add_clefs_option(compose_verb, clef_search);
     auto* delete_verb = app.add_subcommand("delete", "Delete a stored score or clef.");
-    delete_verb->add_option("KIND", kind, "score or clef")->required();
+    delete_verb->add_option("KIND", kind, kKindHelp)->required()->check(kind_validator());
     delete_verb->add_option("NAME", name, "registry name")->required();
 
     app.add_subcommand("drivers", "List the actuator backends vibscored offers (* in use).");
@@ -94,9 +198,12 @@ int main(int argc, char** argv) {
     show_verb->add_option("SCORE", show_request.score, "registry name or VibScore file")
         ->required();
     show_verb->add_option("--width", show_request.width, "columns (default: the terminal's)")
-        ->check(CLI::Range(20, 10000));
+        ->check(number_between(20, 10000, NumberKind::whole));
     show_verb->add_flag("--colour,--color", show_request.colour,
                         "ANSI colours even when not writing to a terminal");
+    std::string show_svg, show_png;
+    show_verb->add_option("--svg", show_svg, "draw the staff as an SVG picture instead");
+    show_verb->add_option("--png", show_png, "draw the staff as a PNG image instead");
 
     vibscore::editor::EditOptions edit_options;
     auto* edit_verb = app.add_subcommand(
@@ -122,18 +229,22 @@ int main(int argc, char** argv) {
     } catch (const CLI::CallForVersion& e) {
         return app.exit(e);
     } catch (const CLI::ParseError& e) {
-        std::cerr << "vibscore: " << e.what() << "\nRun 'vibscore --help' for usage.\n";
+        std::cerr << "vibscore: " << usage_error_message(app, e)
+                  << "\nRun 'vibscore --help' for usage.\n";
         return exit_usage;
     }
 
     if (check->parsed()) {
-        return check_documents(check_files, std::cout, std::cerr);
+        return check_documents(check_files, clef_search, std::cout, std::cerr);
     }
     if (render_verb->parsed()) {
-        return render_document(render, std::cout, std::cerr);
+        return render_document(render, clef_search, std::cout, std::cerr);
+    }
+    if (convert_verb->parsed()) {
+        return convert(convert_request, std::cout, std::cerr);
     }
     if (play_verb->parsed()) {
-        return play(play_request, std::cout, std::cerr);
+        return play(play_request, clef_search, std::cout, std::cerr);
     }
     if (stop_verb->parsed()) {
         return stop(stop_id, std::cout, std::cerr);
@@ -145,7 +256,7 @@ int main(int argc, char** argv) {
         return get(kind, name, std::cout, std::cerr);
     }
     if (compose_verb->parsed()) {
-        return compose(name, file, std::cout, std::cerr);
+        return compose(name, file, clef_search, std::cout, std::cerr);
     }
     if (delete_verb->parsed()) {
         return remove(kind, name, std::cout, std::cerr);
@@ -156,14 +267,19 @@ int main(int argc, char** argv) {
     if (driver_verb->parsed()) {
         return driver(driver_name, std::cout, std::cerr);
     }
+    if (show_verb->parsed() && (!show_svg.empty() || !show_png.empty())) {
+        return show_picture(show_request.score, show_svg, show_png, std::cout, std::cerr);
+    }
     if (show_verb->parsed()) {
         return vibscore::editor::show_score(show_request, std::cout, std::cerr);
     }
     if (edit_verb->parsed()) {
         return vibscore::editor::run_editor(edit_options, std::cerr);
     }
-    if (is_document_file(info_file)) {
-        return describe_document(info_file, std::cout, std::cerr);
+    // The same rule as play and show: a path, or else a registry name.
+    if (vibscore::editor::classify_source(info_file).kind ==
+        vibscore::editor::ScoreSource::Kind::registry) {
+        return describe_registry_score(info_file, std::cout, std::cerr);
     }
-    return describe_registry_score(info_file, std::cout, std::cerr);
+    return describe_document(info_file, clef_search, std::cout, std::cerr);
 }

@@ -1,10 +1,13 @@
 #include "client/offline_verbs.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <map>
 
+#include "client/pictures/signal_picture.hpp"
 #include "client/signal_output.hpp"
 #include "client/terminal_plot.hpp"
+#include "common/number_text.hpp"
 #include "daemon/render/performance.hpp"
 #include "score/bundle.hpp"
 #include "score/clef_xml.hpp"
@@ -20,9 +23,11 @@ std::string fixed(double value, int decimals = 3) {
 }
 
 std::string number(double value) {
-    char text[64];
-    std::snprintf(text, sizeof text, "%g", value);
-    return text;
+    return number_text(value);
+}
+
+std::string padded(const std::string& text, std::size_t width) {
+    return text + std::string(width - std::min(width, text.size()), ' ');
 }
 
 std::string count(std::size_t n, const char* noun) {
@@ -61,7 +66,8 @@ void describe_clef(const std::string& file, const Clef& clef, std::ostream& out)
 
 }  // namespace
 
-void describe_score(const ScoreBundle& bundle, std::ostream& out) {
+void describe_score(const LoadedScore& loaded, std::ostream& out) {
+    const ScoreBundle& bundle = loaded.bundle;
     const render::Performance performance(bundle);
     std::size_t notes = 0;
     for (const auto& timing : performance.timeline()) {
@@ -77,9 +83,20 @@ void describe_score(const ScoreBundle& bundle, std::ostream& out) {
     for (const auto& bar : bundle.score.bars) {
         used[bar.clef] = true;
     }
+    // One row per clef, its columns lined up: id, href, what the clef is, where it was found.
+    std::size_t id_width = 0, href_width = 0, summary_width = 0;
     for (const auto& declaration : bundle.score.clefs) {
-        out << "  " << declaration.id << "  " << declaration.href << "  "
-            << clef_summary(bundle.clefs.at(declaration.id))
+        id_width = std::max(id_width, declaration.id.size());
+        href_width = std::max(href_width, declaration.href.size());
+        summary_width =
+            std::max(summary_width, clef_summary(bundle.clefs.at(declaration.id)).size());
+    }
+    for (const auto& declaration : bundle.score.clefs) {
+        const auto origin = loaded.clef_origins.find(declaration.id);
+        out << "  " << padded(declaration.id, id_width) << "  "
+            << padded(declaration.href, href_width) << "  "
+            << padded(clef_summary(bundle.clefs.at(declaration.id)), summary_width) << "  from "
+            << (origin == loaded.clef_origins.end() ? "?" : origin->second)
             << (used.contains(declaration.id) ? "" : "  (declared, not used)") << "\n";
     }
     out << "bars:\n";
@@ -97,7 +114,8 @@ void describe_score(const ScoreBundle& bundle, std::ostream& out) {
     }
 }
 
-int check_documents(const std::vector<std::string>& files, std::ostream& out, std::ostream& err) {
+int check_documents(const std::vector<std::string>& files, const ClefSearch& clefs,
+                    std::ostream& out, std::ostream& err) {
     int failed = 0;
     for (const auto& file : files) {
         try {
@@ -106,7 +124,7 @@ int check_documents(const std::vector<std::string>& files, std::ostream& out, st
                 const Clef clef = read_clef(text, file);
                 out << file << ": ok (clef: " << clef_summary(clef) << ")\n";
             } else {
-                const auto bundle = load_score_file(file);
+                const auto bundle = load_score(file, clefs).bundle;
                 const render::Performance performance(bundle);
                 out << file << ": ok (score: " << count(bundle.score.bars.size(), "bar") << ", "
                     << fixed(performance.duration()) << " s)\n";
@@ -122,18 +140,25 @@ int check_documents(const std::vector<std::string>& files, std::ostream& out, st
     return failed == 0 ? exit_ok : exit_failed;
 }
 
-int render_document(const RenderRequest& request, std::ostream& out, std::ostream& err) {
-    if (request.out.empty() && !request.plot) {
-        err << "render: nothing to do: give --out FILE.csv|FILE.wav and/or --plot\n";
+int render_document(const RenderRequest& request, const ClefSearch& clefs, std::ostream& out,
+                    std::ostream& err) {
+    if (request.out.empty() && !request.plot && request.svg.empty() && request.png.empty()) {
+        err << "render: nothing to do: give --out FILE.csv|FILE.wav, --plot, --svg FILE or "
+               "--png FILE\n";
         return exit_usage;
     }
-    if (!request.out.empty()) {
-        try {
+    try {
+        if (!request.out.empty()) {
             signal_format_for(request.out);
-        } catch (const std::invalid_argument& error) {
-            err << "render: " << error.what() << "\n";
-            return exit_usage;
         }
+        for (const auto& picture : {request.svg, request.png}) {
+            if (!picture.empty()) {
+                pictures::picture_format_for(picture);
+            }
+        }
+    } catch (const std::invalid_argument& error) {
+        err << "render: " << error.what() << "\n";
+        return exit_usage;
     }
     try {
         const auto text = read_document_file(request.file);
@@ -141,7 +166,7 @@ int render_document(const RenderRequest& request, std::ostream& out, std::ostrea
             err << request.file << ": is a clef; render takes a score (VibScore)\n";
             return exit_usage;
         }
-        const auto bundle = load_score_file(request.file);
+        const auto bundle = load_score(request.file, clefs).bundle;
         const render::Performance performance(bundle);
         if (request.plot) {
             out << (bundle.score.title.empty() ? request.file : bundle.score.title) << "  ("
@@ -154,6 +179,16 @@ int render_document(const RenderRequest& request, std::ostream& out, std::ostrea
             out << "wrote " << request.out << ": " << samples << " samples at " << request.rate
                 << " Hz, " << fixed(performance.duration()) << " s\n";
         }
+        if (!request.svg.empty() || !request.png.empty()) {
+            const pictures::SignalPicture picture(
+                performance, bundle.score.title.empty() ? request.file : bundle.score.title);
+            for (const auto& path : {request.svg, request.png}) {
+                if (!path.empty()) {
+                    pictures::write_picture(picture, path);
+                    out << "wrote " << path << "\n";
+                }
+            }
+        }
         return exit_ok;
     } catch (const DocumentError& error) {
         report(error, err);
@@ -163,13 +198,14 @@ int render_document(const RenderRequest& request, std::ostream& out, std::ostrea
     return exit_failed;
 }
 
-int describe_document(const std::string& file, std::ostream& out, std::ostream& err) {
+int describe_document(const std::string& file, const ClefSearch& clefs, std::ostream& out,
+                      std::ostream& err) {
     try {
         const auto text = read_document_file(file);
         if (document_kind(text, file) == DocumentKind::clef) {
             describe_clef(file, read_clef(text, file), out);
         } else {
-            describe_score(load_score_file(file), out);
+            describe_score(load_score(file, clefs), out);
         }
         return exit_ok;
     } catch (const DocumentError& error) {

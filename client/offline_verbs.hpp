@@ -5,15 +5,16 @@
 #include <string>
 #include <vector>
 
-#include "score/bundle.hpp"
+#include "client/clef_search.hpp"
 
 namespace vibscore::client {
 
 // Exit codes shared by every verb.
 enum ExitCode : int { exit_ok = 0, exit_failed = 1, exit_usage = 2 };
 
-// vibscore check FILE...: validates scores (with their clefs) and clefs.
-int check_documents(const std::vector<std::string>& files, std::ostream& out, std::ostream& err);
+// vibscore check FILE...: validates scores (with their clefs, found by `clefs`) and clefs.
+int check_documents(const std::vector<std::string>& files, const ClefSearch& clefs,
+                    std::ostream& out, std::ostream& err);
 
 struct RenderRequest {
     std::string file;
@@ -21,15 +22,19 @@ struct RenderRequest {
     std::string out;  // .csv or .wav; empty for none
     bool plot = false;
     int plot_width = 72;
+    std::string svg, png;  // the signal and its envelope as a picture; empty for none
 };
 
-// vibscore render FILE --rate HZ --out OUT.csv|OUT.wav [--plot]
-int render_document(const RenderRequest& request, std::ostream& out, std::ostream& err);
+// vibscore render FILE --rate HZ --out OUT.csv|OUT.wav [--plot] [--svg F] [--png F]
+int render_document(const RenderRequest& request, const ClefSearch& clefs, std::ostream& out,
+                    std::ostream& err);
 
-// What a score holds: title, duration, clefs and bars (vibscore info).
-void describe_score(const ScoreBundle& bundle, std::ostream& out);
+// What a score holds: title, duration, clefs (with where each came from) and bars (vibscore
+// info).
+void describe_score(const LoadedScore& loaded, std::ostream& out);
 
 // vibscore info FILE: what a score or clef holds.
-int describe_document(const std::string& file, std::ostream& out, std::ostream& err);
+int describe_document(const std::string& file, const ClefSearch& clefs, std::ostream& out,
+                      std::ostream& err);
 
 }  // namespace vibscore::client

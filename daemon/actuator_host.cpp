@@ -4,6 +4,7 @@
 #include <utility>
 
 #include "daemon/drivers/disconnected_actuator.hpp"
+#include "daemon/drivers/driver_settings.hpp"
 #include "daemon/log.hpp"
 
 namespace vibscore::daemon {
@@ -18,7 +19,11 @@ ActuatorHost::ActuatorHost(const DaemonConfig& config)
 std::unique_ptr<drivers::Actuator> ActuatorHost::open(
     const std::string& driver, const DriverSettingsMap& settings,
     const std::filesystem::path& drivers_dir) const {
-    return drivers::make_actuator(driver, settings, drivers_dir);
+    try {
+        return drivers::make_actuator(driver, settings, drivers_dir);
+    } catch (const drivers::SettingError& error) {
+        throw drivers::SettingError(error.key(), config_.where(driver, error.key()) + error.what());
+    }
 }
 
 std::vector<drivers::DriverInfo> ActuatorHost::drivers() const {

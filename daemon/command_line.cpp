@@ -3,8 +3,11 @@
 #include <CLI/CLI.hpp>
 
 #include <filesystem>
+#include <iostream>
 
 #include "config.h"
+#include "daemon/drivers/available.hpp"
+#include "daemon/log.hpp"
 
 namespace vibscore::daemon {
 
@@ -26,10 +29,18 @@ std::variant<CommandLine, int> parse_command_line(int argc, const char* const* a
     app.add_flag("--verbose", command_line.verbose, "log every playback");
     app.add_flag("--list-drivers", command_line.list_drivers,
                  "list the actuator backends and exit");
+    app.add_flag("--safe-off", command_line.safe_off,
+                 "switch the configured actuator off and exit (the unit's ExecStopPost: it runs "
+                 "after a crash too)");
     try {
         app.parse(argc, argv);
+    } catch (const CLI::CallForHelp& help) {
+        return app.exit(help);
+    } catch (const CLI::CallForVersion& version) {
+        return app.exit(version);
     } catch (const CLI::ParseError& error) {
-        return app.exit(error);
+        std::cerr << "vibscored: " << error.what() << "\nRun 'vibscored --help' for usage.\n";
+        return kExitUsage;
     }
     command_line.config_given = app.count("--config") > 0;
     return command_line;
@@ -41,6 +52,13 @@ DaemonConfig read_config(const CommandLine& command_line) {
     DaemonConfig config = defaults;
     if (command_line.config_given || std::filesystem::exists(command_line.config)) {
         config = load_config(command_line.config, defaults);
+    }
+    std::vector<std::string> drivers;
+    for (const auto& driver : drivers::available_drivers(config.drivers_dir)) {
+        drivers.push_back(driver.name);
+    }
+    for (const auto& warning : unknown_sections(config, drivers)) {
+        log::warning(warning);
     }
     if (!command_line.driver.empty()) {
         config.driver = command_line.driver;

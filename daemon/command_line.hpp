@@ -9,6 +9,9 @@ namespace vibscore::daemon {
 
 inline constexpr const char* kDefaultConfigFile = "/etc/vibscore/vibscored.conf";
 
+// Exit status for wrong usage, as every vibscore program uses it (0 success, 1 failure).
+inline constexpr int kExitUsage = 2;
+
 // vibscored's command line.
 struct CommandLine {
     std::string config = kDefaultConfigFile;
@@ -16,14 +19,16 @@ struct CommandLine {
     std::string driver, store, shipped;
     bool verbose = false;
     bool list_drivers = false;
+    bool safe_off = false;  // switch the configured backend off and exit, without serving
 };
 
-// Parses the arguments. For --help, --version and wrong usage it prints what CLI11 prints and
-// returns the exit status to end with instead.
+// Parses the arguments. For --help and --version it prints them and returns 0 to end with; for
+// wrong usage it says what is wrong on stderr and returns kExitUsage.
 std::variant<CommandLine, int> parse_command_line(int argc, const char* const* argv);
 
 // The configuration the command line asks for: the file (the default one only if it exists),
-// then the command line's overrides, over the built-in defaults. Throws ConfigError.
+// then the command line's overrides, over the built-in defaults. Throws ConfigError. Logs a
+// warning for each section that names no driver.
 DaemonConfig read_config(const CommandLine& command_line);
 
 }  // namespace vibscore::daemon

@@ -1,9 +1,15 @@
 #include "daemon/config.hpp"
 
+#include <algorithm>
+#include <cerrno>
 #include <charconv>
 #include <cmath>
+#include <cstring>
 #include <fstream>
 #include <sstream>
+
+#include "common/closest_name.hpp"
+#include "common/number_text.hpp"
 
 namespace vibscore::daemon {
 
@@ -24,7 +30,17 @@ double positive_number(const std::string& value, const std::string& where, const
     if (error != std::errc() || end != value.data() + value.size() || !std::isfinite(number) ||
         number <= 0.0 || number > max) {
         throw ConfigError(where + ": " + key + " = \"" + value +
-                          "\" is not a number above 0 and at most " + std::to_string(max));
+                          "\" is not a number above 0 and at most " + number_text(max));
+    }
+    return number;
+}
+
+int priority(const std::string& value, const std::string& where, const std::string& key) {
+    int number = 0;
+    const auto [end, error] = std::from_chars(value.data(), value.data() + value.size(), number);
+    if (error != std::errc() || end != value.data() + value.size() || number < 0 || number > 99) {
+        throw ConfigError(where + ": " + key + " = \"" + value +
+                          "\" is not a whole number from 0 to 99");
     }
     return number;
 }
@@ -54,6 +70,35 @@ const std::map<std::string, std::string>& DaemonConfig::settings_of(const std::s
     return found == driver_settings.end() ? kNone : found->second;
 }
 
+std::string DaemonConfig::where(const std::string& driver, const std::string& key) const {
+    if (const auto section = setting_lines.find(driver); section != setting_lines.end()) {
+        if (const auto line = section->second.find(key); line != section->second.end()) {
+            return line->second + ": ";
+        }
+    }
+    const auto header = section_lines.find(driver);
+    return header == section_lines.end() ? std::string() : header->second + ": ";
+}
+
+std::vector<std::string> unknown_sections(const DaemonConfig& config,
+                                          const std::vector<std::string>& known) {
+    std::vector<std::string> warnings;
+    for (const auto& [section, where] : config.section_lines) {
+        std::vector<std::string> candidates(known);
+        candidates.push_back("daemon");
+        candidates.insert(candidates.end(), std::begin(kServiceSections),
+                          std::end(kServiceSections));
+        if (std::find(candidates.begin(), candidates.end(), section) != candidates.end()) {
+            continue;
+        }
+        const auto meant = closest_name(section, candidates);
+        warnings.push_back(where + ": unknown section [" + section +
+                           "]: no driver of that name, so its keys apply nowhere" +
+                           (meant ? " (did you mean [" + *meant + "]?)" : ""));
+    }
+    return warnings;
+}
+
 DaemonConfig parse_config(const std::string& text, const std::string& file, DaemonConfig config) {
     std::istringstream lines(text);
     std::string line;
@@ -71,6 +116,10 @@ DaemonConfig parse_config(const std::string& text, const std::string& file, Daem
                 throw ConfigError(where + ": malformed section header \"" + content + "\"");
             }
             section = trim(content.substr(1, content.size() - 2));
+            if (section != "daemon") {
+                config.driver_settings[section];  // an empty section still names a driver
+                config.section_lines.try_emplace(section, where);
+            }
             continue;
         }
         const auto equals = content.find('=');
@@ -88,6 +137,7 @@ DaemonConfig parse_config(const std::string& text, const std::string& file, Daem
         }
         if (section != "daemon") {
             config.driver_settings[section][key] = value;
+            config.setting_lines[section][key] = where;
             continue;
         }
         if (key == "driver") {
@@ -104,10 +154,13 @@ DaemonConfig parse_config(const std::string& text, const std::string& file, Daem
             config.requests_per_second = positive_number(value, where, key, 1e6);
         } else if (key == "request-burst") {
             config.request_burst = positive_number(value, where, key, 1e6);
+        } else if (key == "rt-priority") {
+            config.rt_priority = priority(value, where, key);
         } else {
             throw ConfigError(where + ": unknown key \"" + key +
                               "\" in [daemon] (expected driver, drivers-dir, store, shipped, "
-                              "separation-ms, requests-per-second or request-burst)");
+                              "separation-ms, requests-per-second, request-burst or "
+                              "rt-priority)");
         }
         if (value.empty()) {
             throw ConfigError(where + ": " + key + " has no value");
@@ -119,7 +172,7 @@ DaemonConfig parse_config(const std::string& text, const std::string& file, Daem
 DaemonConfig load_config(const std::filesystem::path& path, DaemonConfig defaults) {
     std::ifstream in(path);
     if (!in) {
-        throw ConfigError(path.string() + ": cannot open");
+        throw ConfigError(path.string() + ": cannot open: " + std::strerror(errno));
     }
     std::ostringstream text;
     text << in.rdbuf();

@@ -7,12 +7,13 @@
 #include <map>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace vibscore::daemon {
 
 // vibscored.conf: INI sections of "key = value" lines; '#' and ';' start comments.
 //   [daemon]  driver, drivers-dir, store, shipped, separation-ms, requests-per-second,
-//   request-burst
+//             request-burst, rt-priority
 //   [clefs]   WRITTEN = DEVICE: the clef bars written for WRITTEN play through on this device;
 //             "* = DEVICE" for any other clef
 //   [NAME]    the settings of driver NAME (e.g. [sim] model = erm), handed to that driver
@@ -25,10 +26,17 @@ struct DaemonConfig {
     double separation_ms = 30.0;
     double requests_per_second = 50.0;
     double request_burst = 100.0;
+    int rt_priority = 40;  // SCHED_FIFO of the playback thread; 0: normal scheduling
     std::map<std::string, std::map<std::string, std::string>> driver_settings;  // by driver
     DeviceClefs device_clefs;
+    // Where each [section] begins and each of its keys is set, as "file:line", for messages.
+    std::map<std::string, std::string> section_lines;
+    std::map<std::string, std::map<std::string, std::string>> setting_lines;
 
     const std::map<std::string, std::string>& settings_of(const std::string& driver) const;
+    // "file:line: " of a driver's setting (or of its section when the key is not set there);
+    // empty when the settings did not come from a file.
+    std::string where(const std::string& driver, const std::string& key) const;
 };
 
 // The file is wrong; the message is "path:line: what", naming the key and value.
@@ -39,6 +47,16 @@ class ConfigError : public std::runtime_error {
 
 DaemonConfig parse_config(const std::string& text, const std::string& file,
                           DaemonConfig defaults = {});
+// Throws ConfigError naming the path and the reason when the file cannot be read.
 DaemonConfig load_config(const std::filesystem::path& path, DaemonConfig defaults = {});
+
+// Sections besides [daemon] and the backends' that configure parts of the service.
+inline constexpr const char* kServiceSections[] = {"clefs", "virtual-vibra"};
+
+// A warning for each section of `config` that is neither [daemon], a service section nor one of
+// `known` (the drivers), whose keys therefore apply nowhere: "file:line: unknown section [x] ...
+// (did you mean [y]?)".
+std::vector<std::string> unknown_sections(const DaemonConfig& config,
+                                          const std::vector<std::string>& known);
 
 }  // namespace vibscore::daemon

@@ -6,11 +6,16 @@ namespace vibscore::daemon {
 
 namespace {
 
-// The registry clef each declaration of the score names, by declaration id.
-std::map<std::string, std::string, std::less<>> written_clef_names(const ScoreBundle& bundle) {
+// The registry clef each declaration of the score names, by declaration id; declarations whose
+// href is in `sent` (clefs the caller sent along) are left out.
+std::map<std::string, std::string, std::less<>> written_clef_names(
+    const ScoreBundle& bundle, const std::map<std::string, std::string>& sent = {}) {
     std::map<std::string, std::string, std::less<>> names;
     const auto& declarations = bundle.score.clefs;
     for (std::size_t i = 0; i < declarations.size(); ++i) {
+        if (sent.contains(declarations[i].href)) {
+            continue;
+        }
         const SourceLocation declared_at =
             i < bundle.where.clefs.size() ? bundle.where.clefs[i] : bundle.where.document;
         names[declarations[i].id] = clef_name_of(declarations[i], declared_at);
@@ -51,16 +56,17 @@ std::vector<BarClef> bar_clefs(const ScoreBundle& written, const DeviceClefs& cl
 }
 
 ScoreBundle bind_device_clefs(const Registry& registry, const ScoreBundle& written,
-                              const DeviceClefs& clefs) {
-    std::map<std::string, Clef, std::less<>> device_clefs;  // by declaration id
-    for (const auto& [id, name] : written_clef_names(written)) {
+                              const DeviceClefs& clefs,
+                              const std::map<std::string, std::string>& sent) {
+    std::map<std::string, Clef, std::less<>> device_clefs = written.clefs;  // by declaration id
+    for (const auto& [id, name] : written_clef_names(written, sent)) {
         const auto device = clefs.for_written(name);
         if (!registry.contains(DocumentKind::clef, device)) {
             throw RegistryError(RegistryError::Code::not_found,
                                 "no clef \"" + device + "\" in the registry: vibscored.conf's " +
                                     "[clefs] plays clef \"" + name + "\" through it");
         }
-        device_clefs.emplace(id, registry.clef(device));
+        device_clefs.insert_or_assign(id, registry.clef(device));
     }
     return bind_clefs(ParsedScore{written.score, written.where}, written.file,
                       [&](const ClefDeclaration& declaration, const SourceLocation&) {

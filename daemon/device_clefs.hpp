@@ -37,10 +37,12 @@ struct BarClef {
 // Every bar of a score bound to the registry clefs it names, in order.
 std::vector<BarClef> bar_clefs(const ScoreBundle& written, const DeviceClefs& clefs);
 
-// The score bound again, each declared clef replaced by its device clef. Throws RegistryError
-// (not_found) naming the mapping when a device clef is not in the registry, DocumentError when
-// the score's notes do not fit a device clef (a string or number it lacks).
+// The score bound again, each declared clef replaced by its device clef, except the clefs the
+// caller sent along with it (`sent`, by href: the caller's choice, as an override is). Throws
+// RegistryError (not_found) naming the mapping when a device clef is not in the registry,
+// DocumentError when the score's notes do not fit a device clef (a string or number it lacks).
 ScoreBundle bind_device_clefs(const Registry& registry, const ScoreBundle& written,
-                              const DeviceClefs& clefs);
+                              const DeviceClefs& clefs,
+                              const std::map<std::string, std::string>& sent = {});
 
 }  // namespace vibscore::daemon

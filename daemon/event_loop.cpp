@@ -3,6 +3,7 @@
 #include <signal.h>
 #include <time.h>
 
+#include <sdbus-c++/Error.h>
 #include <sdbus-c++/IConnection.h>
 
 #include <cstring>
@@ -24,11 +25,13 @@ void check(int result, const char* what) {
 
 }  // namespace
 
-EventLoop::EventLoop() {
+EventLoop::EventLoop(Watchdog watchdog) {
     check(sd_event_new(&event_), "sd_event_new");
     // Pings the service manager only when it asked for a watchdog (WATCHDOG_USEC); otherwise an
     // idle loop stays asleep.
-    check(sd_event_set_watchdog(event_, 1), "sd_event_set_watchdog");
+    if (watchdog == Watchdog::pinged) {
+        check(sd_event_set_watchdog(event_, 1), "sd_event_set_watchdog");
+    }
 }
 
 EventLoop::~EventLoop() {
@@ -117,7 +120,14 @@ BusLoopBinding::BusLoopBinding(EventLoop& loop, sdbus::IConnection& connection)
 }
 
 void BusLoopBinding::process() {
-    while (connection_.processPendingRequest()) {
+    try {
+        while (connection_.processPendingRequest()) {
+        }
+    } catch (const sdbus::Error& error) {
+        // The bus went away (its daemon stopped): nothing is left to serve. An exception must
+        // not unwind through sd-event's C frames, so the loop ends with a failure instead.
+        log::error("the bus connection failed: " + error.getMessage());
+        sd_event_exit(sd_event_source_get_event(io_.get()), 1);
     }
 }
 

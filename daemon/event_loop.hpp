@@ -20,11 +20,14 @@ struct EventSourceUnref {
 };
 using EventSourcePtr = std::unique_ptr<sd_event_source, EventSourceUnref>;
 
-// The daemon's one thread and one loop: the bus, timers and signals all run here, so nothing
-// needs a lock.
+// One thread's loop: the bus thread's serves the bus, its timers and signals; the playback
+// thread has its own for the player's timer (PlaybackThread). A loop is used by one thread only.
 class EventLoop {
   public:
-    EventLoop();
+    // Whether the loop pings the service manager's watchdog when it asks for one
+    // (WATCHDOG_USEC): only one loop of the process should, the bus thread's.
+    enum class Watchdog { pinged, not_pinged };
+    explicit EventLoop(Watchdog watchdog = Watchdog::pinged);
     ~EventLoop();
     EventLoop(const EventLoop&) = delete;
     EventLoop& operator=(const EventLoop&) = delete;

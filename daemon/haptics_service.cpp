@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "common/monotonic_clock.hpp"
+#include "common/number_text.hpp"
 #include "config.h"
 #include "daemon/log.hpp"
 #include "daemon/play_request.hpp"
@@ -81,17 +82,18 @@ DocumentKind kind_named(const std::string& kind) {
 }  // namespace
 
 HapticsService::HapticsService(sdbus::IConnection& connection, const DaemonConfig& config,
-                               Registry& registry, Player& player, CallerDirectory& callers,
-                               ActuatorHost& host, const Authorizer& authorizer)
+                               Registry& registry, PlaybackThread& playback,
+                               CallerDirectory& callers, ActuatorHost& host,
+                               const Authorizer& authorizer)
     : AdaptorInterfaces(connection, haptics1::kObjectPath),
       config_(config),
       registry_(registry),
-      player_(player),
+      playback_(playback),
       callers_(callers),
       host_(host),
       authorizer_(authorizer),
-      announced_driver_(host.driver()),
-      announced_capabilities_(host.capabilities().names()) {
+      announced_driver_(Driver()),
+      announced_capabilities_(Capabilities()) {
     vanish_watch_ = connection.addMatch(
         "type='signal',sender='org.freedesktop.DBus',interface='org.freedesktop.DBus',"
         "member='NameOwnerChanged'",
@@ -99,24 +101,37 @@ HapticsService::HapticsService(sdbus::IConnection& connection, const DaemonConfi
             std::string name, old_owner, new_owner;
             message >> name >> old_owner >> new_owner;
             if (new_owner.empty() && !name.empty() && name.front() == ':') {
-                player_.sender_vanished(name);
+                playback_.call([&](Player& player) { player.sender_vanished(name); });
                 callers_.forget(name);
             }
         });
-    player_.set_listener(this);
-    host_.on_change([this] { driver_switched(); });
+    playback_.set_listener(this);
+    // A switch happens on the playback thread; the bus hears of it on the bus thread.
+    host_.on_change([this] { playback_.to_bus([this] { driver_switched(); }); });
     registerAdaptor();
 }
 
 HapticsService::~HapticsService() {
     unregisterAdaptor();
     host_.on_change(nullptr);
-    player_.set_listener(nullptr);
+    playback_.set_listener(nullptr);
+}
+
+std::string HapticsService::Driver() {
+    return playback_.call([&](Player&) { return host_.driver(); });
+}
+
+std::vector<std::string> HapticsService::Capabilities() {
+    return playback_.call([&](Player&) { return host_.capabilities().names(); });
+}
+
+double HapticsService::Intensity() {
+    return playback_.call([](Player& player) { return player.master_intensity(); });
 }
 
 void HapticsService::driver_switched() {
-    auto driver = host_.driver();
-    auto capabilities = host_.capabilities().names();
+    auto driver = Driver();
+    auto capabilities = Capabilities();
     if (driver == announced_driver_ && capabilities == announced_capabilities_) {
         return;
     }
@@ -131,7 +146,7 @@ const Caller& HapticsService::admit_caller() {
     if (!callers_.admit(caller.sender, monotonic_now_us())) {
         throw RequestError(RequestError::Code::limit_exceeded,
                            "too many requests from " + caller.sender + "; the limit is " +
-                               std::to_string(callers_.requests_per_second()) + " per second");
+                               number_text(callers_.requests_per_second()) + " per second");
     }
     return caller;
 }
@@ -145,13 +160,18 @@ std::uint64_t HapticsService::Play(const std::string& score,
             authorizer_.require(caller, Action::urgent_usage,
                                 "Playing with usage " + std::string(to_string(play_options.usage)));
         }
+        // A request that would be refused is refused before its score is read or rendered.
+        playback_.call([&](Player& player) {
+            player.check_admission(play_options.usage, play_options.repeat);
+        });
         PlaybackRequest request = make_playback_request(
-            find_score_to_play(registry_, score, play_options.clef, config_.device_clefs),
-            play_options, config_.separation_ms / 1000.0);
+            find_score_to_play(registry_, score, play_options, config_.device_clefs), play_options,
+            config_.separation_ms / 1000.0);
         request.owner = caller.uid;
         request.sender = caller.sender;
         const auto label = request.label;
-        const auto id = player_.play(std::move(request));
+        const auto id =
+            playback_.call([&](Player& player) { return player.play(std::move(request)); });
         log::debug("playback " + std::to_string(id) + ": " + label + " (" +
                    std::string(to_string(play_options.usage)) + ") for uid " +
                    std::to_string(caller.uid));
@@ -162,10 +182,15 @@ std::uint64_t HapticsService::Play(const std::string& score,
 void HapticsService::Stop(const std::uint64_t& playback_id) {
     guarded("Stop", [&] {
         const Caller& caller = admit_caller();
-        auto result = player_.stop(playback_id, caller.uid, false);
+        const auto stop_as = [&](bool privileged) {
+            return playback_.call(
+                [&](Player& player) { return player.stop(playback_id, caller.uid, privileged); });
+        };
+        auto result = stop_as(false);
+        // Only a stop that would be refused asks polkit: a caller's own playbacks need no action.
         if (result == Player::StopResult::not_permitted &&
             authorizer_.allowed(caller, Action::manage)) {
-            result = player_.stop(playback_id, caller.uid, true);
+            result = stop_as(true);
         }
         switch (result) {
             case Player::StopResult::stopped:
@@ -229,8 +254,8 @@ std::vector<sdbus::Struct<std::string, std::string>> HapticsService::BarClefs(
     return guarded("BarClefs", [&] {
         admit_caller();
         std::vector<sdbus::Struct<std::string, std::string>> bars;
-        for (auto& bar :
-             bar_clefs(find_score_to_play(registry_, score, "").bundle, config_.device_clefs)) {
+        for (auto& bar : bar_clefs(find_score_to_play(registry_, score, PlayOptions{}).bundle,
+                                   config_.device_clefs)) {
             bars.emplace_back(std::move(bar.written), std::move(bar.device));
         }
         return bars;
@@ -264,7 +289,7 @@ void HapticsService::SwitchDriver(const std::string& driver) {
         }
         log::info("uid " + std::to_string(caller.uid) + " switches the driver to " + driver);
         try {
-            host_.switch_to(driver);
+            playback_.call([&](Player&) { host_.switch_to(driver); });
         } catch (const std::invalid_argument& error) {
             throw RequestError(RequestError::Code::invalid, error.what());
         }
@@ -277,11 +302,10 @@ void HapticsService::Intensity(const double& value) {
         authorizer_.require(caller, Action::manage, "Setting Intensity");
         if (!(value >= 0.0 && value <= 1.0)) {
             throw RequestError(RequestError::Code::invalid,
-                               "Intensity " + std::to_string(value) + " is outside 0..1");
+                               "Intensity " + number_text(value) + " is outside 0..1");
         }
-        player_.set_master_intensity(value);
-        log::info("uid " + std::to_string(caller.uid) + " set Intensity to " +
-                  std::to_string(value));
+        playback_.call([&](Player& player) { player.set_master_intensity(value); });
+        log::info("uid " + std::to_string(caller.uid) + " set Intensity to " + number_text(value));
     });
 }
 

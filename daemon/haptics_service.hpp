@@ -10,23 +10,23 @@
 #include "daemon/authority.hpp"
 #include "daemon/callers.hpp"
 #include "daemon/config.hpp"
-#include "daemon/player.hpp"
+#include "daemon/playback_thread.hpp"
 #include "daemon/registry/registry.hpp"
 #include "haptics1-adaptor.h"
 
 namespace vibscore::daemon {
 
-// The org.vibscore.Haptics1 object: the bus adaptor. It finds out who calls and admits them,
-// then hands the work to the registry, play_request, the player and the actuator host, and turns
-// what they report into signals. Every failure leaves here as a named D-Bus error; nothing a
-// caller sends can stop the daemon.
+// The org.vibscore.Haptics1 object: the bus adaptor, on the bus thread. It finds out who calls
+// and admits them, then hands the work to the registry, play_request, and (on the playback
+// thread) the player and the actuator host, and turns what they report into signals. Every
+// failure leaves here as a named D-Bus error; nothing a caller sends can stop the daemon.
 class HapticsService final : public sdbus::AdaptorInterfaces<org::vibscore::Haptics1_adaptor>,
                              public PlayerListener {
   public:
     // `config` is the running configuration (a reload replaces its contents). The service
     // listens to the player and the host, and watches callers leave the bus, until destroyed.
     HapticsService(sdbus::IConnection& connection, const DaemonConfig& config, Registry& registry,
-                   Player& player, CallerDirectory& callers, ActuatorHost& host,
+                   PlaybackThread& playback, CallerDirectory& callers, ActuatorHost& host,
                    const Authorizer& authorizer);
     ~HapticsService() override;
 
@@ -47,9 +47,9 @@ class HapticsService final : public sdbus::AdaptorInterfaces<org::vibscore::Hapt
         const std::string& score) override;
     std::vector<sdbus::Struct<std::string, std::string>> ListDrivers() override;
     void SwitchDriver(const std::string& driver) override;
-    std::string Driver() override { return host_.driver(); }
-    std::vector<std::string> Capabilities() override { return host_.capabilities().names(); }
-    double Intensity() override { return player_.master_intensity(); }
+    std::string Driver() override;
+    std::vector<std::string> Capabilities() override;
+    double Intensity() override;
     void Intensity(const double& value) override;
     std::string Version() override;
 
@@ -60,7 +60,7 @@ class HapticsService final : public sdbus::AdaptorInterfaces<org::vibscore::Hapt
 
     const DaemonConfig& config_;
     Registry& registry_;
-    Player& player_;
+    PlaybackThread& playback_;
     CallerDirectory& callers_;
     ActuatorHost& host_;
     const Authorizer& authorizer_;

@@ -17,10 +17,12 @@
 #include "daemon/event_loop.hpp"
 #include "daemon/haptics_service.hpp"
 #include "daemon/log.hpp"
-#include "daemon/player.hpp"
+#include "daemon/playback_ids.hpp"
+#include "daemon/playback_thread.hpp"
 #include "daemon/polkit_authority.hpp"
 #include "daemon/registry/registry.hpp"
 #include "daemon/reload.hpp"
+#include "daemon/virtual_vibra/virtual_vibra.hpp"
 #include "dbus/haptics1_names.hpp"
 
 using namespace vibscore;
@@ -41,7 +43,30 @@ int list_drivers(const CommandLine& command_line) {
     return 0;
 }
 
+// After the daemon ended, however it ended (SIGKILL, a crash): the configured backend, opened
+// and switched off (GPIO lines driven low), then closed again.
+int safe_off(const CommandLine& command_line) {
+    const DaemonConfig config = read_config(command_line);
+    ActuatorHost host(config);
+    host.actuator().off();
+    log::info("safe-off: " + host.driver() + " switched off");
+    return 0;
+}
+
+// The bus thread's loop takes these signals through a signalfd. Blocked before any other thread
+// starts (the playback thread, a GPIO backend's PWM thread), so that every thread inherits the
+// mask and the kernel never hands one to a thread that would die of it.
+void block_handled_signals() {
+    sigset_t mask;
+    sigemptyset(&mask);
+    for (const int signo : {SIGTERM, SIGINT, SIGHUP}) {
+        sigaddset(&mask, signo);
+    }
+    pthread_sigmask(SIG_BLOCK, &mask, nullptr);
+}
+
 int serve(const CommandLine& command_line) {
+    block_handled_signals();
     DaemonConfig config = read_config(command_line);
     EventLoop loop;
     ActuatorHost host(config);
@@ -53,8 +78,10 @@ int serve(const CommandLine& command_line) {
     if (!config.device_clefs.empty()) {
         log::info("device clefs: " + describe(config.device_clefs));
     }
-    Player player(loop, host.actuator());
-    host.attach(player);
+    // From here on every actuator call happens on the playback thread.
+    PlaybackThread playback(loop, host.actuator(),
+                            {first_playback_id(config.store), config.rt_priority});
+    playback.call([&](Player& player) { host.attach(player); });
 
     auto connection = sdbus::createSystemBusConnection();
     BusCredentials credentials(*connection);
@@ -62,14 +89,26 @@ int serve(const CommandLine& command_line) {
                             [&](const std::string& sender) { return credentials.uid_of(sender); });
     BusPolkitAuthority polkit(*connection);
     const Authorizer authorizer(polkit);
-    HapticsService service(*connection, config, registry, player, callers, host, authorizer);
+    HapticsService service(*connection, config, registry, playback, callers, host, authorizer);
+    // The kernel's vibra for programs that only know force feedback (feedbackd, games, fftest).
+    const auto vibra_settings = parse_virtual_vibra_settings(config.settings_of("virtual-vibra"));
+    std::optional<VirtualVibra> vibra;
+    if (vibra_settings.enabled) {
+        vibra.emplace(
+            loop,
+            [&playback](const auto& work) { playback.call([&](Player& player) { work(player); }); },
+            vibra_settings, config.separation_ms / 1000.0);
+    }
     connection->requestName(haptics1::kBusName);
     BusLoopBinding binding(loop, *connection);
 
+    const auto stop_playback = [&] {
+        playback.call([](Player& player) { player.stop_all(kServiceStopped); });
+    };
     const auto shut_down = [&] {
         log::info("stopping");
         sd_notify(0, "STOPPING=1");
-        player.stop_all("stopped");
+        stop_playback();
         loop.exit(0);
     };
     auto on_term = loop.on_signal(SIGTERM, shut_down);
@@ -77,7 +116,8 @@ int serve(const CommandLine& command_line) {
     auto on_hup = loop.on_signal(SIGHUP, [&] {
         sd_notify(0, "RELOADING=1");
         try {
-            reload_config(config, read_config(command_line), host, callers);
+            DaemonConfig fresh = read_config(command_line);
+            playback.call([&](Player&) { reload_config(config, std::move(fresh), host, callers); });
         } catch (const std::exception& error) {
             log::error(std::string("reload failed, keeping the running configuration: ") +
                        error.what());
@@ -89,7 +129,7 @@ int serve(const CommandLine& command_line) {
               ", driver " + host.driver());
     sd_notify(0, "READY=1\nSTATUS=serving");
     const int code = loop.run();
-    player.stop_all("stopped");
+    stop_playback();
     connection->releaseName(haptics1::kBusName);
     return code;
 }
@@ -107,6 +147,9 @@ int main(int argc, char** argv) {
         return list_drivers(command_line);
     }
     try {
+        if (command_line.safe_off) {
+            return safe_off(command_line);
+        }
         return serve(command_line);
     } catch (const std::exception& error) {
         log::error(error.what());

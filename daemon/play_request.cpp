@@ -1,7 +1,9 @@
 #include "daemon/play_request.hpp"
 
+#include <memory>
 #include <string>
 
+#include "common/number_text.hpp"
 #include "daemon/render/cue_schedule.hpp"
 #include "daemon/render/performance.hpp"
 #include "daemon/request_error.hpp"
@@ -46,32 +48,40 @@ PlayOptions parse_play_options(const std::map<std::string, sdbus::Variant>& opti
             parsed.repeat = option_value<std::int32_t>(key, value, "i", "an int32");
             if (parsed.repeat < -1) {
                 throw invalid("repeat " + std::to_string(parsed.repeat) +
-                              " is invalid (0 once, n more times, -1 forever)");
+                              " is invalid (0 once, n more times, -1 until stopped)");
             }
         } else if (key == "intensity") {
             parsed.intensity = option_value<double>(key, value, "d", "a double");
             if (!(parsed.intensity >= 0.0 && parsed.intensity <= 1.0)) {
-                throw invalid("intensity " + std::to_string(parsed.intensity) + " is outside 0..1");
+                throw invalid("intensity " + number_text(parsed.intensity) + " is outside 0..1");
             }
         } else if (key == "clef") {
             parsed.clef = option_value<std::string>(key, value, "s", "a string");
         } else if (key == "start-bar") {
             parsed.start_bar = option_value<std::uint32_t>(key, value, "u", "a uint32");
+        } else if (key == "clefs") {
+            parsed.clef_documents = option_value<std::map<std::string, std::string>>(
+                key, value, "a{ss}", "a dictionary of strings");
         } else {
             throw invalid("unknown option \"" + key +
-                          "\" (expected usage, repeat, intensity, clef, start-bar)");
+                          "\" (expected usage, repeat, intensity, clef, start-bar, clefs)");
         }
     }
     return parsed;
 }
 
 ScoreToPlay find_score_to_play(const Registry& registry, const std::string& score,
-                               const std::string& clef_override, const DeviceClefs& device_clefs) {
+                               const PlayOptions& options, const DeviceClefs& device_clefs) {
+    const std::string& clef_override = options.clef;
     ScoreToPlay found;
     if (is_inline_document(score)) {
-        found.bundle = registry.inline_score(score);
+        found.bundle = registry.inline_score(score, options.clef_documents);
         found.label = "<inline>";
     } else {
+        if (!options.clef_documents.empty()) {
+            throw invalid("option \"clefs\" goes with an inline score, not registry score \"" +
+                          score + "\"");
+        }
         found.bundle = registry.score(score);
         found.label = score;
     }
@@ -81,7 +91,8 @@ ScoreToPlay find_score_to_play(const Registry& registry, const std::string& scor
             bind_clefs(ParsedScore{found.bundle.score, found.bundle.where}, found.bundle.file,
                        [&](const ClefDeclaration&, const SourceLocation&) { return clef; });
     } else if (!device_clefs.empty()) {
-        found.bundle = bind_device_clefs(registry, found.bundle, device_clefs);
+        found.bundle =
+            bind_device_clefs(registry, found.bundle, device_clefs, options.clef_documents);
     }
     return found;
 }
@@ -96,17 +107,12 @@ PlaybackRequest make_playback_request(const ScoreToPlay& score, const PlayOption
     render::RenderOptions render_options;
     render_options.separation_s = separation_s;
     render_options.start_bar = options.start_bar;
-    const render::Performance performance(score.bundle, render_options);
+    auto performance = std::make_shared<const render::Performance>(score.bundle, render_options);
 
     PlaybackRequest request;
     request.label = score.label;
-    request.cues = render::cue_schedule(performance);
-    if (request.cues.size() > kMaxCues) {
-        throw RequestError(RequestError::Code::limit_exceeded,
-                           "the score needs " + std::to_string(request.cues.size()) +
-                               " actuator commands; the limit is " + std::to_string(kMaxCues));
-    }
-    request.duration_s = performance.duration();
+    request.duration_s = performance->duration();
+    request.cues = std::make_shared<render::ScheduleSource>(std::move(performance));
     request.usage = options.usage;
     request.repeat = options.repeat;
     request.intensity = options.intensity;

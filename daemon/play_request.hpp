@@ -2,7 +2,6 @@
 
 #include <sdbus-c++/Types.h>
 
-#include <cstddef>
 #include <cstdint>
 #include <map>
 #include <string>
@@ -18,15 +17,14 @@
 // test; the bus service only adds who is calling.
 namespace vibscore::daemon {
 
-// A playback's cues are kept in memory; this bounds that memory for one hour of dense shapes.
-inline constexpr std::size_t kMaxCues = 2'000'000;
-
 // Play's options dictionary (a{sv}), checked. dbus/org.vibscore.Haptics1.xml documents each.
 struct PlayOptions {
     Usage usage = Usage::notification;
     int repeat = 0;        // 0 once, n more times, -1 until stopped
     double intensity = 1;  // 0..1
     std::string clef;      // a registry clef every bar plays through; empty: the score's own
+    // VibClef documents sent along with an inline score, by the href that names each.
+    std::map<std::string, std::string> clef_documents;
     std::uint32_t start_bar = 0;
 };
 
@@ -40,19 +38,20 @@ struct ScoreToPlay {
     std::string label;  // registry name, or "<inline>"
 };
 
-// `score` is a registry name or, when it starts with '<', a whole VibScore document. A clef
-// override replaces every clef the score declares; without one, each declared clef plays
-// through its device clef (vibscored.conf [clefs]). Throws RegistryError (not_found,
-// invalid_document, limit_exceeded) as the registry does; a missing override clef is not_found
-// before anything else is looked at.
+// `score` is a registry name or, when it starts with '<', a whole VibScore document, whose clefs
+// are the documents sent along with it (options.clef_documents) or the registry's. A clef
+// override (options.clef) replaces every clef the score declares; without one, each clef the
+// score names from the registry plays through its device clef (vibscored.conf [clefs]); clefs
+// sent along with the score play as sent: they are the caller's choice, as an override is.
+// Throws RegistryError (not_found, invalid_document, limit_exceeded) as the registry does,
+// RequestError (invalid) for clef documents sent with a registry name.
 ScoreToPlay find_score_to_play(const Registry& registry, const std::string& score,
-                               const std::string& clef_override,
-                               const DeviceClefs& device_clefs = {});
+                               const PlayOptions& options, const DeviceClefs& device_clefs = {});
 
-// The player's request: the score's cue schedule from the start bar, with the caller's usage,
-// repeat and intensity (owner and sender are the caller's, for the bus service to fill in).
-// Throws RequestError: invalid for a start bar past the last bar, limit_exceeded for a score
-// needing more than kMaxCues actuator commands.
+// The player's request: the score performed from the start bar, whose cues the player reads as
+// it plays them, with the caller's usage, repeat and intensity (owner and sender are the
+// caller's, for the bus service to fill in). Throws RequestError (invalid) for a start bar past
+// the last bar.
 PlaybackRequest make_playback_request(const ScoreToPlay& score, const PlayOptions& options,
                                       double separation_s);
 

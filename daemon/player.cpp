@@ -10,6 +10,10 @@ namespace vibscore::daemon {
 
 namespace {
 
+// How far the player reads ahead for the next drive to prepare, or for the next switch-off to
+// arm a kernel timer with: enough for 20 s of 5 ms steps, and a bound on what one playback holds.
+constexpr std::size_t kReadAhead = 4096;
+
 // Stands in while nobody listens, so reporting needs no null checks.
 class NobodyListens final : public PlayerListener {
   public:
@@ -20,10 +24,23 @@ class NobodyListens final : public PlayerListener {
 
 NobodyListens nobody;
 
+bool is_drive(const render::Cue& cue) {
+    return cue.kind == render::Cue::Kind::drive;
+}
+
+bool is_off(const drivers::Drive& drive) {
+    return drive.amplitude == 0.0 && drive.ramp_to == 0.0;
+}
+
 }  // namespace
 
-Player::Player(EventLoop& loop, drivers::Actuator& actuator, PlayerListener* listener)
-    : timer_(loop, [this] { run_due(); }), actuator_(&actuator), listener_(&nobody) {
+Player::Player(EventLoop& loop, drivers::Actuator& actuator, PlayerListener* listener,
+               std::uint64_t first_id)
+    : timer_(loop, [this] { run_due(); }),
+      actuator_(&actuator),
+      listener_(&nobody),
+      first_id_(first_id),
+      next_id_(first_id) {
     set_listener(listener);
     actuator_->off();  // whatever state the device was left in
 }
@@ -40,28 +57,37 @@ std::optional<std::uint64_t> Player::current_id() const {
     return current_ ? std::optional(current_->id) : std::nullopt;
 }
 
-std::uint64_t Player::due_us(const Playback& playback, const render::Cue& cue) const {
+std::uint64_t Player::due_us(const Playback& playback, const PassCue& cue) const {
     // Each pass is placed from the start, not from the previous pass, so repeats do not drift.
-    const double seconds =
-        static_cast<double>(playback.pass) * playback.request.duration_s + cue.at;
+    const double seconds = static_cast<double>(cue.pass) * playback.request.duration_s + cue.cue.at;
     return playback.start_us + static_cast<std::uint64_t>(std::llround(seconds * 1e6));
 }
 
+void Player::check_admission(Usage usage, int repeat) const {
+    if (!current_) {
+        return;
+    }
+    const auto& playing = current_->request;
+    const int current_importance = importance(playing.usage);
+    const int new_importance = importance(usage);
+    if (new_importance < current_importance) {
+        throw PlayerBusy("a more important playback is in progress (" +
+                         std::string(to_string(playing.usage)) + ", id " +
+                         std::to_string(current_->id) + ")");
+    }
+    // Repeats left: the asked ones less the passes already begun after the first.
+    const bool repeating =
+        playing.repeat < 0 || static_cast<std::uint64_t>(playing.repeat) > current_->pass;
+    if (new_importance == current_importance && repeating && repeat == 0) {
+        throw PlayerBusy("a repeating " + std::string(to_string(playing.usage)) +
+                         " playback is in progress (id " + std::to_string(current_->id) +
+                         "); it yields only to a more important or another repeating one");
+    }
+}
+
 std::uint64_t Player::play(PlaybackRequest request) {
+    check_admission(request.usage, request.repeat);
     if (current_) {
-        const auto& playing = current_->request;
-        const int current_importance = importance(playing.usage);
-        const int new_importance = importance(request.usage);
-        if (new_importance < current_importance) {
-            throw PlayerBusy("a more important playback is in progress (" +
-                             std::string(to_string(playing.usage)) + ", id " +
-                             std::to_string(current_->id) + ")");
-        }
-        if (new_importance == current_importance && playing.repeat != 0 && request.repeat == 0) {
-            throw PlayerBusy("a repeating " + std::string(to_string(playing.usage)) +
-                             " playback is in progress (id " + std::to_string(current_->id) +
-                             "); it yields only to a more important or another repeating one");
-        }
         finish("preempted");
     }
     const std::uint64_t id = next_id_++;
@@ -73,10 +99,11 @@ std::uint64_t Player::play(PlaybackRequest request) {
     adaptation.envelopes = capabilities.envelopes;
     adaptation.scale = request.intensity * master_intensity_;
     adaptation.pulse_period_s = capabilities.pulse_period_s;
-    request.cues = render::adapt_cues(request.cues, request.duration_s, adaptation);
+    PlaybackCues cues(request.cues, request.duration_s, request.repeat, adaptation);
     on_since_us_.reset();
     held_off_ = false;
-    current_ = Playback{id, std::move(request), monotonic_now_us(), 0, 0, capabilities};
+    current_.emplace(
+        Playback{id, std::move(request), std::move(cues), monotonic_now_us(), 0, capabilities});
     if (capabilities.gain_control) {
         try {
             actuator_->set_gain(master_intensity_);
@@ -86,12 +113,23 @@ std::uint64_t Player::play(PlaybackRequest request) {
         }
     }
     // The first drive goes out before anything else: it is what the user feels.
-    auto& cues = current_->request.cues;
-    while (current_->next_cue < cues.size() && cues[current_->next_cue].at <= 0.0 &&
-           cues[current_->next_cue].kind == render::Cue::Kind::drive) {
-        if (!execute(cues[current_->next_cue++])) {
+    bool drove = false;
+    while (const PassCue* next = current_->cues.ahead(0)) {
+        if (next->pass != 0 || next->cue.at > 0.0 || !is_drive(next->cue)) {
+            break;
+        }
+        const render::Cue cue = next->cue;
+        current_->cues.pop();
+        if (!execute(cue)) {
             return id;
         }
+        drove = true;
+    }
+    if (drove) {
+        // The score's clock starts when its first drive has reached the actuator: a backend that
+        // first had to find its device again (replugged) can take longer than a short note, which
+        // would otherwise be cut off as overdue.
+        current_->start_us = monotonic_now_us();
     }
     listener_->playback_started(id, label);
     if (!on_since_us_) {
@@ -135,23 +173,42 @@ void Player::prepare_next_drive() {
     if (!current_ || !current_->capabilities.effect_memory) {
         return;
     }
-    const auto& cues = current_->request.cues;
-    const auto is_drive = [](const render::Cue& cue) {
-        return cue.kind == render::Cue::Kind::drive && cue.amplitude > 0.0;
-    };
-    auto next = std::find_if(cues.begin() + static_cast<std::ptrdiff_t>(current_->next_cue),
-                             cues.end(), is_drive);
-    if (next == cues.end() && current_->request.repeat != 0) {
-        next = std::find_if(cues.begin(), cues.end(), is_drive);
+    for (std::size_t i = 0; i < kReadAhead; ++i) {
+        const PassCue* next = current_->cues.ahead(i);
+        if (next == nullptr) {
+            return;
+        }
+        if (is_drive(next->cue) && next->cue.amplitude > 0.0) {
+            try {
+                actuator_->prepare(drive_for(next->cue));
+            } catch (const drivers::DeviceError& error) {
+                fail(error);
+            }
+            return;
+        }
     }
-    if (next == cues.end()) {
-        return;
+}
+
+double Player::seconds_until_off() {
+    const double limit_s = current_->capabilities.max_on_time_s;
+    const std::uint64_t now = monotonic_now_us();
+    double until_s = 0.0;
+    for (std::size_t i = 0; i < kReadAhead; ++i) {
+        const PassCue* next = current_->cues.ahead(i);
+        if (next == nullptr) {
+            return until_s;  // the playback ends, and the actuator with it, after the last cue
+        }
+        const std::uint64_t due = due_us(*current_, *next);
+        until_s = due > now ? static_cast<double>(due - now) / 1e6 : 0.0;
+        if (limit_s > 0.0 && until_s >= limit_s) {
+            return limit_s;
+        }
+        if (is_drive(next->cue) && is_off(drive_for(next->cue))) {
+            return until_s;
+        }
     }
-    try {
-        actuator_->prepare(drive_for(*next));
-    } catch (const drivers::DeviceError& error) {
-        fail(error);
-    }
+    // Not in sight: as long as the actuator may be on at all.
+    return limit_s > 0.0 ? limit_s : until_s;
 }
 
 void Player::fail(const drivers::DeviceError& error) {
@@ -174,7 +231,7 @@ bool Player::execute(const render::Cue& cue) {
     }
     const drivers::Drive drive = drive_for(cue);
     try {
-        if (drive.amplitude == 0.0 && drive.ramp_to == 0.0) {
+        if (is_off(drive)) {
             actuator_->off();
             on_since_us_.reset();
             held_off_ = false;
@@ -185,6 +242,9 @@ bool Player::execute(const render::Cue& cue) {
         }
         if (!on_since_us_) {
             on_since_us_ = monotonic_now_us();
+        }
+        if (current_->capabilities.off_timer) {
+            actuator_->set_off_timer(seconds_until_off());
         }
         actuator_->apply(drive);
         prepare_next_drive();
@@ -198,23 +258,13 @@ bool Player::execute(const render::Cue& cue) {
 void Player::run_due() {
     while (current_) {
         auto& playback = *current_;
-        const auto& cues = playback.request.cues;
-        if (playback.next_cue == cues.size()) {
-            if (playback.request.repeat == 0) {
-                finish("completed");
-                return;
-            }
-            if (playback.request.repeat > 0) {
-                --playback.request.repeat;
-            }
-            ++playback.pass;
-            playback.next_cue = 0;
-            if (cues.empty()) {
-                continue;
-            }
+        const PassCue* next = playback.cues.ahead(0);
+        if (next == nullptr) {
+            finish("completed");
+            return;
         }
-        const auto& cue = cues[playback.next_cue];
-        const std::uint64_t due = due_us(playback, cue);
+        playback.pass = next->pass;
+        const std::uint64_t due = due_us(playback, *next);
         const std::uint64_t now = monotonic_now_us();
         const auto on_time_deadline = on_time_deadline_us();
         if (on_time_deadline && now >= *on_time_deadline) {
@@ -233,7 +283,8 @@ void Player::run_due() {
             timer_.arm(wake);
             return;
         }
-        ++playback.next_cue;
+        const render::Cue cue = next->cue;
+        playback.cues.pop();
         if (!execute(cue)) {
             return;
         }
@@ -252,7 +303,7 @@ void Player::finish(const std::string& reason) {
 }
 
 Player::StopResult Player::stop(std::uint64_t id, uid_t caller, bool privileged) {
-    if (id >= next_id_) {
+    if (id != 0 && (id < first_id_ || id >= next_id_)) {
         return StopResult::not_found;
     }
     if (!current_ || (id != 0 && current_->id != id)) {
@@ -266,7 +317,7 @@ Player::StopResult Player::stop(std::uint64_t id, uid_t caller, bool privileged)
             return StopResult::not_permitted;
         }
     }
-    finish("stopped");
+    finish(kStopped);
     return StopResult::stopped;
 }
 
@@ -284,7 +335,7 @@ void Player::stop_all(const std::string& reason) {
 }
 
 void Player::replace_actuator(drivers::Actuator& actuator) {
-    stop_all("stopped");
+    stop_all(kStopped);
     actuator_ = &actuator;
     actuator_->off();
 }

@@ -3,6 +3,7 @@
 #include <sys/types.h>
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -10,14 +11,16 @@
 
 #include "daemon/drivers/actuator.hpp"
 #include "daemon/event_loop.hpp"
-#include "daemon/render/cue_schedule.hpp"
+#include "daemon/playback_cues.hpp"
+#include "daemon/render/cue_stream.hpp"
 #include "daemon/usage.hpp"
 
 namespace vibscore::daemon {
 
 struct PlaybackRequest {
     std::string label;  // registry name, or "<inline>"
-    std::vector<render::Cue> cues;
+    // One pass of the score's cues, made as playback advances and adapted to the actuator.
+    std::shared_ptr<const render::CueSource> cues;
     double duration_s = 0.0;  // one pass
     Usage usage = Usage::notification;
     int repeat = 0;  // 0 once, n more times, -1 until stopped
@@ -35,6 +38,11 @@ class PlayerListener {
     virtual void playback_finished(std::uint64_t id, const std::string& reason) = 0;
 };
 
+// Why a playback ended, as PlaybackFinished says (dbus/org.vibscore.Haptics1.xml): a caller's
+// Stop, and the service stopping (SIGTERM), which no caller asked for.
+inline constexpr const char* kStopped = "stopped";
+inline constexpr const char* kServiceStopped = "service-stopped";
+
 // A request lost arbitration against the playback in progress.
 class PlayerBusy : public std::runtime_error {
   public:
@@ -43,23 +51,33 @@ class PlayerBusy : public std::runtime_error {
 
 // Plays one score at a time on the actuator, each cue at its absolute CLOCK_MONOTONIC deadline
 // (start + cue time), so lateness never accumulates. Arbitration between overlapping requests
-// follows their usage; see dbus/org.vibscore.Haptics1.xml (Play) and docs/daemon.md.
+// follows their usage; see dbus/org.vibscore.Haptics1.xml (Play) and docs/daemon.md. The player
+// itself has no threads: it runs on the loop it is given (the daemon gives it a thread of its
+// own, PlaybackThread).
 class Player {
   public:
     // Reports to `listener` (none: set_listener() later, e.g. by the bus service built after it).
-    Player(EventLoop& loop, drivers::Actuator& actuator, PlayerListener* listener = nullptr);
+    // Playback ids count up from `first_id` (never 0).
+    Player(EventLoop& loop, drivers::Actuator& actuator, PlayerListener* listener = nullptr,
+           std::uint64_t first_id = 1);
     Player(EventLoop& loop, drivers::Actuator& actuator, PlayerListener& listener)
         : Player(loop, actuator, &listener) {}
     ~Player();
     Player(const Player&) = delete;
     Player& operator=(const Player&) = delete;
 
+    // Throws PlayerBusy when a request of this usage and repeat would be refused now: a more
+    // important (or a repeating, equally important) playback plays. Play asks this before it
+    // renders anything, so a refused request costs next to nothing.
+    void check_admission(Usage usage, int repeat) const;
+
     // Starts at once: the first drive reaches the actuator before this returns.
-    // Throws PlayerBusy when a more important (or a repeating, equally important) playback plays.
+    // Throws PlayerBusy as check_admission() does.
     std::uint64_t play(PlaybackRequest request);
 
     enum class StopResult { stopped, not_playing, not_found, not_permitted };
     // Stops playback `id` (0: whatever `caller` has playing). Privileged callers may stop any.
+    // An id this player never gave out (another run's, say) is not_found.
     StopResult stop(std::uint64_t id, uid_t caller, bool privileged);
 
     // The caller's bus connection went away: a playback of its that repeats until stopped ends
@@ -84,17 +102,20 @@ class Player {
     struct Playback {
         std::uint64_t id = 0;
         PlaybackRequest request;
-        std::uint64_t start_us = 0;  // when pass 0 began
-        std::uint64_t pass = 0;
-        std::size_t next_cue = 0;
+        PlaybackCues cues;
+        std::uint64_t start_us = 0;          // when pass 0 began
+        std::uint64_t pass = 0;              // of the next cue
         drivers::Capabilities capabilities;  // of the actuator when it started
     };
 
-    std::uint64_t due_us(const Playback& playback, const render::Cue& cue) const;
+    std::uint64_t due_us(const Playback& playback, const PassCue& cue) const;
     void run_due();
     bool execute(const render::Cue& cue);
     drivers::Drive drive_for(const render::Cue& cue) const;
     void prepare_next_drive();
+    // For a backend whose kernel ends a drive by itself: how long from now the schedule keeps
+    // the actuator on (at most its maximum on-time).
+    double seconds_until_off();
     // Thermal protection: when the actuator, on without a break, reaches its maximum on-time.
     std::optional<std::uint64_t> on_time_deadline_us() const;
     void finish(const std::string& reason);
@@ -105,7 +126,8 @@ class Player {
     drivers::Actuator* actuator_;
     PlayerListener* listener_;
     std::optional<Playback> current_;
-    std::uint64_t next_id_ = 1;
+    std::uint64_t first_id_;
+    std::uint64_t next_id_;
     double master_intensity_ = 1.0;
     // Since when the actuator has been on without a break, and whether it is held off until
     // the score itself stops driving it (after exceeding its maximum on-time).

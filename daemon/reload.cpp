@@ -1,6 +1,7 @@
 #include "daemon/reload.hpp"
 
 #include "daemon/drivers/configured_actuator.hpp"
+#include "daemon/drivers/driver_settings.hpp"
 #include "daemon/log.hpp"
 
 namespace vibscore::daemon {
@@ -8,7 +9,12 @@ namespace vibscore::daemon {
 void reload_config(DaemonConfig& running, DaemonConfig fresh, ActuatorHost& host,
                    CallerDirectory& callers) {
     DriverSettingsMap fresh_settings = fresh.settings_of(fresh.driver);
-    drivers::take_common_settings(fresh.driver, fresh_settings);
+    try {
+        drivers::take_common_settings(fresh.driver, fresh_settings);
+    } catch (const drivers::SettingError& error) {
+        throw drivers::SettingError(error.key(),
+                                    fresh.where(fresh.driver, error.key()) + error.what());
+    }
     if (fresh.store != running.store || fresh.shipped != running.shipped) {
         log::warning("store and shipped directories change only on restart");
         fresh.store = running.store;

@@ -8,6 +8,7 @@ namespace vibscore::haptics1 {
 
 inline constexpr const char* kBusName = "org.vibscore.Haptics1";
 inline constexpr const char* kObjectPath = "/org/vibscore/Haptics1";
+inline constexpr const char* kInterface = "org.vibscore.Haptics1";
 
 // The named errors the daemon sends; every one begins with kErrorPrefix.
 namespace errors {

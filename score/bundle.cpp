@@ -8,6 +8,7 @@
 #include "score/clef_xml.hpp"
 #include "score/document_error.hpp"
 #include "score/limits.hpp"
+#include "score/registry_names.hpp"
 #include "score/xml_support.hpp"
 
 namespace vibscore {
@@ -126,7 +127,8 @@ Clef load_clef_file(const std::filesystem::path& path) {
     return read_clef(read_document_file(path), path.string());
 }
 
-ScoreBundle load_score_file(const std::filesystem::path& path) {
+ScoreBundle load_score_file(const std::filesystem::path& path, const NamedClefLookup& named,
+                            std::map<std::string, std::string>* origins) {
     const auto file = path.string();
     auto parsed = read_score(read_document_file(path), file);
     const auto directory = path.parent_path();
@@ -134,8 +136,26 @@ ScoreBundle load_score_file(const std::filesystem::path& path) {
         std::move(parsed), file,
         [&](const ClefDeclaration& declaration, const SourceLocation& declared_at) {
             const auto clef_path = directory / declaration.href;
+            const auto name = clef_name_in_href(declaration.href);
+            std::error_code ignored;
+            if (named && name && !std::filesystem::exists(clef_path, ignored)) {
+                if (auto found = named.find(*name)) {
+                    if (origins != nullptr) {
+                        (*origins)[declaration.id] = found->origin;
+                    }
+                    return std::move(found->clef);
+                }
+                throw DocumentError(declared_at,
+                                    "clef \"" + declaration.id + "\": " + clef_path.string() +
+                                        ": no such file beside the score, and no clef \"" + *name +
+                                        "\" in " + named.places);
+            }
             try {
-                return load_clef_file(clef_path);
+                auto clef = load_clef_file(clef_path);
+                if (origins != nullptr) {
+                    (*origins)[declaration.id] = clef_path.string();
+                }
+                return clef;
             } catch (const DocumentError& error) {
                 // A missing or unreadable clef file is the score's fault too:
                 // name both places.

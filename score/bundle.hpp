@@ -47,7 +47,26 @@ DocumentKind document_kind(std::string_view text, const std::string& file);
 
 Clef load_clef_file(const std::filesystem::path& path);
 
-// Loads a score file and the clefs its hrefs name, relative to the score's directory.
-ScoreBundle load_score_file(const std::filesystem::path& path);
+// A registry clef found by name, for a score file whose clef href is a bare name with no file
+// beside the score: the clef, and where it came from ("registry", a path), for messages.
+struct NamedClef {
+    Clef clef;
+    std::string origin;
+};
+// Looks up registry clef `name` (`find`: nullopt when there is none; may throw DocumentError for
+// a clef that is there but invalid), and says where it looks, for the message when it finds none.
+struct NamedClefLookup {
+    std::function<std::optional<NamedClef>(const std::string& name)> find;
+    std::string places;
+
+    explicit operator bool() const { return static_cast<bool>(find); }
+};
+
+// Loads a score file and its clefs, by the one rule of docs/score-format.md ("How a score names
+// its clefs"): an href is a path relative to the score's folder; when no file is there and the
+// href is a bare registry clef name (NAME.clef.xml), `named` looks it up. `origins`, if given,
+// receives where each declared clef came from, by clef id.
+ScoreBundle load_score_file(const std::filesystem::path& path, const NamedClefLookup& named = {},
+                            std::map<std::string, std::string>* origins = nullptr);
 
 }  // namespace vibscore

@@ -22,13 +22,7 @@ std::string quoted(std::string_view text) {
 
 }  // namespace
 
-Source::Source(std::string_view text, std::string file) : file_(std::move(file)) {
-    line_starts_.push_back(0);
-    for (size_t i = 0; i < text.size(); ++i) {
-        if (text[i] == '\n') {
-            line_starts_.push_back(static_cast<std::ptrdiff_t>(i + 1));
-        }
-    }
+Source::Source(std::string_view text, std::string file) : lines_(text, std::move(file)) {
     const auto result =
         document_.load_buffer(text.data(), text.size(), kParseOptions, pugi::encoding_utf8);
     if (!result) {
@@ -41,13 +35,7 @@ Source::Source(std::string_view text, std::string file) : file_(std::move(file))
 }
 
 SourceLocation Source::where_offset(std::ptrdiff_t offset) const {
-    if (offset < 0) {
-        return {file_};
-    }
-    const auto next = std::upper_bound(line_starts_.begin(), line_starts_.end(), offset);
-    const auto line = static_cast<int>(next - line_starts_.begin());
-    const auto column = static_cast<int>(offset - *(next - 1)) + 1;
-    return {file_, line, column};
+    return lines_.at(offset);
 }
 
 SourceLocation Source::where(pugi::xml_node node) const {

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "score/document_error.hpp"
+#include "score/line_index.hpp"
 
 namespace vibscore::xml {
 
@@ -20,14 +21,13 @@ class Source {
     Source(std::string_view text, std::string file);
 
     pugi::xml_node root() const { return document_.document_element(); }
-    const std::string& file() const { return file_; }
+    const std::string& file() const { return lines_.file(); }
     SourceLocation where(pugi::xml_node node) const;
     SourceLocation where_offset(std::ptrdiff_t offset) const;
 
   private:
-    std::string file_;
+    LineIndex lines_;
     pugi::xml_document document_;
-    std::vector<std::ptrdiff_t> line_starts_;
 };
 
 // Reports attributes of node not named in allowed.

@@ -2,15 +2,36 @@
 # when it is not running, only files are offered.
 
 _vibscore_registry() {
-    vibscore list "$1" 2>/dev/null | cut -f1
+    "$1" list "$2" 2>/dev/null | cut -f1
+}
+
+# Files whose names match a pattern, and folders to walk into (ending in '/', no space after).
+_vibscore_files() {
+    local cur=$1 pattern=$2 entry
+    local IFS=$'\n'
+    for entry in $(compgen -d -- "$cur"); do
+        COMPREPLY+=("$entry/")
+    done
+    for entry in $(compgen -f -- "$cur"); do
+        [[ -d $entry ]] && continue
+        [[ $entry == $pattern ]] && COMPREPLY+=("$entry")
+    done
+    compopt -o nospace -o filenames 2>/dev/null
+    # A lone file name completes to a whole word: let bash add the space after it.
+    if [[ ${#COMPREPLY[@]} -eq 1 && ${COMPREPLY[0]} != */ ]]; then
+        compopt +o nospace 2>/dev/null
+    fi
 }
 
 _vibscore() {
-    local cur prev verb i
+    local cur prev verb i program
     COMPREPLY=()
     cur=${COMP_WORDS[COMP_CWORD]}
     prev=${COMP_WORDS[COMP_CWORD-1]}
-    local verbs="check render info play stop list get compose delete show edit drivers driver"
+    program=${COMP_WORDS[0]}
+    local verbs="check render info play stop list get compose delete show edit drivers driver convert"
+    local formats="score ahap android-json android-xml android-envelope rtttl midi"
+    local valued="--usage|--clef|--clefs|--out|--rate|--repeat|--intensity|--width|--buttons|--keymap|--button-map|--from|--to|--track|--svg|--png"
 
     verb=
     for ((i = 1; i < COMP_CWORD; i++)); do
@@ -30,23 +51,39 @@ _vibscore() {
             COMPREPLY=($(compgen -W "ringtone alarm notification communication accessibility hardware-feedback touch media" -- "$cur"))
             return ;;
         --clef)
-            COMPREPLY=($(compgen -W "$(_vibscore_registry clefs)" -- "$cur"))
+            COMPREPLY=($(compgen -W "$(_vibscore_registry "$program" clefs)" -- "$cur"))
+            # convert reads the clef itself: a clef file too.
+            [[ $verb == convert ]] && _vibscore_files "$cur" '*.xml'
+            return ;;
+        --from|--to)
+            COMPREPLY=($(compgen -W "$formats" -- "$cur"))
+            return ;;
+        --svg|--png)
+            _vibscore_files "$cur" "*.${prev#--}"
+            return ;;
+        --clefs)
+            _vibscore_files "$cur" '*/'
             return ;;
         --out)
-            COMPREPLY=($(compgen -f -X '!*.@(csv|wav)' -- "$cur") $(compgen -d -- "$cur"))
+            _vibscore_files "$cur" '*.@(csv|wav)'
             return ;;
-        --rate|--repeat|--intensity|--width|--buttons|--keymap)
-            [[ $prev == --buttons ]] && COMPREPLY=($(compgen -f -- "${cur:-/dev/input/}"))
+        --buttons)
+            _vibscore_files "${cur:-/dev/input/}" '*'
+            return ;;
+        --rate|--repeat|--intensity|--width|--keymap|--button-map|--track)
             return ;;
     esac
 
     if [[ $cur == -* ]]; then
         local options="--help"
         case $verb in
-            render) options+=" --rate --out --plot --width" ;;
-            play) options+=" --usage --repeat --clef --intensity --wait" ;;
-            show) options+=" --width --colour" ;;
-            edit) options+=" --buttons --keymap --grab --clef" ;;
+            check|info) options+=" --clefs" ;;
+            render) options+=" --rate --out --plot --width --svg --png --clefs" ;;
+            play) options+=" --usage --repeat --clef --intensity --wait --clefs" ;;
+            compose) options+=" --clefs" ;;
+            show) options+=" --width --colour --color --svg --png" ;;
+            convert) options+=" --from --to --clef --track --loop" ;;
+            edit) options+=" --buttons --keymap --button-map --grab --clef" ;;
         esac
         COMPREPLY=($(compgen -W "$options" -- "$cur"))
         return
@@ -55,20 +92,21 @@ _vibscore() {
     # How many positional words the verb already has.
     local position=0
     for ((i = i + 1; i < COMP_CWORD; i++)); do
-        case ${COMP_WORDS[i]} in
-            --usage|--clef|--out|--rate|--repeat|--intensity|--width|--buttons|--keymap) ((i++)) ;;
-            -*) ;;
-            *) ((position++)) ;;
-        esac
+        if [[ ${COMP_WORDS[i]} == @($valued) ]]; then
+            ((i++))
+        elif [[ ${COMP_WORDS[i]} != -* ]]; then
+            ((position++))
+        fi
     done
 
     case $verb in
         check|render|info)
-            COMPREPLY=($(compgen -f -X '!*.xml' -- "$cur") $(compgen -d -- "$cur")) ;;
+            _vibscore_files "$cur" '*.xml' ;;
         play|show|edit)
-            [[ $position -eq 0 ]] &&
-                COMPREPLY=($(compgen -W "$(_vibscore_registry scores)" -- "$cur")
-                           $(compgen -f -X '!*.xml' -- "$cur") $(compgen -d -- "$cur")) ;;
+            if [[ $position -eq 0 ]]; then
+                COMPREPLY=($(compgen -W "$(_vibscore_registry "$program" scores)" -- "$cur"))
+                _vibscore_files "$cur" '*.xml'
+            fi ;;
         list)
             [[ $position -eq 0 ]] && COMPREPLY=($(compgen -W "scores clefs" -- "$cur")) ;;
         get|delete)
@@ -76,15 +114,23 @@ _vibscore() {
                 COMPREPLY=($(compgen -W "score clef" -- "$cur"))
             elif [[ $position -eq 1 ]]; then
                 local kind=${COMP_WORDS[COMP_CWORD-1]}
-                COMPREPLY=($(compgen -W "$(_vibscore_registry "${kind}s")" -- "$cur"))
+                COMPREPLY=($(compgen -W "$(_vibscore_registry "$program" "${kind%s}s")" -- "$cur"))
             fi ;;
         compose)
-            [[ $position -eq 1 ]] &&
-                COMPREPLY=($(compgen -f -X '!*.xml' -- "$cur") $(compgen -d -- "$cur")) ;;
+            [[ $position -eq 1 ]] && _vibscore_files "$cur" '*.xml' ;;
+        convert)
+            if [[ $position -eq 0 ]]; then
+                _vibscore_files "$cur" '*.@(xml|ahap|json|rtttl|rtx|mid|midi)'
+            elif [[ $position -eq 1 ]]; then
+                _vibscore_files "$cur" '*'
+            fi ;;
         driver)
             [[ $position -eq 0 ]] &&
-                COMPREPLY=($(compgen -W "$(vibscore drivers 2>/dev/null | cut -c3- | cut -f1)" -- "$cur")) ;;
+                COMPREPLY=($(compgen -W "$("$program" drivers 2>/dev/null | cut -c3- | cut -f1)" -- "$cur")) ;;
     esac
 }
 
-complete -F _vibscore vibscore
+# The patterns above (@(csv|wav)) are extended globs; bash-completion enables extglob, a bare
+# bash does not.
+shopt -s extglob
+complete -F _vibscore vibscore build/client/vibscore ./build/client/vibscore

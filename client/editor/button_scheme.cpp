@@ -1,10 +1,13 @@
 #include "client/editor/button_scheme.hpp"
 
+#include <algorithm>
+
 namespace vibscore::editor {
 
 namespace {
 
 const char* kQuitChoices[] = {"save and quit", "quit without saving", "cancel"};
+constexpr int kReplaceChoices = 3;  // another name, replace it, cancel
 
 }  // namespace
 
@@ -28,6 +31,10 @@ Request ButtonScheme::press(Button button, EditorModel& model) {
         case Mode::open_menu:
         case Mode::quit_menu:
             return list_press(button, model);
+        case Mode::name_entry:
+            return name_press(button);
+        case Mode::replace_menu:
+            return replace_press(button);
         case Mode::playing:
             return {Request::Kind::stop};
     }
@@ -175,7 +182,7 @@ Request ButtonScheme::list_press(Button button, EditorModel& model) {
             return {Request::Kind::open, (*openable_)[chosen]};
         case Mode::quit_menu:
             if (chosen == 0) {
-                return {Request::Kind::save_and_quit};
+                return save_under(destination_, true);
             }
             if (chosen == 1) {
                 return {Request::Kind::quit};
@@ -207,12 +214,89 @@ Request ButtonScheme::perform(Action action, EditorModel& model) {
             return {Request::Kind::quit};
         case Action::play_or_stop:
             return {Request::Kind::play, {}, model.cursor().bar};
+        case Action::play_from_start:
+            return {Request::Kind::play, {}, 0};
         case Action::save:
-            return {Request::Kind::save};
+            return save_under(destination_, false);
+        case Action::save_as:
+            begin_name_entry(false);
+            return {};
         case Action::new_score:
             return {Request::Kind::new_score};
         default:
             model.apply({action});
+            return {};
+    }
+}
+
+Request ButtonScheme::save_under(const std::string& name, bool then_quit) {
+    const bool taken = std::find(taken_->begin(), taken_->end(), name) != taken_->end();
+    if (taken && !(name == destination_ && destination_ours_)) {
+        replacing_ = name;
+        then_quit_ = then_quit;
+        list_.set(0, kReplaceChoices);
+        mode_ = Mode::replace_menu;
+        return {};
+    }
+    mode_ = Mode::browse;
+    if (name == destination_) {
+        return {then_quit ? Request::Kind::save_and_quit : Request::Kind::save};
+    }
+    return {Request::Kind::save_as, name, 0, then_quit};
+}
+
+void ButtonScheme::begin_name_entry(bool then_quit) {
+    name_.start(free_name(destination_, *taken_));
+    then_quit_ = then_quit;
+    mode_ = Mode::name_entry;
+}
+
+Request ButtonScheme::name_press(Button button) {
+    switch (name_.press(button)) {
+        case NameEntry::Outcome::typing:
+            return {};
+        case NameEntry::Outcome::cancelled:
+            mode_ = Mode::browse;
+            return {};
+        case NameEntry::Outcome::done:
+            break;
+    }
+    // The name is what a save with it stores under, so a taken one asks before replacing it.
+    return save_under(name_.name(), then_quit_);
+}
+
+Request ButtonScheme::replace_press(Button button) {
+    switch (button) {
+        case Button::up:
+            list_.step(-1, kReplaceChoices);
+            return {};
+        case Button::down:
+            list_.step(+1, kReplaceChoices);
+            return {};
+        case Button::left:
+        case Button::right:
+            return {};
+        case Button::back:
+            mode_ = Mode::browse;
+            return {};
+        case Button::select:
+            break;
+    }
+    switch (list_.index()) {
+        case 0:
+            begin_name_entry(then_quit_);
+            return {};
+        case 1: {
+            mode_ = Mode::browse;
+            const std::string name = replacing_;
+            if (name == destination_) {
+                destination_ours_ = true;  // asked once; the next saves go there quietly
+                return {then_quit_ ? Request::Kind::save_and_quit : Request::Kind::save};
+            }
+            return {Request::Kind::save_as, name, 0, then_quit_};
+        }
+        default:
+            mode_ = Mode::browse;
             return {};
     }
 }
@@ -235,7 +319,9 @@ Request ButtonScheme::command(const Command& command, EditorModel& model) {
         case Action::open:
         case Action::quit:
         case Action::play_or_stop:
+        case Action::play_from_start:
         case Action::save:
+        case Action::save_as:
         case Action::new_score:
             return perform(command.action, model);
         default:
@@ -247,13 +333,16 @@ Request ButtonScheme::command(const Command& command, EditorModel& model) {
 ButtonScheme::MenuView ButtonScheme::menu_view(const EditorModel& model) const {
     MenuView view;
     switch (mode_) {
-        case Mode::menu:
-            view.title = "menu";
-            for (const auto& entry : main_menu(model)) {
+        case Mode::menu: {
+            const auto entries = main_menu(model);
+            for (const auto& entry : entries) {
                 view.lines.push_back(entry.label);
             }
             view.highlighted = main_.index();
-            break;
+            const int group = entries[static_cast<std::size_t>(view.highlighted)].group;
+            view.title = "menu: " + std::string(group_name(group)) + " " +
+                         std::to_string(group + 1) + "/" + std::to_string(entries.back().group + 1);
+        } break;
         case Mode::clef_menu:
             view.title = "clef of bar " + std::to_string(model.cursor().bar + 1);
             for (const auto& clef : model.clef_choices()) {
@@ -269,6 +358,18 @@ ButtonScheme::MenuView ButtonScheme::menu_view(const EditorModel& model) const {
         case Mode::quit_menu:
             view.title = "unsaved changes";
             view.lines.assign(std::begin(kQuitChoices), std::end(kQuitChoices));
+            view.highlighted = list_.index();
+            break;
+        case Mode::name_entry:
+            view.title = "save as";
+            view.lines.push_back(name_.shown());
+            if (const auto problem = name_.problem(); !problem.empty()) {
+                view.lines.push_back(problem);
+            }
+            break;
+        case Mode::replace_menu:
+            view.title = replacing_ + " exists";
+            view.lines = {"save as another name", "replace " + replacing_, "cancel"};
             view.highlighted = list_.index();
             break;
         default:
@@ -291,6 +392,10 @@ std::string ButtonScheme::hint(const EditorModel& model) const {
         case Mode::open_menu:
         case Mode::quit_menu:
             return "\u2191\u2193choose  Sel:ok  Back:close";
+        case Mode::name_entry:
+            return name_.hint();
+        case Mode::replace_menu:
+            return "\u2191\u2193choose Sel:ok (shipped files stay)";
         case Mode::playing:
             return "playing: any button stops";
     }
@@ -300,7 +405,8 @@ std::string ButtonScheme::hint(const EditorModel& model) const {
 std::string ButtonScheme::fingerprint() const {
     return std::to_string(static_cast<int>(mode_)) + ',' +
            std::to_string(static_cast<int>(steps_.step())) + ',' + std::to_string(main_.index()) +
-           ',' + std::to_string(list_.index()) + (enter_after_list_ ? ",e" : "");
+           ',' + std::to_string(list_.index()) + (enter_after_list_ ? ",e" : "") +
+           (mode_ == Mode::name_entry ? ',' + name_.shown() + (name_.more() ? "+" : "") : "");
 }
 
 }  // namespace vibscore::editor

@@ -10,15 +10,17 @@
 #include "client/editor/editor_model.hpp"
 #include "client/editor/entry_steps.hpp"
 #include "client/editor/menu.hpp"
+#include "client/editor/name_entry.hpp"
 
 namespace vibscore::editor {
 
 // What the editor asks of the world around the model after a key or button.
 struct Request {
-    enum class Kind { none, play, stop, save, open, new_score, quit, save_and_quit };
+    enum class Kind { none, play, stop, save, save_as, open, new_score, quit, save_and_quit };
     Kind kind = Kind::none;
-    std::string name;     // open: the registry name or file
-    std::size_t bar = 0;  // play: the first bar
+    std::string name;        // open: the registry name or file; save_as: the name to save under
+    std::size_t bar = 0;     // play: the first bar
+    bool then_quit = false;  // save_as: quit once saved
     bool operator==(const Request&) const = default;
 };
 
@@ -32,11 +34,24 @@ struct Request {
 // Back, Back leaves.
 // In a menu: Up/Down choose (wrapping), Left/Right jump between groups, Select does it,
 // Back closes. Menus reopen on the last choice. While playing, any button stops.
+// Save as: a name typed with the buttons (NameEntry), opening on a free one. Saving under a
+// name that is taken (a shipped score, another stored one) asks first: another name, replace
+// it, or cancel. A shipped file never changes: the stored score shadows it.
 // Keyboard commands (thesis Fig. 4.3) go through command(): they drop the symbol being
 // entered or close a menu first.
 class ButtonScheme {
   public:
-    enum class Mode { browse, entry, menu, clef_menu, open_menu, quit_menu, playing };
+    enum class Mode {
+        browse,
+        entry,
+        menu,
+        clef_menu,
+        open_menu,
+        quit_menu,
+        name_entry,    // save as: typing the name
+        replace_menu,  // the name is taken: another name, replace it, cancel
+        playing
+    };
 
     Request press(Button button, EditorModel& model);
     Request command(const Command& command, EditorModel& model);
@@ -49,6 +64,17 @@ class ButtonScheme {
     // The scores "open..." offers.
     void set_openable(std::vector<std::string> names) {
         openable_ = std::make_shared<const std::vector<std::string>>(std::move(names));
+    }
+    // The names a score is saved under already (the registry's, or the score files beside a
+    // file): saving under one asks first.
+    void set_taken(std::vector<std::string> names) {
+        taken_ = std::make_shared<const std::vector<std::string>>(std::move(names));
+    }
+    // Where "save" stores the score; `ours` when this session made it or already replaced it
+    // (saving there again asks nothing).
+    void set_destination(std::string name, bool ours) {
+        destination_ = std::move(name);
+        destination_ours_ = ours;
     }
 
     // What to draw for an open menu: its title, lines and the highlighted one.
@@ -71,6 +97,11 @@ class ButtonScheme {
     Request perform(Action action, EditorModel& model);
     void open_clef_menu(const EditorModel& model);
     void leave_layers(EditorModel& model);
+    Request name_press(Button button);
+    Request replace_press(Button button);
+    // Saves under `name`, or asks first when it is taken.
+    Request save_under(const std::string& name, bool then_quit);
+    void begin_name_entry(bool then_quit);
     void begin_entry(EditorModel& model,
                      EditorModel::Continuing continuing = EditorModel::Continuing::no);
 
@@ -82,6 +113,13 @@ class ButtonScheme {
     int last_open_ = 0;
     std::shared_ptr<const std::vector<std::string>> openable_ =
         std::make_shared<const std::vector<std::string>>();
+    std::shared_ptr<const std::vector<std::string>> taken_ =
+        std::make_shared<const std::vector<std::string>>();
+    std::string destination_;
+    bool destination_ours_ = true;
+    NameEntry name_;
+    std::string replacing_;   // the taken name the replace menu asks about
+    bool then_quit_ = false;  // quit once the pending save is done
 };
 
 }  // namespace vibscore::editor

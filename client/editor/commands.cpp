@@ -12,6 +12,10 @@ std::string_view to_string(Action action) {
             return "string up";
         case Action::move_down:
             return "string down";
+        case Action::to_first_bar:
+            return "to the first bar";
+        case Action::to_last_bar:
+            return "to the last bar";
         case Action::extend_left:
             return "block left";
         case Action::extend_right:
@@ -70,8 +74,12 @@ std::string_view to_string(Action action) {
             return "bar clef";
         case Action::play_or_stop:
             return "play";
+        case Action::play_from_start:
+            return "play from the start";
         case Action::save:
             return "save";
+        case Action::save_as:
+            return "save as";
         case Action::open:
             return "open";
         case Action::new_score:

@@ -13,7 +13,9 @@ enum class Action {
     move_right,
     move_up,  // to the next higher string
     move_down,
-    extend_left,  // grow the block (Shift+arrow)
+    to_first_bar,  // the start of the score
+    to_last_bar,   // the end of the score, where entering goes on
+    extend_left,   // grow the block (Shift+arrow)
     extend_right,
     insert_note,  // value: the number 1..9
     insert_rest,
@@ -43,7 +45,9 @@ enum class Action {
     // Handled by the editor around the model: menus, the daemon and files.
     choose_clef,
     play_or_stop,
+    play_from_start,
     save,
+    save_as,
     open,
     new_score,
     quit,

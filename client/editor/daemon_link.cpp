@@ -4,8 +4,10 @@
 
 #include <algorithm>
 #include <map>
+#include <set>
 
 #include "client/daemon_errors.hpp"
+#include "client/daemon_watch.hpp"
 #include "dbus/haptics1_names.hpp"
 #include "haptics1-proxy.h"
 
@@ -36,13 +38,38 @@ class DaemonLink::Proxy : public sdbus::ProxyInterfaces<org::vibscore::Haptics1_
   public:
     explicit Proxy(std::unique_ptr<sdbus::IConnection> connection)
         : ProxyInterfaces(*connection, haptics1::kBusName, haptics1::kObjectPath),
-          connection_(std::move(connection)) {
+          connection_(std::move(connection)),
+          watch_(*connection_) {
         registerProxy();
     }
     ~Proxy() { unregisterProxy(); }
 
     sdbus::IConnection& connection() { return *connection_; }
-    std::vector<PlaybackEvent> take() { return std::exchange(events_, {}); }
+
+    // A playback this link started; the daemon that plays it is followed until it finishes.
+    void started(std::uint64_t id) {
+        watch_.follow();
+        playing_.insert(id);
+    }
+
+    // What came in, with a finish for each playback whose daemon has gone (it sends nothing).
+    std::vector<PlaybackEvent> take() {
+        auto events = std::exchange(events_, {});
+        for (const auto& event : events) {
+            if (event.kind == PlaybackEvent::Kind::finished) {
+                playing_.erase(event.id);
+            }
+        }
+        if (!playing_.empty()) {
+            if (const auto gone = watch_.gone()) {
+                for (const auto id : playing_) {
+                    events.push_back({PlaybackEvent::Kind::finished, id, 0, 0, *gone});
+                }
+                playing_.clear();
+            }
+        }
+        return events;
+    }
 
   private:
     void onPlaybackStarted(const uint64_t&, const std::string&) override {}
@@ -56,7 +83,9 @@ class DaemonLink::Proxy : public sdbus::ProxyInterfaces<org::vibscore::Haptics1_
     void onRegistryChanged(const std::string&, const std::string&) override {}
 
     std::unique_ptr<sdbus::IConnection> connection_;
+    client::DaemonWatch watch_;
     std::vector<PlaybackEvent> events_;
+    std::set<std::uint64_t> playing_;
 };
 
 DaemonLink::DaemonLink() {
@@ -73,7 +102,9 @@ std::uint64_t DaemonLink::play(const std::string& document, std::size_t start_ba
     return guarded([&] {
         std::map<std::string, sdbus::Variant> options;
         options["start-bar"] = sdbus::Variant(static_cast<std::uint32_t>(start_bar));
-        return proxy_->Play(document, options);
+        const auto id = proxy_->Play(document, options);
+        proxy_->started(id);
+        return id;
     });
 }
 

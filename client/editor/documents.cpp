@@ -7,15 +7,10 @@
 #include <stdexcept>
 
 #include "score/bundle.hpp"
+#include "score/registry_names.hpp"
 #include "score/score_xml.hpp"
 
 namespace vibscore::editor {
-
-namespace {
-
-constexpr std::string_view kClefSuffix = ".clef.xml";
-
-}  // namespace
 
 ScoreSource classify_source(const std::string& argument) {
     std::error_code ignored;

@@ -15,6 +15,7 @@
 #include "client/editor/editor.hpp"
 #include "client/editor/evdev_buttons.hpp"
 #include "client/editor/ncurses_view.hpp"
+#include "client/editor/phrase_book.hpp"
 #include "common/device_error.hpp"
 #include "common/monotonic_clock.hpp"
 #include "score/document_error.hpp"
@@ -52,6 +53,7 @@ class Session {
             daemon_ = std::make_unique<DaemonLink>();
             registry_scores_ = daemon_->list("score");
             registry_clefs_ = daemon_->list("clef");
+            read_registry_scores();
         } catch (const DaemonError& error) {
             // Files can still be edited; playing and the registry wait for the daemon.
             daemon_.reset();
@@ -119,12 +121,67 @@ class Session {
                 source.kind == ScoreSource::Kind::file ? stem(source.name) : source.name;
             score = EditorModel::blank_score(title, default_clef(available));
         }
+        const std::string name = source.kind == ScoreSource::Kind::registry ? source.name : "";
+        auto phrases = learned_from_others(learned_, {name, *score});
         auto editor =
             std::make_unique<Editor>(Editor{EditorModel(std::move(*score), available), {}});
+        editor->model.learn_from(std::move(phrases));
         editor->scheme.set_openable(registry_scores_);
+        editor->scheme.set_taken(taken_names(source));
+        // A file opened is the user's to save over; a registry name may be a shipped score.
+        editor->scheme.set_destination(name_of(source),
+                                       is_new || source.kind == ScoreSource::Kind::file);
+        if (editor_) {
+            editor->model.carry_over(editor_->model);
+        }
         editor_ = std::move(editor);
         source_ = source;
         message_ = is_new ? "new score " + source_.name : "";
+    }
+
+    // Every score the daemon lists (shipped, stored, composed before) teaches the proposals,
+    // as a phone keyboard learns words. One that does not read teaches nothing.
+    void read_registry_scores() {
+        for (const auto& name : registry_scores_) {
+            try {
+                learned_.push_back({name, read_score(daemon_->get("score", name), name).score});
+            } catch (const std::exception&) {
+                continue;  // `vibscore check` is where a broken score is reported
+            }
+        }
+    }
+
+    // The names save-as asks about before saving under them: the registry's scores, or the
+    // score files beside a file.
+    std::vector<std::string> taken_names(const ScoreSource& source) const {
+        if (source.kind == ScoreSource::Kind::registry) {
+            return registry_scores_;
+        }
+        std::vector<std::string> names;
+        const auto folder = std::filesystem::absolute(source.name).parent_path();
+        std::error_code error;
+        for (const auto& entry : std::filesystem::directory_iterator(folder, error)) {
+            if (entry.path().filename().string().ends_with(".score.xml")) {
+                names.push_back(stem(entry.path().string()));
+            }
+        }
+        return names;
+    }
+
+    // What save-as calls the score: its registry name, or its file name without .score.xml.
+    static std::string name_of(const ScoreSource& source) {
+        return source.kind == ScoreSource::Kind::registry ? source.name : stem(source.name);
+    }
+
+    // Where save-as stores a score named `name`: that registry name, or NAME.score.xml beside
+    // the file being edited.
+    ScoreSource renamed(const std::string& name) const {
+        if (source_.kind == ScoreSource::Kind::registry) {
+            return {ScoreSource::Kind::registry, name};
+        }
+        return {
+            ScoreSource::Kind::file,
+            (std::filesystem::path(source_.name).parent_path() / (name + ".score.xml")).string()};
     }
 
     // A registry name no score has yet: tacton-1, tacton-2, ...
@@ -240,6 +297,11 @@ class Session {
                     running_ = false;
                 }
                 return;
+            case Request::Kind::save_as:
+                if (save_as(request.name) && request.then_quit) {
+                    running_ = false;
+                }
+                return;
             case Request::Kind::quit:
                 running_ = false;
                 return;
@@ -303,11 +365,33 @@ class Session {
                 }
             }
             model.mark_saved();
+            editor_->scheme.set_destination(name_of(source_), true);
             return true;
         } catch (const std::exception& error) {
             message_ = "not saved: " + std::string(error.what());
             return false;
         }
+    }
+
+    // Saves under another name, which the editor then edits: the score opened stays as it was
+    // (a shipped one is never changed; a stored score of that name shadows it).
+    bool save_as(const std::string& name) {
+        const ScoreSource before = source_;
+        auto& model = editor_->model;
+        const std::string old_title = model.score().title;
+        if (old_title.empty() || old_title == name_of(before)) {
+            model.set_title(name);  // a score titled by its name keeps being so
+        }
+        source_ = renamed(name);
+        if (!save()) {
+            source_ = before;
+            if (model.score().title != old_title) {
+                model.set_title(old_title);
+            }
+            return false;
+        }
+        editor_->scheme.set_taken(taken_names(source_));
+        return true;
     }
 
     // Opens another score or a new one; unsaved changes need the request twice.
@@ -330,6 +414,7 @@ class Session {
     std::unique_ptr<DaemonLink> daemon_;
     std::vector<std::string> registry_scores_;
     std::vector<std::string> registry_clefs_;
+    std::vector<NamedScore> learned_;  // the registry's scores the proposals learn from
     std::unique_ptr<Editor> editor_;
     ScoreSource source_;
     std::vector<ButtonDevice> buttons_;

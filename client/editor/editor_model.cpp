@@ -9,6 +9,10 @@ namespace vibscore::editor {
 
 namespace {
 
+// The registry's proposal is taken only when at least this many symbols (the score's start
+// counting as one) lead to it as they led to it in a registry score.
+constexpr int kShortestLearnedPhrase = 2;
+
 std::set<std::string> clefs_in_use(const Score& score) {
     std::set<std::string> ids;
     for (const auto& bar : score.bars) {
@@ -78,23 +82,40 @@ std::vector<ClefDeclaration> EditorModel::clef_choices() const {
 }
 
 std::optional<Block> EditorModel::block() const {
-    if (!anchor_ || *anchor_ == cursor_) {
+    if (!anchor_) {
         return std::nullopt;
     }
-    return Block{std::min(*anchor_, cursor_), std::max(*anchor_, cursor_)};
+    const Position first = std::min(*anchor_, cursor_);
+    Position last = std::max(*anchor_, cursor_);
+    if (anchor_sticky_ && symbol_at(*score_, last) != nullptr) {
+        // Marked from the menu, both ends are symbols the user stood on: the block holds them,
+        // so a bar marked from its first symbol to its last is the whole bar.
+        ++last.symbol;
+    }
+    if (first == last) {
+        return std::nullopt;
+    }
+    return Block{first, last};
 }
 
 Symbol EditorModel::proposed_symbol() const {
-    const auto recurring = recurrence_at(*score_, cursor_);
-    if (!recurring) {
-        return proposed_note();
+    if (const auto recurring = recurrence_at(*score_, cursor_)) {
+        if (recurring->pitch_known || std::holds_alternative<Rest>(recurring->next)) {
+            return recurring->next;
+        }
+        Note note = proposed_note();  // the rhythm that recurs, on the note the rules propose
+        note.length = length_of(recurring->next);
+        return note;
     }
-    if (recurring->pitch_known || std::holds_alternative<Rest>(recurring->next)) {
-        return recurring->next;
+    if (phrases_) {
+        // A phrase of one symbol (or the start alone) says too little: on the notification set
+        // following it cost more presses than the rules of proposed_note() (docs/performance.md).
+        const auto learned = phrases_->next_after(*score_, cursor_);
+        if (learned && learned->context >= kShortestLearnedPhrase) {
+            return learned->next;
+        }
     }
-    Note note = proposed_note();  // the rhythm that recurs, on the note the rules propose
-    note.length = length_of(recurring->next);
-    return note;
+    return proposed_note();
 }
 
 Note EditorModel::proposed_note() const {
@@ -244,6 +265,23 @@ void EditorModel::move_right() {
     }
 }
 
+void EditorModel::to_first_bar() {
+    jump_to({0, 0});
+}
+
+void EditorModel::to_last_bar() {
+    jump_to({score_->bars.size() - 1, score_->bars.back().symbols.size()});
+}
+
+void EditorModel::jump_to(Position position) {
+    if (anchor_ && !anchor_sticky_) {
+        anchor_.reset();
+    }
+    message_.clear();
+    cursor_ = position;
+    land();
+}
+
 // The active string wraps around: from the highest string Up goes to the lowest, so any
 // string is at most three presses away.
 void EditorModel::move_up() {
@@ -341,6 +379,19 @@ bool EditorModel::begin_entry(Continuing continuing) {
     }
     message_.clear();
     return true;
+}
+
+EditorModel::Unlike EditorModel::unlike_last_entered() const {
+    if (!in_entry_) {
+        return {};
+    }
+    if (const Note* note = note_at(*score_, cursor_)) {
+        return {note->length != length_, note->string != string_};
+    }
+    if (const auto* rest = std::get_if<Rest>(symbol_at(*score_, cursor_))) {
+        return {rest_length_ && rest->length != *rest_length_, false};
+    }
+    return {};
 }
 
 bool EditorModel::at_end_of_full_bar() const {
@@ -595,14 +646,14 @@ bool EditorModel::set_length(Length length) {
     length_ = length;
     const auto marked = block();
     if (!marked) {
-        return done("length " + std::string(to_string(length)));
+        return done("length " + length_name(length));
     }
     const auto symbols = targets();
     Score& score = edit();
     for (const auto at : symbols) {
         set_length_of(*symbol_at(score, at), length);
     }
-    return done("block length " + std::string(to_string(length)));
+    return done("block length " + length_name(length));
 }
 
 bool EditorModel::toggle_dot() {
@@ -680,7 +731,8 @@ bool EditorModel::shift_numbers(int delta) {
 bool EditorModel::copy() {
     if (const auto marked = block()) {
         clipboard_ = copy_block(*score_, *marked);
-        return done("block copied");
+        anchor_.reset();  // copied: moving the cursor to where it goes must not grow the block
+        return done("block copied: move, then paste");
     }
     const auto at = at_hand();
     if (!at) {
@@ -699,7 +751,7 @@ bool EditorModel::cut() {
         anchor_ = *at;
         cursor_ = {at->bar, at->symbol + 1};
     }
-    copy();
+    clipboard_ = copy_block(*score_, *block());
     delete_at_cursor();
     return done("cut");
 }
@@ -771,6 +823,12 @@ bool EditorModel::set_bar_clef(const std::string& id) {
 
 bool EditorModel::apply(const Command& command) {
     switch (command.action) {
+        case Action::to_first_bar:
+            to_first_bar();
+            return true;
+        case Action::to_last_bar:
+            to_last_bar();
+            return true;
         case Action::move_left:
             move_left();
             return true;
@@ -846,7 +904,9 @@ bool EditorModel::apply(const Command& command) {
             return redo();
         case Action::choose_clef:
         case Action::play_or_stop:
+        case Action::play_from_start:
         case Action::save:
+        case Action::save_as:
         case Action::open:
         case Action::new_score:
         case Action::quit:

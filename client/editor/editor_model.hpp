@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "client/editor/commands.hpp"
+#include "client/editor/phrase_book.hpp"
 #include "client/editor/position.hpp"
 #include "client/editor/score_edits.hpp"
 #include "client/editor/undo_history.hpp"
@@ -39,14 +40,28 @@ class EditorModel {
     bool modified() const { return *score_ != *saved_; }
     void mark_saved() { saved_ = score_; }
     void set_title(std::string title);
+    // What a session keeps when another score is opened or a new one started: the clipboard,
+    // so a bar copied in one score can be pasted into another.
+    void carry_over(const EditorModel& previous) { clipboard_ = previous.clipboard_; }
+    // The scores the proposals learn from besides the score itself (phrase_book.hpp).
+    void learn_from(std::shared_ptr<const PhraseBook> phrases) { phrases_ = std::move(phrases); }
 
     // What the six-button entry puts on an empty position: what followed the symbol before it
-    // where it came earlier (recurrence.hpp), else proposed_note().
+    // where it came earlier (recurrence.hpp), else what followed the last two or more symbols in
+    // a score learned from (phrase_book.hpp), else proposed_note().
     Symbol proposed_symbol() const;
     // The note proposed when the score does not say which: the last-used number and length on
     // the active string with the hairpin of the last note, the ties of a note directly before,
     // and the step in number between the two notes directly before (a fade goes on fading).
     Note proposed_note() const;
+    // Where the symbol being entered is not what entering ran on with: a length other than the
+    // last note's (a rest's: the last rest's), a string other than the active one. A proposal
+    // that changes either is shown so, not to be taken by a thumb used to the last one.
+    struct Unlike {
+        bool length = false;
+        bool string = false;
+    };
+    Unlike unlike_last_entered() const;
     // The note or rest the symbol functions act on: the one under the cursor, or on an empty
     // position the one just before it.
     std::optional<Position> at_hand() const;
@@ -58,6 +73,8 @@ class EditorModel {
     void move_right();
     void move_up();
     void move_down();
+    void to_first_bar();  // the first position of the score
+    void to_last_bar();   // the end of the last bar
     void extend(int direction);
     bool insert_note(int number);
     bool insert_rest();
@@ -110,6 +127,7 @@ class EditorModel {
     void restore(const Snapshot& snapshot);
     std::vector<Position> targets() const;  // the block's notes and rests, or the one at hand
     std::vector<Position> target_notes() const;
+    void jump_to(Position position);  // a move as the arrows make one, any distance
     void step_left();
     bool step_right();  // false at the end of the score
     void land();        // keeps the cursor valid and lets the active string follow a note under it
@@ -122,6 +140,7 @@ class EditorModel {
     std::shared_ptr<const Score> score_;
     std::shared_ptr<const Score> saved_;
     std::shared_ptr<const std::vector<ClefDeclaration>> available_clefs_;
+    std::shared_ptr<const PhraseBook> phrases_;
     UndoHistory history_;
     Position cursor_;
     int string_ = 3;

@@ -172,7 +172,7 @@ std::string EntrySteps::hint(const EditorModel& model) const {
     const auto n = [&](int delta) {
         return std::to_string(wrapped(number, delta, lowest_number, highest_number));
     };
-    const auto l = [&](int delta) { return std::string(to_string(stepped(length, delta))); };
+    const auto l = [&](int delta) { return length_name(stepped(length, delta)); };
     switch (step_) {
         case Step::string:
             return "\u2191" + s(1) + " \u2193" + s(-1) + " \u2192" + s(2) + " \u2190" + s(-2) +

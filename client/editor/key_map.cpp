@@ -62,6 +62,10 @@ std::optional<KeyInput> key_input(int key) {
             return Command{Action::remove_portamento};
         case '.':
             return Command{Action::toggle_dot};
+        case KEY_HOME:
+            return Command{Action::to_first_bar};
+        case KEY_END:
+            return Command{Action::to_last_bar};
         case KEY_SLEFT:
             return Command{Action::extend_left};
         case KEY_SRIGHT:

@@ -2,7 +2,15 @@
 
 #include "client/editor/editor_model.hpp"
 
+#include <iterator>
+
 namespace vibscore::editor {
+
+const char* group_name(int group) {
+    static const char* const names[] = {
+        "hairpins", "ties", "symbol, bar", "shift", "block", "play, go to, undo", "file"};
+    return group >= 0 && group < static_cast<int>(std::size(names)) ? names[group] : "";
+}
 
 std::vector<MenuEntry> main_menu(const EditorModel& model) {
     std::vector<MenuEntry> entries{
@@ -27,9 +35,13 @@ std::vector<MenuEntry> main_menu(const EditorModel& model) {
         {"cut", Action::cut, 4},
         {"paste", Action::paste, 4},
         {"play from this bar", Action::play_or_stop, 5},
+        {"play from the start", Action::play_from_start, 5},
+        {"to the first bar", Action::to_first_bar, 5},
+        {"to the last bar", Action::to_last_bar, 5},
         {"undo", Action::undo, 5},
         {"redo", Action::redo, 5},
         {"save", Action::save, 6},
+        {"save as...", Action::save_as, 6},
         {"open...", Action::open, 6},
         {"new score", Action::new_score, 6},
         {"quit", Action::quit, 6},
@@ -50,24 +62,24 @@ void MenuCursor::jump_group(int delta, const std::vector<MenuEntry>& entries) {
     if (size == 0) {
         return;
     }
-    const auto group_start = [&](int i) {
-        while (i > 0 && entries[static_cast<std::size_t>(i - 1)].group ==
-                            entries[static_cast<std::size_t>(i)].group) {
-            --i;
+    // Left from anywhere in a group goes to the previous group, never to the start of its own:
+    // one press per group both ways, so counting presses tells where the highlight is.
+    const int group = entries[static_cast<std::size_t>(index_)].group;
+    int i = index_;
+    while (entries[static_cast<std::size_t>(i)].group == group) {
+        i = ((i + delta) % size + size) % size;
+        if (i == index_) {
+            return;  // one group only
         }
-        return i;
-    };
-    if (delta > 0) {
-        int i = index_;
-        const int group = entries[static_cast<std::size_t>(i)].group;
-        while (i < size && entries[static_cast<std::size_t>(i)].group == group) {
-            ++i;
-        }
-        set(i, size);
-    } else {
-        const int start = group_start(index_);
-        set(start == index_ ? group_start((start - 1 + size) % size) : start, size);
     }
+    if (delta < 0) {
+        const int previous = entries[static_cast<std::size_t>(i)].group;
+        while (entries[static_cast<std::size_t>((i - 1 + size) % size)].group == previous &&
+               (i - 1 + size) % size != index_) {
+            i = (i - 1 + size) % size;
+        }
+    }
+    set(i, size);
 }
 
 }  // namespace vibscore::editor

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "client/editor/staff_layout.hpp"
+#include "client/editor/status_line.hpp"
 
 namespace vibscore::editor {
 
@@ -93,34 +94,6 @@ attr_t attributes(const Cell& cell) {
     return attr;
 }
 
-// At most `width` columns of UTF-8 text (every character here takes one column).
-std::string fit(std::string text, int width) {
-    int columns = 0;
-    for (std::size_t i = 0; i < text.size(); ++i) {
-        const bool starts_character = (static_cast<unsigned char>(text[i]) & 0xC0) != 0x80;
-        if (starts_character && ++columns > width) {
-            text.resize(i);
-            break;
-        }
-    }
-    return text;
-}
-
-std::string describe(const EditorModel& model) {
-    const Symbol* symbol = symbol_at(model.score(), model.cursor());
-    if (symbol == nullptr) {
-        return "";
-    }
-    if (const auto* note = std::get_if<Note>(symbol)) {
-        return std::to_string(note->number) + " " + std::string(to_string(note->length)) + " s" +
-               std::to_string(note->string);
-    }
-    if (const auto* rest = std::get_if<Rest>(symbol)) {
-        return "rest " + std::string(to_string(rest->length));
-    }
-    return "";
-}
-
 }  // namespace
 
 Screen::Screen() {
@@ -175,6 +148,9 @@ void Screen::draw(const EditorModel& model, const ButtonScheme& scheme, const Vi
     options.cursor_string = model.string();
     options.block = model.block();
     options.playing = status.playing;
+    if (scheme.mode() == ButtonScheme::Mode::entry) {
+        options.entering = model.cursor();
+    }
     const auto layout = layout_staff(model.score(), options);
 
     // 40x12: eleven staff rows and a status line; taller screens get a title and a hint line.
@@ -199,7 +175,7 @@ void Screen::draw(const EditorModel& model, const ButtonScheme& scheme, const Vi
     const std::string dirty = model.modified() ? "*" : "";
     const std::string news = !status.message.empty() ? status.message : model.message();
     const std::string hint = scheme.mode() == ButtonScheme::Mode::entry
-                                 ? describe(model) + " " + scheme.hint(model)
+                                 ? symbol_entered(model) + " " + scheme.hint(model)
                                  : scheme.hint(model);
     if (roomy) {
         const auto& bars = model.score().bars;
@@ -210,12 +186,15 @@ void Screen::draw(const EditorModel& model, const ButtonScheme& scheme, const Vi
         mvaddstr(0, 0, fit(title, cols).c_str());
         attrset(A_NORMAL);
         mvaddstr(rows - 2, 0, fit(news, cols).c_str());
+        if (rows >= staff_rows + 4 && cols >= columns_of(keyboard_hint())) {
+            attrset(A_DIM);
+            mvaddstr(rows - 3, 0, keyboard_hint().c_str());
+        }
         attrset(A_DIM);
         mvaddstr(rows - 1, 0, fit(hint, cols).c_str());
         attrset(A_NORMAL);
     } else {
-        const std::string line = dirty + (news.empty() ? hint : news);
-        mvaddstr(rows - 1, 0, fit(line, cols).c_str());
+        mvaddstr(rows - 1, 0, status_line(status_of(model, scheme, news), cols).c_str());
     }
     const auto menu = scheme.menu_view(model);
     if (!menu.lines.empty()) {

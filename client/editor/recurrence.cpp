@@ -1,7 +1,5 @@
 #include "client/editor/recurrence.hpp"
 
-#include <vector>
-
 #include "client/editor/score_edits.hpp"
 
 namespace vibscore::editor {
@@ -10,13 +8,23 @@ namespace {
 
 constexpr int no_occurrence = 4;
 
-// A note or rest before the position asked about, with the beat of its bar it starts on.
-struct Placed {
-    const Symbol* symbol;
-    double beat;
-};
+bool same_length(const Symbol& a, const Symbol& b) {
+    return a.index() == b.index() && length_of(a) == length_of(b);
+}
 
-std::vector<Placed> symbols_before(const Score& score, Position at) {
+// The serial that ties a note to `last` as `follower` was tied to `earlier`: `last`'s own, a
+// new one when `last` is not tied yet, or none.
+std::int64_t tie_like(const Score& score, const Note& follower, const Note& earlier,
+                      const Note& last, Tie tie) {
+    if (serial(follower, tie) == 0 || serial(follower, tie) != serial(earlier, tie)) {
+        return 0;
+    }
+    return serial(last, tie) != 0 ? serial(last, tie) : unused_serial(score, tie);
+}
+
+}  // namespace
+
+std::vector<Placed> placed_before(const Score& score, Position at) {
     std::vector<Placed> found;
     for (std::size_t bar = 0; bar <= at.bar && bar < score.bars.size(); ++bar) {
         const auto& symbols = score.bars[bar].symbols;
@@ -34,11 +42,18 @@ std::vector<Placed> symbols_before(const Score& score, Position at) {
     return found;
 }
 
-bool same_length(const Symbol& a, const Symbol& b) {
-    return a.index() == b.index() && length_of(a) == length_of(b);
+double beat_at(const Score& score, Position at) {
+    const auto& symbols = score.bars.at(at.bar).symbols;
+    double beat = 0.0;
+    for (std::size_t s = 0; s < at.symbol && s < symbols.size(); ++s) {
+        if (!std::holds_alternative<Blank>(symbols[s])) {
+            beat += beats(length_of(symbols[s]));
+        }
+    }
+    return beat;
 }
 
-bool same_symbol(const Symbol& a, const Symbol& b) {
+bool alike(const Symbol& a, const Symbol& b) {
     const auto* note_a = std::get_if<Note>(&a);
     const auto* note_b = std::get_if<Note>(&b);
     if (note_a == nullptr || note_b == nullptr) {
@@ -48,20 +63,15 @@ bool same_symbol(const Symbol& a, const Symbol& b) {
            note_a->length == note_b->length;
 }
 
-// The serial that ties a note to `last` as `follower` was tied to `earlier`: `last`'s own, a
-// new one when `last` is not tied yet, or none.
-std::int64_t tie_like(const Score& score, const Note& follower, const Note& earlier,
-                      const Note& last, Tie tie) {
-    if (serial(follower, tie) == 0 || serial(follower, tie) != serial(earlier, tie)) {
-        return 0;
-    }
-    return serial(last, tie) != 0 ? serial(last, tie) : unused_serial(score, tie);
+Note tied_as_before(const Score& score, Note follower, const Note& earlier, const Note& last) {
+    const Note as_it_followed = follower;
+    follower.legato = tie_like(score, as_it_followed, earlier, last, Tie::legato);
+    follower.portamento = tie_like(score, as_it_followed, earlier, last, Tie::portamento);
+    return follower;
 }
 
-}  // namespace
-
 std::optional<Recurrence> recurrence_at(const Score& score, Position at) {
-    const auto placed = symbols_before(score, at);
+    const auto placed = placed_before(score, at);
     if (placed.size() < 2) {
         return std::nullopt;
     }
@@ -69,7 +79,7 @@ std::optional<Recurrence> recurrence_at(const Score& score, Position at) {
     // How good an occurrence the earlier symbol is, 0 best (the order in the header).
     const auto rank = [&](const Placed& earlier) {
         const int elsewhere = earlier.beat == last.beat ? 0 : 2;
-        if (same_symbol(*earlier.symbol, *last.symbol)) {
+        if (alike(*earlier.symbol, *last.symbol)) {
             return elsewhere;
         }
         return same_length(*earlier.symbol, *last.symbol) ? elsewhere + 1 : no_occurrence;
@@ -86,16 +96,14 @@ std::optional<Recurrence> recurrence_at(const Score& score, Position at) {
         return std::nullopt;
     }
     const Symbol& next = *placed[best + 1].symbol;
+    const bool same_beat = best_rank < 2;
     const auto* follower = std::get_if<Note>(&next);
     const auto* earlier = std::get_if<Note>(placed[best].symbol);
     const auto* now = std::get_if<Note>(last.symbol);
     if (follower == nullptr || best_rank % 2 == 1 || earlier == nullptr || now == nullptr) {
-        return Recurrence{next, false};
+        return Recurrence{next, false, same_beat};
     }
-    Note note = *follower;
-    note.legato = tie_like(score, *follower, *earlier, *now, Tie::legato);
-    note.portamento = tie_like(score, *follower, *earlier, *now, Tie::portamento);
-    return Recurrence{note, true};
+    return Recurrence{tied_as_before(score, *follower, *earlier, *now), true, same_beat};
 }
 
 }  // namespace vibscore::editor

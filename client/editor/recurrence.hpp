@@ -1,6 +1,8 @@
 #pragma once
 
+#include <cstdint>
 #include <optional>
+#include <vector>
 
 #include "client/editor/position.hpp"
 #include "score/score.hpp"
@@ -26,7 +28,26 @@ namespace vibscore::editor {
 struct Recurrence {
     Symbol next;
     bool pitch_known = false;
+    bool same_beat = false;  // the occurrence was at the beat of `at` (orders 1 and 2)
 };
 std::optional<Recurrence> recurrence_at(const Score& score, Position at);
+
+// A note or rest, with the beat of its bar it starts on.
+struct Placed {
+    const Symbol* symbol;
+    double beat;
+};
+// The notes and rests before `at` in playing order (Blanks take no time and are left out).
+std::vector<Placed> placed_before(const Score& score, Position at);
+// The beat of its bar that position `at` starts on.
+double beat_at(const Score& score, Position at);
+
+// The same note (string, number, length; marks aside) or a rest of the same length.
+bool alike(const Symbol& a, const Symbol& b);
+
+// `follower` as it would follow `last`, when it followed `earlier`: tied to `last` as it was
+// tied to `earlier` (with `last`'s serial, or one no note of `score` uses yet when `last` is not
+// tied), and not tied otherwise.
+Note tied_as_before(const Score& score, Note follower, const Note& earlier, const Note& last);
 
 }  // namespace vibscore::editor

@@ -321,6 +321,10 @@ bool is_dotted(Length length) {
     return index_in(kDotted, length) >= 0;
 }
 
+std::string length_name(Length length) {
+    return length == Length::thirty_second ? "32nd" : std::string(to_string(length));
+}
+
 Length shorter(Length length) {
     if (const int i = index_in(kPlain, length); i >= 0) {
         return kPlain[std::max(i - 1, 0)];

@@ -2,6 +2,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "client/editor/position.hpp"
@@ -76,6 +77,8 @@ Position paste_clip(Score& score, Position at, const Clip& clip);
 // Lengths in the order a user steps through them with Left/Right: plain lengths from 32th to
 // whole; a dotted length steps to the next dotted one (or the plain one where none exists).
 Length shorter(Length length);
+// A length as the editor's screens name it: the document spelling, but "32nd" for "32th".
+std::string length_name(Length length);
 Length longer(Length length);
 // `steps` lengths longer (> 0) or shorter (< 0), stopping at whole and 32nd.
 Length stepped(Length length, int steps);

@@ -216,7 +216,12 @@ StaffLayout layout_staff(const Score& score, const LayoutOptions& options) {
         const Bar& bar = score.bars[b];
         layout.spans.push_back({Span::Kind::bar_line, b, 0, x, 1});
         ++x;
-        const double beats = Score::beat_count(bar);
+        double beats = Score::beat_count(bar);
+        if (options.entering && options.entering->bar == b &&
+            options.entering->symbol < bar.symbols.size() &&
+            !std::holds_alternative<Blank>(bar.symbols[options.entering->symbol])) {
+            beats -= vibscore::beats(length_of(bar.symbols[options.entering->symbol]));
+        }
         const Ink ink = beats < beats_in_a_full_bar   ? Ink::clef_fewer
                         : beats > beats_in_a_full_bar ? Ink::clef_more
                                                       : Ink::clef_exact;

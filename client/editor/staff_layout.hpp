@@ -75,6 +75,9 @@ struct LayoutOptions {
     int cursor_string = 1;
     std::optional<Block> block;
     std::optional<Position> playing;
+    // The symbol still being entered: drawn, but not counted in its bar's beats until it is
+    // entered (a newcomer read a full bar while the last note was only proposed).
+    std::optional<Position> entering;
 };
 
 struct StaffLayout {

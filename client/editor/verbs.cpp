@@ -37,16 +37,19 @@ bool colour_terminal() {
 
 }  // namespace
 
+Score read_score_to_show(const std::string& score) {
+    const auto source = classify_source(score);
+    if (source.kind == ScoreSource::Kind::file) {
+        return read_score_file(source.name);
+    }
+    DaemonLink daemon;
+    return read_score(daemon.get("score", source.name), source.name).score;
+}
+
 int show_score(const ShowRequest& request, std::ostream& out, std::ostream& err) {
     Score score;
     try {
-        const auto source = classify_source(request.score);
-        if (source.kind == ScoreSource::Kind::file) {
-            score = read_score_file(source.name);
-        } else {
-            DaemonLink daemon;
-            score = read_score(daemon.get("score", source.name), source.name).score;
-        }
+        score = read_score_to_show(request.score);
     } catch (const DocumentError& error) {
         err << error.what() << "\n";
         return 1;

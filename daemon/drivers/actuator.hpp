@@ -20,6 +20,9 @@ struct Capabilities {
     bool envelopes = false;          // a linear ramp can be handed over whole (Drive::ramp_s)
     bool gain_control = false;       // the device scales every drive itself (set_gain)
     double max_on_time_s = 0.0;      // longest continuous drive allowed; 0 = no limit
+    // The kernel switches the actuator off by itself after the time set_off_timer() gave, so a
+    // note ends even when the daemon dies in it. Not one of the D-Bus names.
+    bool off_timer = false;
     // Without amplitude control, strength is the on-time within each period this long.
     double pulse_period_s = 0.040;
 
@@ -39,7 +42,7 @@ struct Drive {
 };
 
 // The narrow interface between the player and an actuator backend. Calls come from the daemon's
-// single event-loop thread and must return quickly (no sleeping).
+// playback thread (one thread at a time) and must return quickly (no sleeping).
 class Actuator {
   public:
     virtual ~Actuator() = default;
@@ -56,6 +59,11 @@ class Actuator {
     // Backends with effect memory load the drive that comes next, ahead of its onset, so that
     // apply(next) then costs one write. Called after each apply; may be ignored.
     virtual void prepare(const Drive& /*next*/) {}
+
+    // Backends with an off timer: the player calls this before each apply() that switches on,
+    // with the time the schedule keeps the actuator on from then (at most max_on_time_s), and
+    // the backend arms the kernel's timer with it.
+    virtual void set_off_timer(double /*seconds*/) {}
 
     // Backends with gain control scale every drive by `gain` (0..1, the master intensity) in
     // the device; the player then leaves the master intensity out of the drives it sends.

@@ -3,24 +3,19 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
-#include <sstream>
 #include <stdexcept>
 #include <string>
+
+#include "common/number_text.hpp"
 
 namespace vibscore::drivers {
 
 namespace {
 
-std::string number(double value) {
-    std::ostringstream out;
-    out << value;
-    return out.str();
-}
-
 void require_positive(double value, const char* name) {
     if (!std::isfinite(value) || value <= 0.0) {
         throw std::invalid_argument(std::string("actuator model: ") + name +
-                                    " must be positive, not " + number(value));
+                                    " must be positive, not " + number_text(value));
     }
 }
 
@@ -57,11 +52,11 @@ void ActuatorModel::command(double t_s, double amplitude, double frequency_hz) {
         throw std::invalid_argument("actuator model: command time is not finite");
     }
     if (!(amplitude >= 0.0 && amplitude <= 1.0)) {
-        throw std::invalid_argument("actuator model: amplitude " + number(amplitude) +
+        throw std::invalid_argument("actuator model: amplitude " + number_text(amplitude) +
                                     " is outside 0..1");
     }
     if (!std::isfinite(frequency_hz) || frequency_hz < 0.0) {
-        throw std::invalid_argument("actuator model: frequency " + number(frequency_hz) +
+        throw std::invalid_argument("actuator model: frequency " + number_text(frequency_hz) +
                                     " Hz is not a non-negative number");
     }
     // The strength is continuous: the new segment starts where the old one has got to.

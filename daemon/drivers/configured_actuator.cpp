@@ -9,7 +9,7 @@ namespace vibscore::drivers {
 CommonSettings take_common_settings(const std::string& driver,
                                     std::map<std::string, std::string>& settings) {
     std::map<std::string, std::string> common_keys;
-    for (const char* key : {"max-on-time-ms", "pulse-period-ms"}) {
+    for (const char* key : kCommonSettingKeys) {
         if (auto found = settings.find(key); found != settings.end()) {
             common_keys.insert(settings.extract(found));
         }

@@ -31,6 +31,7 @@ class ConfiguredActuator final : public Actuator {
     void off() noexcept override { backend_->off(); }
     void prepare(const Drive& next) override { backend_->prepare(next); }
     void set_gain(double gain) override { backend_->set_gain(gain); }
+    void set_off_timer(double seconds) override { backend_->set_off_timer(seconds); }
 
   private:
     std::unique_ptr<Actuator> backend_;

@@ -2,20 +2,11 @@
 
 #include <charconv>
 #include <cmath>
-#include <sstream>
 #include <utility>
 
+#include "common/number_text.hpp"
+
 namespace vibscore::drivers {
-
-namespace {
-
-std::string format_number(double value) {
-    std::ostringstream out;
-    out << value;
-    return out.str();
-}
-
-}  // namespace
 
 DriverSettings::DriverSettings(std::string driver, std::map<std::string, std::string> settings)
     : driver_(std::move(driver)), settings_(std::move(settings)) {}
@@ -30,10 +21,10 @@ const std::string* DriverSettings::lookup(const std::string& key) {
     return found == settings_.end() ? nullptr : &found->second;
 }
 
-std::invalid_argument DriverSettings::bad(const std::string& key, const std::string& value,
-                                          const std::string& expected) const {
-    return std::invalid_argument(driver_ + " setting " + key + " = \"" + value + "\": expected " +
-                                 expected);
+SettingError DriverSettings::bad(const std::string& key, const std::string& value,
+                                 const std::string& expected) const {
+    return SettingError(key,
+                        driver_ + " setting " + key + " = \"" + value + "\": expected " + expected);
 }
 
 std::optional<std::string> DriverSettings::text(const std::string& key) {
@@ -61,7 +52,7 @@ std::optional<double> DriverSettings::number(const std::string& key, double min,
     const auto [ptr, error] = std::from_chars(value->data(), end, number);
     if (error != std::errc{} || ptr != end || !std::isfinite(number) || number < min ||
         number > max) {
-        throw bad(key, *value, "a number from " + format_number(min) + " to " + format_number(max));
+        throw bad(key, *value, "a number from " + number_text(min) + " to " + number_text(max));
     }
     return number;
 }
@@ -122,12 +113,14 @@ std::string DriverSettings::choice(const std::string& key, const std::string& fa
 void DriverSettings::reject_unknown() const {
     for (const auto& [key, value] : settings_) {
         if (asked_.count(key) == 0) {
-            std::string known;
-            for (const auto& name : asked_) {
-                known += (known.empty() ? "" : ", ") + name;
+            std::set<std::string> known(asked_);
+            known.insert(std::begin(kCommonSettingKeys), std::end(kCommonSettingKeys));
+            std::string list;
+            for (const auto& name : known) {
+                list += (list.empty() ? "" : ", ") + name;
             }
-            throw std::invalid_argument("unknown " + driver_ + " setting " + key + " = \"" + value +
-                                        "\" (known: " + known + ")");
+            throw SettingError(key, "unknown " + driver_ + " setting " + key + " = \"" + value +
+                                        "\" (known: " + list + ")");
         }
     }
 }

@@ -6,11 +6,26 @@
 #include <set>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace vibscore::drivers {
 
+// The keys every backend takes besides its own (configured_actuator.hpp); the player enforces them.
+inline constexpr const char* kCommonSettingKeys[] = {"max-on-time-ms", "pulse-period-ms"};
+
+// A setting the backend refuses; key() lets the configuration name the file and line it came from.
+class SettingError : public std::invalid_argument {
+  public:
+    SettingError(std::string key, const std::string& message)
+        : std::invalid_argument(message), key_(std::move(key)) {}
+    const std::string& key() const { return key_; }
+
+  private:
+    std::string key_;
+};
+
 // Reads one driver's "key = value" settings (its section of vibscored.conf) with typed
-// accessors. Every error is std::invalid_argument naming the driver, key and value, e.g.
+// accessors. Every error is a SettingError naming the driver, key and value, e.g.
 //   evdev setting carrier-hz = "fast": expected a number from 10 to 20000
 // Drivers call reject_unknown() last, so a misspelt key is an error, not a silent default.
 class DriverSettings {
@@ -30,13 +45,14 @@ class DriverSettings {
     std::string choice(const std::string& key, const std::string& fallback,
                        std::initializer_list<const char*> allowed);
 
-    // Throws for any setting none of the accessors above asked for, listing the known keys.
+    // Throws for any setting none of the accessors above asked for, listing the known keys (the
+    // common ones too).
     void reject_unknown() const;
 
   private:
     const std::string* lookup(const std::string& key);
-    std::invalid_argument bad(const std::string& key, const std::string& value,
-                              const std::string& expected) const;
+    SettingError bad(const std::string& key, const std::string& value,
+                     const std::string& expected) const;
 
     std::string driver_;
     std::map<std::string, std::string> settings_;

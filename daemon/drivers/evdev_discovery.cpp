@@ -84,7 +84,9 @@ FfProbeResult kernel_force_feedback(const fs::path& path) {
         return libevdev_has_event_code(node->device(), EV_FF, code) != 0;
     };
     const bool usable = has(FF_RUMBLE) || (has(FF_PERIODIC) && (has(FF_SINE) || has(FF_SQUARE)));
-    return usable ? FfProbeResult::force_feedback : FfProbeResult::no_force_feedback;
+    const char* phys = libevdev_get_phys(node->device());
+    const bool ours = phys != nullptr && std::string_view(phys) == kVirtualVibraPhys;
+    return usable && !ours ? FfProbeResult::force_feedback : FfProbeResult::no_force_feedback;
 }
 
 std::optional<CharDeviceNumber> kernel_device_number(const fs::path& path) {

@@ -32,8 +32,13 @@ struct DiscoveryProbe {
     std::function<std::optional<CharDeviceNumber>(const std::filesystem::path&)> device_number;
 };
 
+// The phys of the virtual vibra vibscored serves itself (daemon/virtual_vibra): a force-feedback
+// device it must never drive, or it would play into itself.
+inline constexpr const char* kVirtualVibraPhys = "vibscore/virtual-vibra";
+
 // Opens the node read-only and asks libevdev for EV_FF with FF_RUMBLE, or FF_PERIODIC with
-// FF_SINE or FF_SQUARE; the device number comes from stat's st_rdev (character devices only).
+// FF_SINE or FF_SQUARE, and for a phys other than kVirtualVibraPhys; the device number comes
+// from stat's st_rdev (character devices only).
 DiscoveryProbe kernel_discovery_probe();
 
 struct DiscoveredDevice {

@@ -25,11 +25,8 @@ class KernelGpioLines final : public GpioLines {
         }
         try {
             lines_ = chip_.get_lines(offsets);
-            gpiod::line_request request;
-            request.consumer = kConsumer;
-            request.request_type = gpiod::line_request::DIRECTION_OUTPUT;
             // Low from the moment the request is granted: nothing vibrates at start-up.
-            lines_.request(request, std::vector<int>(offsets.size(), 0));
+            lines_.request(output_line_request(), std::vector<int>(offsets.size(), 0));
         } catch (const std::exception& error) {
             throw DeviceError(description_ + ": cannot request as output: " + error.what());
         }
@@ -67,6 +64,14 @@ class KernelGpioLines final : public GpioLines {
 };
 
 }  // namespace
+
+gpiod::line_request output_line_request() {
+    gpiod::line_request request;
+    request.consumer = kConsumer;
+    request.request_type = gpiod::line_request::DIRECTION_OUTPUT;
+    request.flags = gpiod::line_request::FLAG_BIAS_PULL_DOWN;
+    return request;
+}
 
 std::string describe_lines(const std::string& chip, const std::vector<unsigned>& offsets) {
     std::string text = chip + (offsets.size() == 1 ? " line " : " lines ");

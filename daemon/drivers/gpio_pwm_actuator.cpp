@@ -27,8 +27,8 @@ std::vector<int> with_enable(std::vector<int> values, bool enable_line) {
 unsigned required_line(DriverSettings& read, const std::string& key) {
     const auto offset = read.integer(key, 0, kMaxLineOffset);
     if (!offset) {
-        throw std::invalid_argument(read.driver() + " setting " + key +
-                                    " is missing: the line offset on the chip");
+        throw SettingError(
+            key, read.driver() + " setting " + key + " is missing: the line offset on the chip");
     }
     return static_cast<unsigned>(*offset);
 }
@@ -43,9 +43,9 @@ std::vector<unsigned> with_enable_line(DriverSettings& read, std::vector<unsigne
     for (std::size_t i = 0; i < offsets.size(); ++i) {
         for (std::size_t j = i + 1; j < offsets.size(); ++j) {
             if (offsets[i] == offsets[j]) {
-                throw std::invalid_argument(read.driver() + " settings name line " +
-                                            std::to_string(offsets[i]) +
-                                            " twice: every line needs its own offset");
+                throw SettingError("enable-line", read.driver() + " settings name line " +
+                                                      std::to_string(offsets[i]) +
+                                                      " twice: every line needs its own offset");
             }
         }
     }

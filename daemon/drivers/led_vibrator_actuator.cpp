@@ -1,5 +1,7 @@
 #include "daemon/drivers/led_vibrator_actuator.hpp"
 
+#include <algorithm>
+
 #include <cmath>
 #include <stdexcept>
 #include <utility>
@@ -36,8 +38,9 @@ std::optional<AmplitudeAttribute> read_amplitude(DriverSettings& read,
     const auto path = (given.is_absolute() ? given : device_dir / given).lexically_normal();
     const auto inside = path.lexically_relative(sysfs_root.lexically_normal());
     if (inside.empty() || *inside.begin() == "..") {
-        throw std::invalid_argument(read.driver() + " setting amplitude-path = \"" + *text +
-                                    "\": expected an attribute under " + sysfs_root.string());
+        throw SettingError("amplitude-path", read.driver() + " setting amplitude-path = \"" +
+                                                 *text + "\": expected an attribute under " +
+                                                 sysfs_root.string());
     }
     return AmplitudeAttribute{path, read.integer("amplitude-max", 255, 1, 1'000'000)};
 }
@@ -49,8 +52,8 @@ SysfsVibratorSettings read_common(DriverSettings& read, const char* name_key,
     settings.name = read.text(name_key, settings.name);
     if (settings.name.find('/') != std::string::npos || settings.name == "." ||
         settings.name == "..") {
-        throw std::invalid_argument(read.driver() + " setting " + name_key + " = \"" +
-                                    settings.name + "\": expected a device name, not a path");
+        throw SettingError(name_key, read.driver() + " setting " + name_key + " = \"" +
+                                         settings.name + "\": expected a device name, not a path");
     }
     settings.duration_ms = read.integer("duration-ms", settings.duration_ms, 1, 600'000);
     settings.amplitude =
@@ -69,7 +72,21 @@ Capabilities SysfsVibrator::capabilities() const {
     Capabilities capabilities;
     capabilities.amplitude_control = settings_.amplitude.has_value();
     capabilities.max_on_time_s = static_cast<double>(settings_.duration_ms) / 1000.0;
+    capabilities.off_timer = true;
     return capabilities;
+}
+
+void SysfsVibrator::set_off_timer(double seconds) {
+    // Rounded up: the kernel must not end a note before the score does. At least 1 ms, since 0
+    // means "no timer" to both interfaces.
+    const auto ms = static_cast<long>(std::ceil(seconds * 1000.0 - 1e-6));
+    off_timer_ms_ = std::clamp(ms, 1L, settings_.duration_ms);
+}
+
+long SysfsVibrator::take_on_time_ms() {
+    const long ms = off_timer_ms_.value_or(settings_.duration_ms);
+    off_timer_ms_.reset();
+    return ms;
 }
 
 void SysfsVibrator::apply(const Drive& drive) {
@@ -144,6 +161,9 @@ void LedVibratorActuator::restore_trigger() noexcept {
 }
 
 void LedVibratorActuator::switch_on() {
+    if (has_off_timer()) {
+        attributes().write(led_dir_ / "duration", std::to_string(take_on_time_ms()));
+    }
     attributes().write(led_dir_ / "activate", "1");
 }
 
@@ -167,7 +187,7 @@ TimedOutputActuator::~TimedOutputActuator() {
 }
 
 void TimedOutputActuator::switch_on() {
-    attributes().write(enable_, std::to_string(settings().duration_ms));
+    attributes().write(enable_, std::to_string(take_on_time_ms()));
 }
 
 void TimedOutputActuator::switch_off() {

@@ -25,12 +25,15 @@ struct SysfsVibratorSettings {
     std::optional<AmplitudeAttribute> amplitude;
 };
 
-// A vibrator that the kernel switches off by itself after duration_ms: the failsafe when the
-// daemon dies while it vibrates. Both kinds report that limit as max_on_time_s, and amplitude
+// A vibrator that the kernel switches off by itself after a time it is given: the failsafe when
+// the daemon dies while it vibrates. The player gives the time until the score switches off
+// (set_off_timer, at most duration_ms), so a note ends on time even then; without one, a
+// switch-on lasts duration_ms. Both kinds report that limit as max_on_time_s, and amplitude
 // control only with an amplitude attribute (otherwise the player pulse-modulates strength).
 class SysfsVibrator : public Actuator {
   public:
     Capabilities capabilities() const override;
+    void set_off_timer(double seconds) override;
 
     // amplitude > 0 switches on (after writing the strength, if there is an amplitude
     // attribute); 0 switches off. Throws DeviceError naming the attribute.
@@ -45,8 +48,13 @@ class SysfsVibrator : public Actuator {
 
     const SysfsVibratorSettings& settings() const { return settings_; }
     SysfsAttributes& attributes() { return *attributes_; }
+    // For the switch-on under way: the kernel timer's time in ms (set_off_timer's, once).
+    long take_on_time_ms();
+    // Whether set_off_timer gave a time for the next switch-on.
+    bool has_off_timer() const { return off_timer_ms_.has_value(); }
 
   private:
+    std::optional<long> off_timer_ms_;
     SysfsVibratorSettings settings_;
     std::unique_ptr<SysfsAttributes> attributes_;
     std::optional<long> amplitude_written_;
@@ -54,8 +62,9 @@ class SysfsVibrator : public Actuator {
 };
 
 // "led-vibrator": <sysfs-root>/class/leds/<name> with the transient trigger. Open: trigger =
-// transient, state = 1, duration = duration_ms. On: activate = 1 (the kernel starts the duration
-// timer; while it runs, further writes of 1 change nothing). Off: activate = 0. Close: off and
+// transient, state = 1, duration = duration_ms. On: duration = the off timer's time when the
+// player gave one, then activate = 1 (the kernel starts the duration timer; while it runs,
+// further writes change nothing). Off: activate = 0. Close: off and
 // the LED's previous trigger back.
 class LedVibratorActuator : public SysfsVibrator {
   public:
@@ -75,7 +84,8 @@ class LedVibratorActuator : public SysfsVibrator {
 };
 
 // "timed-output": <sysfs-root>/class/timed_output/<name>/enable (the Android interface). On:
-// enable = duration_ms (each write restarts the kernel's timer). Off: enable = 0.
+// enable = the off timer's time, or duration_ms (each write restarts the kernel's timer). Off:
+// enable = 0.
 class TimedOutputActuator : public SysfsVibrator {
   public:
     // Throws DeviceError naming the path when the device is missing or refuses the first off.

@@ -139,6 +139,9 @@ void PwmThread::run() {
     PwmWaveform playing;  // steady low
     std::size_t next_edge = 0;
     std::int64_t period_start = 0;
+    // After a line error fail() has tried every line low once; writing again before the next
+    // play() would only report the same error a second time.
+    bool failed = false;
     while (!quit_) {
         if (playing.steady() && pending_) {
             // Nothing is running: the new waveform starts now.
@@ -146,10 +149,13 @@ void PwmThread::run() {
             pending_.reset();
             next_edge = 0;
             period_start = monotonic_now_ns();
+            failed = false;
         }
         if (playing.steady()) {
-            if (!write(lock, playing.edges.empty() ? all_low_ : playing.edges.front().values)) {
+            if (!failed &&
+                !write(lock, playing.edges.empty() ? all_low_ : playing.edges.front().values)) {
                 playing = {};
+                failed = true;
             }
             wake_.wait(lock, [this] { return quit_ || pending_; });
             continue;
@@ -166,12 +172,14 @@ void PwmThread::run() {
             pending_.reset();
             next_edge = 0;
             period_start = deadline;
+            failed = false;
             if (playing.steady()) {
                 continue;
             }
         }
         if (!write(lock, playing.edges[next_edge].values)) {
             playing = {};
+            failed = true;
             continue;
         }
         if (++next_edge == playing.edges.size()) {

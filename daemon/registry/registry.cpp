@@ -21,11 +21,9 @@ namespace {
 
 using Code = RegistryError::Code;
 
-constexpr std::size_t max_name_chars = 64;
-constexpr std::string_view score_suffix = ".score.xml";
-constexpr std::string_view clef_suffix = ".clef.xml";
-constexpr std::string_view name_rule =
-    "a name is 1 to 64 of a-z 0-9 . _ -, starting with a letter or a digit";
+constexpr std::string_view score_suffix = kScoreSuffix;
+constexpr std::string_view clef_suffix = kClefSuffix;
+constexpr std::string_view name_rule = kNameRule;
 
 // Names and hrefs come from clients: a megabyte of one must not end up in a message or log, and
 // a NUL or newline in one must not cut a message short or forge a log line.
@@ -150,26 +148,21 @@ const Record* find_in(const std::map<std::string, Record, std::less<>>& records,
 // Only a bare name is accepted: hrefs come from clients, and resolving them as paths would let a
 // document make the daemon read any file.
 std::string clef_name_of(const ClefDeclaration& declaration, const SourceLocation& declared_at) {
-    std::string_view name = declaration.href;
-    if (name.find('/') != std::string_view::npos) {
+    if (declaration.href.find('/') != std::string::npos) {
         throw DocumentError(declared_at, "clef " + in_quotes(declaration.id) + ": href " +
                                              in_quotes(declaration.href) +
                                              " is a path; the registry finds clefs by name only "
-                                             "(NAME.clef.xml)");
+                                             "(NAME.clef.xml), unless Play sends the clef along");
     }
-    if (name.ends_with(clef_suffix)) {
-        name.remove_suffix(clef_suffix.size());
-    } else if (name.ends_with(".xml")) {
-        name.remove_suffix(4);
-    }
-    if (!is_valid_name(name)) {
+    auto name = clef_name_in_href(declaration.href);
+    if (!name) {
         throw DocumentError(
             declared_at, "clef " + in_quotes(declaration.id) + ": href " +
                              in_quotes(declaration.href) +
                              " does not name a registry clef (NAME.clef.xml, NAME.xml or NAME; " +
                              std::string(name_rule) + ")");
     }
-    return std::string(name);
+    return std::move(*name);
 }
 
 std::string_view to_string(RegistryError::Code code) {
@@ -186,16 +179,6 @@ std::string_view to_string(RegistryError::Code code) {
             return "in-use";
     }
     return "unknown";
-}
-
-bool is_valid_name(std::string_view name) {
-    const auto letter_or_digit = [](char c) {
-        return (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9');
-    };
-    return !name.empty() && name.size() <= max_name_chars && letter_or_digit(name.front()) &&
-           std::all_of(name.begin(), name.end(), [&](char c) {
-               return letter_or_digit(c) || c == '.' || c == '_' || c == '-';
-           });
 }
 
 Registry::Registry(std::filesystem::path shipped_dir, std::filesystem::path store_dir,
@@ -343,27 +326,57 @@ Clef Registry::clef(std::string_view name) const {
     return record->clef;
 }
 
-ScoreBundle Registry::inline_score(std::string_view document) const {
-    if (document.size() > limits_.document_bytes) {
+ScoreBundle Registry::inline_score(std::string_view document,
+                                   const std::map<std::string, std::string>& clef_documents) const {
+    std::size_t bytes = document.size();
+    for (const auto& [href, text] : clef_documents) {
+        bytes += text.size();
+    }
+    if (bytes > limits_.document_bytes) {
         throw RegistryError(Code::limit_exceeded,
-                            "inline score is " + std::to_string(document.size()) +
+                            "inline score and clefs are " + std::to_string(bytes) +
                                 " bytes; the limit is " + std::to_string(limits_.document_bytes));
+    }
+    if (clef_documents.size() > limits::clefs_per_score) {
+        throw RegistryError(Code::limit_exceeded, std::to_string(clef_documents.size()) +
+                                                      " inline clefs; the limit is " +
+                                                      std::to_string(limits::clefs_per_score));
     }
     const std::string file = "<inline score>";
     try {
-        return bind(read_score(document, file), file).bundle;
+        std::map<std::string, Clef> inline_clefs;
+        for (const auto& [href, text] : clef_documents) {
+            inline_clefs.emplace(href, read_clef(text, "<inline clef " + in_quotes(href) + ">"));
+        }
+        auto parsed = read_score(document, file);
+        for (const auto& [href, clef] : inline_clefs) {
+            if (std::none_of(
+                    parsed.score.clefs.begin(), parsed.score.clefs.end(),
+                    [&](const ClefDeclaration& declared) { return declared.href == href; })) {
+                throw RegistryError(Code::invalid_document,
+                                    "inline clef " + in_quotes(href) +
+                                        " is not named by any <Clef href> of the score");
+            }
+        }
+        return bind(std::move(parsed), file, {}, nullptr, &inline_clefs).bundle;
     } catch (const DocumentError& error) {
         throw RegistryError(Code::invalid_document, error.what());
     }
 }
 
 Registry::ScoreRecord Registry::bind(ParsedScore parsed, std::string file,
-                                     std::string_view replaced_name,
-                                     const Clef* replacement) const {
+                                     std::string_view replaced_name, const Clef* replacement,
+                                     const std::map<std::string, Clef>* inline_clefs) const {
     ScoreRecord record;
     record.bundle = bind_clefs(
         std::move(parsed), std::move(file),
         [&](const ClefDeclaration& declaration, const SourceLocation& declared_at) -> Clef {
+            if (inline_clefs != nullptr) {
+                if (const auto sent = inline_clefs->find(declaration.href);
+                    sent != inline_clefs->end()) {
+                    return sent->second;
+                }
+            }
             auto name = clef_name_of(declaration, declared_at);
             const Clef* clef = nullptr;
             if (replacement != nullptr && name == replaced_name) {

@@ -13,6 +13,7 @@
 #include "score/bundle.hpp"
 #include "score/clef.hpp"
 #include "score/limits.hpp"
+#include "score/registry_names.hpp"
 
 namespace vibscore::daemon {
 
@@ -52,8 +53,8 @@ struct StoreLimits {
 // DocumentError at declared_at for a path or an invalid name.
 std::string clef_name_of(const ClefDeclaration& declaration, const SourceLocation& declared_at);
 
-// Whether name is a valid registry name: 1-64 of [a-z0-9._-], starting with [a-z0-9].
-bool is_valid_name(std::string_view name);
+// score/registry_names.hpp: the naming rule, shared with the offline tools.
+using vibscore::is_valid_name;
 
 // The scores and clefs the daemon can play: read-only shipped documents plus a writable store
 // that survives restarts and crashes. Both directories hold NAME.score.xml and NAME.clef.xml.
@@ -91,9 +92,12 @@ class Registry {
     // A registry score with its clefs resolved from the registry. Throws not_found.
     ScoreBundle score(std::string_view name) const;
 
-    // A VibScore document sent over the bus, its clefs resolved from the registry; nothing is
-    // stored. Throws invalid_document or limit_exceeded.
-    ScoreBundle inline_score(std::string_view document) const;
+    // A VibScore document sent over the bus; nothing is stored. Its clefs are the VibClef
+    // documents sent along with it, keyed by the href that names them (any href: it is a key, not
+    // a path), and the registry's for the others. Throws invalid_document (also for a clef
+    // document no <Clef> names) or limit_exceeded.
+    ScoreBundle inline_score(std::string_view document,
+                             const std::map<std::string, std::string>& clef_documents = {}) const;
 
     // A registry clef. Throws not_found.
     Clef clef(std::string_view name) const;
@@ -135,7 +139,8 @@ class Registry {
 
     // Binds a parsed score to registry clefs, with an optional replacement for one clef name.
     ScoreRecord bind(ParsedScore parsed, std::string file, std::string_view replaced_name = {},
-                     const Clef* replacement = nullptr) const;
+                     const Clef* replacement = nullptr,
+                     const std::map<std::string, Clef>* inline_clefs = nullptr) const;
     // Every held score that uses clef name, bound again with it replaced by clef. Throws a
     // RegistryError with code naming each score that no longer fits, after context.
     std::vector<Rebound> rebind_dependents(std::string_view name, const Clef& clef,

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace vibscore::render {
 
@@ -10,150 +11,268 @@ namespace {
 constexpr double kTimeEpsilon = 1e-9;
 constexpr double kAmplitudeEpsilon = 1e-6;
 
-bool is_drive(const Cue& cue) {
-    return cue.kind == Cue::Kind::drive;
-}
+using Stage = AdaptedCueStream::Stage;
 
-Cue drive_at(double at, double amplitude, double frequency_hz) {
-    Cue cue;
-    cue.at = at;
-    cue.amplitude = amplitude;
-    cue.frequency_hz = frequency_hz;
-    return cue;
-}
-
-// Drives that say the same as the one before them are left out.
-std::vector<Cue> without_repeats(const std::vector<Cue>& drives) {
-    std::vector<Cue> kept;
-    for (const Cue& cue : drives) {
-        if (!kept.empty() && kept.back().amplitude == cue.amplitude &&
-            kept.back().frequency_hz == cue.frequency_hz && kept.back().ramp_s == 0.0 &&
-            cue.ramp_s == 0.0) {
-            continue;
-        }
-        // Two drives at one instant: only the later one is ever felt.
-        if (!kept.empty() && std::abs(kept.back().at - cue.at) < kTimeEpsilon) {
-            kept.back() = cue;
-            continue;
-        }
-        kept.push_back(cue);
-    }
-    return kept;
-}
-
-std::vector<Cue> pulse_modulated(const std::vector<Cue>& drives, double duration_s,
-                                 const CueAdaptation& adaptation) {
-    std::vector<Cue> pulses;
-    const double period = adaptation.pulse_period_s;
-    for (std::size_t i = 0; i < drives.size(); ++i) {
-        const double strength = std::clamp(drives[i].amplitude * adaptation.scale, 0.0, 1.0);
-        if (strength == 0.0) {
-            pulses.push_back(drive_at(drives[i].at, 0.0, 0.0));
-            continue;
-        }
-        // A vibrating stretch: from here until the next drive of 0 (or the end of the pass).
-        std::size_t end = i;
-        while (end < drives.size() && drives[end].amplitude * adaptation.scale > 0.0) {
-            ++end;
-        }
-        const double stretch_end = end < drives.size() ? drives[end].at : duration_s;
-        std::size_t level = i;
-        const double stretch_start = drives[i].at;
-        for (std::size_t n = 0;; ++n) {
-            // Periods are counted from the stretch's start so rounding never accumulates.
-            const double start = stretch_start + static_cast<double>(n) * period;
-            if (start >= stretch_end - kTimeEpsilon) {
-                break;
-            }
-            while (level + 1 < end && drives[level + 1].at <= start + kTimeEpsilon) {
-                ++level;
-            }
-            const double s = std::clamp(drives[level].amplitude * adaptation.scale, 0.0, 1.0);
-            const double frequency = drives[level].frequency_hz;
-            if (s >= 1.0 - kTimeEpsilon) {
-                pulses.push_back(drive_at(start, 1.0, frequency));
+// Drives that say the same as the one before them are left out; of two drives at one instant
+// only the later one is ever felt. A drive goes on once the one after it is known.
+class WithoutRepeats final : public Stage {
+  public:
+    explicit WithoutRepeats(Stage& input) : input_(input) {}
+    std::optional<Cue> next() override {
+        while (auto cue = input_.next()) {
+            if (!kept_) {
+                kept_ = cue;
                 continue;
             }
-            const double on_s = std::min(s * period, stretch_end - start);
-            if (on_s < adaptation.min_pulse_s) {
-                pulses.push_back(drive_at(start, 0.0, 0.0));
+            if (kept_->amplitude == cue->amplitude && kept_->frequency_hz == cue->frequency_hz &&
+                kept_->ramp_s == 0.0 && cue->ramp_s == 0.0) {
                 continue;
             }
-            pulses.push_back(drive_at(start, 1.0, frequency));
-            pulses.push_back(drive_at(start + on_s, 0.0, 0.0));
+            if (std::abs(kept_->at - cue->at) < kTimeEpsilon) {
+                kept_ = cue;
+                continue;
+            }
+            return std::exchange(kept_, cue);
         }
-        pulses.push_back(drive_at(stretch_end, 0.0, 0.0));
-        i = end == drives.size() ? end : end - 1;
+        return std::exchange(kept_, std::nullopt);
     }
-    return without_repeats(pulses);
-}
+
+  private:
+    Stage& input_;
+    std::optional<Cue> kept_;
+};
+
+// Strength as pulse width (CueAdaptation::amplitude). A vibrating stretch runs from a drive
+// above 0 to the next drive of 0 (or the end of the pass); its periods are counted from its
+// start, so rounding never accumulates. Each period needs the drives up to its end read.
+class PulseModulation final : public Stage {
+  public:
+    PulseModulation(Stage& input, double duration_s, const CueAdaptation& adaptation)
+        : input_(input), duration_s_(duration_s), adaptation_(adaptation) {}
+
+    std::optional<Cue> next() override {
+        while (made_.empty()) {
+            if (!step()) {
+                return std::nullopt;
+            }
+        }
+        const Cue cue = made_.front();
+        made_.pop_front();
+        return cue;
+    }
+
+  private:
+    bool vibrates(const Cue& cue) const { return cue.amplitude * adaptation_.scale > 0.0; }
+    double strength(const Cue& cue) const {
+        return std::clamp(cue.amplitude * adaptation_.scale, 0.0, 1.0);
+    }
+
+    // Makes the next cues; false when the input is exhausted.
+    bool step() {
+        if (!in_stretch_) {
+            auto cue = end_drive_ ? std::exchange(end_drive_, std::nullopt) : input_.next();
+            if (!cue) {
+                return false;
+            }
+            if (!vibrates(*cue)) {
+                made_.push_back(drive_at(cue->at, 0.0, 0.0));
+                return true;
+            }
+            in_stretch_ = true;
+            stretch_start_ = cue->at;
+            level_ = *cue;
+            periods_ = 0;
+            stretch_end_.reset();
+            return true;
+        }
+        const double period = adaptation_.pulse_period_s;
+        const double start = stretch_start_ + static_cast<double>(periods_) * period;
+        while (!stretch_end_ && (ahead_.empty() || ahead_.back().at <= start + period)) {
+            auto cue = input_.next();
+            if (!cue) {
+                stretch_end_ = duration_s_;
+            } else if (!vibrates(*cue)) {
+                stretch_end_ = cue->at;
+                end_drive_ = cue;  // taken again after the stretch, as any other drive
+            } else {
+                ahead_.push_back(*cue);
+            }
+        }
+        if (stretch_end_ && start >= *stretch_end_ - kTimeEpsilon) {
+            made_.push_back(drive_at(*stretch_end_, 0.0, 0.0));
+            in_stretch_ = false;
+            ahead_.clear();
+            return true;
+        }
+        while (!ahead_.empty() && ahead_.front().at <= start + kTimeEpsilon) {
+            level_ = ahead_.front();
+            ahead_.pop_front();
+        }
+        ++periods_;
+        const double s = strength(level_);
+        if (s >= 1.0 - kTimeEpsilon) {
+            made_.push_back(drive_at(start, 1.0, level_.frequency_hz));
+            return true;
+        }
+        // The stretch's end, when not yet read, lies beyond this period.
+        const double on_s = stretch_end_ ? std::min(s * period, *stretch_end_ - start) : s * period;
+        if (on_s < adaptation_.min_pulse_s) {
+            made_.push_back(drive_at(start, 0.0, 0.0));
+            return true;
+        }
+        made_.push_back(drive_at(start, 1.0, level_.frequency_hz));
+        made_.push_back(drive_at(start + on_s, 0.0, 0.0));
+        return true;
+    }
+
+    Stage& input_;
+    double duration_s_;
+    CueAdaptation adaptation_;
+    std::deque<Cue> made_;
+    bool in_stretch_ = false;
+    double stretch_start_ = 0.0;
+    std::size_t periods_ = 0;
+    Cue level_;                          // the drive in force at the current period's start
+    std::deque<Cue> ahead_;              // the stretch's drives read but not yet in force
+    std::optional<double> stretch_end_;  // once read
+    std::optional<Cue> end_drive_;       // the drive of 0 that ended the stretch
+};
 
 // The steps cue_schedule makes along a ramp are update_interval_s apart; three or more that
-// keep one frequency and lie on one line are a linear ramp.
-std::vector<Cue> with_envelopes(const std::vector<Cue>& drives, const CueAdaptation& adaptation) {
-    std::vector<Cue> merged;
-    std::size_t i = 0;
-    while (i < drives.size()) {
-        std::size_t last = i;
-        if (i + 1 < drives.size() && drives[i].amplitude > 0.0) {
-            const double slope =
-                (drives[i + 1].amplitude - drives[i].amplitude) / (drives[i + 1].at - drives[i].at);
-            while (last + 1 < drives.size()) {
-                const Cue& next = drives[last + 1];
-                const bool close =
-                    next.at - drives[last].at <= adaptation.update_interval_s + kTimeEpsilon;
-                const double predicted = drives[i].amplitude + slope * (next.at - drives[i].at);
-                if (!close || next.frequency_hz != drives[i].frequency_hz ||
-                    next.amplitude <= 0.0 ||
-                    std::abs(next.amplitude - predicted) > kAmplitudeEpsilon) {
-                    break;
-                }
-                ++last;
+// keep one frequency and lie on one line are a linear ramp, handed over as one drive. A ramp's
+// last step starts the next run, since its strength holds until the next drive.
+class Envelopes final : public Stage {
+  public:
+    Envelopes(Stage& input, const CueAdaptation& adaptation)
+        : input_(input), interval_s_(adaptation.update_interval_s) {}
+
+    std::optional<Cue> next() override {
+        const auto first = read();
+        if (!first || !(first->amplitude > 0.0)) {
+            return first;
+        }
+        const auto second = read();
+        if (!second) {
+            return first;
+        }
+        const double slope = (second->amplitude - first->amplitude) / (second->at - first->at);
+        Cue last = *first;
+        std::size_t steps = 0;
+        auto candidate = second;
+        while (candidate) {
+            const bool close = candidate->at - last.at <= interval_s_ + kTimeEpsilon;
+            const double predicted = first->amplitude + slope * (candidate->at - first->at);
+            if (!close || candidate->frequency_hz != first->frequency_hz ||
+                candidate->amplitude <= 0.0 ||
+                std::abs(candidate->amplitude - predicted) > kAmplitudeEpsilon) {
+                break;
             }
+            last = *candidate;
+            ++steps;
+            candidate = read();
         }
-        Cue cue = drives[i];
-        if (last >= i + 2) {
-            cue.ramp_to = drives[last].amplitude;
-            cue.ramp_s = drives[last].at - drives[i].at;
-            merged.push_back(cue);
-            i = last;  // the ramp's end holds its strength until the next drive
-            continue;
+        if (candidate) {
+            unread_.push_front(*candidate);
         }
-        merged.push_back(cue);
-        ++i;
+        if (steps >= 2) {
+            unread_.push_front(last);
+            Cue ramp = *first;
+            ramp.ramp_to = last.amplitude;
+            ramp.ramp_s = last.at - first->at;
+            return ramp;
+        }
+        if (steps == 1) {
+            unread_.push_front(*second);
+        }
+        return first;
     }
-    return merged;
-}
+
+  private:
+    std::optional<Cue> read() {
+        if (unread_.empty()) {
+            return input_.next();
+        }
+        const Cue cue = unread_.front();
+        unread_.pop_front();
+        return cue;
+    }
+
+    Stage& input_;
+    double interval_s_;
+    std::deque<Cue> unread_;  // read ahead and given back: at most two
+};
 
 }  // namespace
 
+// The input's drives (without frequency when the actuator has no choice of it); its positions
+// are set aside for the adapted stream to merge back in.
+class AdaptedCueStream::InputDrives final : public Stage {
+  public:
+    InputDrives(std::unique_ptr<CueStream> input, bool frequency, std::deque<Cue>& positions)
+        : input_(std::move(input)), frequency_(frequency), positions_(positions) {}
+    std::optional<Cue> next() override {
+        while (auto cue = input_->next()) {
+            if (cue->kind != Cue::Kind::drive) {
+                positions_.push_back(*cue);
+                continue;
+            }
+            if (!frequency_) {
+                cue->frequency_hz = 0.0;
+            }
+            return cue;
+        }
+        return std::nullopt;
+    }
+
+  private:
+    std::unique_ptr<CueStream> input_;
+    bool frequency_;
+    std::deque<Cue>& positions_;
+};
+
+AdaptedCueStream::AdaptedCueStream(std::unique_ptr<CueStream> input, double duration_s,
+                                   const CueAdaptation& adaptation)
+    : input_(std::make_unique<InputDrives>(std::move(input), adaptation.frequency, positions_)) {
+    const auto add = [&](std::unique_ptr<Stage> stage) { stages_.push_back(std::move(stage)); };
+    const auto last = [&]() -> Stage& {
+        return stages_.empty() ? static_cast<Stage&>(*input_) : *stages_.back();
+    };
+    if (!adaptation.amplitude) {
+        add(std::make_unique<PulseModulation>(last(), duration_s, adaptation));
+        add(std::make_unique<WithoutRepeats>(last()));
+    } else if (adaptation.envelopes) {
+        add(std::make_unique<WithoutRepeats>(last()));
+        add(std::make_unique<Envelopes>(last(), adaptation));
+    } else {
+        add(std::make_unique<WithoutRepeats>(last()));
+    }
+}
+
+AdaptedCueStream::~AdaptedCueStream() = default;
+
+std::optional<Cue> AdaptedCueStream::next() {
+    // Every stage reads its input to the end before it says it has no more, so once the drives
+    // are done every position has been set aside.
+    if (!waiting_drive_ && !drives_done_) {
+        waiting_drive_ = stages_.back()->next();
+        drives_done_ = !waiting_drive_;
+    }
+    // A position not yet read lies at or after the waiting drive (each stage has read its input
+    // up to that drive's time), and at one instant the drive goes first.
+    if (!positions_.empty() && (!waiting_drive_ || positions_.front().at < waiting_drive_->at)) {
+        const Cue position = positions_.front();
+        positions_.pop_front();
+        return position;
+    }
+    return std::exchange(waiting_drive_, std::nullopt);
+}
+
 std::vector<Cue> adapt_cues(const std::vector<Cue>& cues, double duration_s,
                             const CueAdaptation& adaptation) {
-    std::vector<Cue> drives, positions;
-    for (const Cue& cue : cues) {
-        (is_drive(cue) ? drives : positions).push_back(cue);
-    }
-    if (!adaptation.frequency) {
-        for (Cue& cue : drives) {
-            cue.frequency_hz = 0.0;
-        }
-    }
-    if (!adaptation.amplitude) {
-        drives = pulse_modulated(drives, duration_s, adaptation);
-    } else if (adaptation.envelopes) {
-        drives = with_envelopes(without_repeats(drives), adaptation);
-    } else {
-        drives = without_repeats(drives);
-    }
-    std::vector<Cue> adapted = std::move(drives);
-    adapted.insert(adapted.end(), positions.begin(), positions.end());
-    std::stable_sort(adapted.begin(), adapted.end(), [](const Cue& a, const Cue& b) {
-        if (a.at != b.at) {
-            return a.at < b.at;
-        }
-        return is_drive(a) && !is_drive(b);
-    });
-    return adapted;
+    AdaptedCueStream stream(
+        std::make_unique<CueListStream>(std::make_shared<const std::vector<Cue>>(cues)), duration_s,
+        adaptation);
+    return collect(stream);
 }
 
 }  // namespace vibscore::render

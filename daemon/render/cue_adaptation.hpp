@@ -1,5 +1,8 @@
 #pragma once
 
+#include <deque>
+#include <memory>
+#include <optional>
 #include <vector>
 
 #include "daemon/render/cue_schedule.hpp"
@@ -25,8 +28,35 @@ struct CueAdaptation {
     double update_interval_s = CueOptions{}.update_interval_s;
 };
 
-// The cues of one pass (duration_s long) rewritten for an actuator. Position cues are kept;
-// the result is in time order, drives before positions at the same instant, as cue_schedule.
+// The cues of one pass (duration_s long) rewritten for an actuator, as they are asked for.
+// Position cues are kept; the result is in time order, drives before positions at the same
+// instant, as a schedule stream. It reads its input only as far ahead as the cue it makes needs
+// (a pulse period, or the run of steps that one ramp replaces).
+class AdaptedCueStream final : public CueStream {
+  public:
+    AdaptedCueStream(std::unique_ptr<CueStream> input, double duration_s,
+                     const CueAdaptation& adaptation);
+    ~AdaptedCueStream() override;
+    std::optional<Cue> next() override;
+
+    // One step of the drive pipeline: drives in, drives out.
+    class Stage {
+      public:
+        virtual ~Stage() = default;
+        virtual std::optional<Cue> next() = 0;
+    };
+
+  private:
+    class InputDrives;
+
+    std::deque<Cue> positions_;  // read from the input, waiting for their turn
+    std::unique_ptr<InputDrives> input_;
+    std::vector<std::unique_ptr<Stage>> stages_;  // each reads the one before it
+    std::optional<Cue> waiting_drive_;
+    bool drives_done_ = false;
+};
+
+// The whole adapted list (tests, tools and the hil expectations).
 std::vector<Cue> adapt_cues(const std::vector<Cue>& cues, double duration_s,
                             const CueAdaptation& adaptation);
 

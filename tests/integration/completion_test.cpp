@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "tests/support/daemon_fixture.hpp"
+#include "tests/support/support.hpp"
 
 namespace vibscore {
 namespace {
@@ -15,12 +16,16 @@ class Completion : public ::testing::Test {
   protected:
     DaemonFixture daemon{"drivers-dir = " + testing::required_env("VIBSCORE_EXAMPLE_DRIVERS")};
 
-    // What bash offers after `line` (the last word is the one being completed).
-    std::string complete(const std::string& line) const {
-        const std::filesystem::path client = testing::required_env("VIBSCORE");
+    const std::filesystem::path client = testing::required_env("VIBSCORE");
+
+    // What bash offers after `line` (the last word is the one being completed). The client's
+    // folder is on PATH unless the line names the client by its path.
+    std::string complete(const std::string& line, bool client_on_path = true) const {
+        const std::string path =
+            client_on_path ? client.parent_path().string() + ":$PATH" : "/usr/bin:/bin";
         const std::string script =
-            "PATH=" + client.parent_path().string() + ":$PATH; source " +
-            testing::required_env("VIBSCORE_COMPLETION") + "; COMP_LINE='" + line +
+            "PATH=" + path + "; source " + testing::required_env("VIBSCORE_COMPLETION") +
+            "; COMP_LINE='" + line +
             "'; read -ra COMP_WORDS <<< \"$COMP_LINE\"; [[ $COMP_LINE == *' ' ]] && "
             "COMP_WORDS+=(''); COMP_CWORD=$((${#COMP_WORDS[@]} - 1)); _vibscore; "
             "printf '%s\\n' \"${COMPREPLY[@]}\" | sort";
@@ -39,6 +44,53 @@ TEST_F(Completion, OffersVerbsOptionsAndTheDaemonsNames) {
     EXPECT_EQ(complete("vibscore get "), "clef\nscore\n");
     EXPECT_EQ(complete("vibscore driver tr"), "trace\n");
     EXPECT_THAT(complete("vibscore list "), Not(HasSubstr("ringtone")));
+}
+
+TEST_F(Completion, FoldersEndInASlashAndFilesFollowTheVerbsPattern) {
+    const testing::TempDir dir;
+    std::filesystem::create_directory(dir.path() / "scores");
+    for (const char* name : {"a.score.xml", "take.csv", "take.wav", "notes.txt"}) {
+        dir.write(name, "x");
+    }
+    const std::string root = dir.path().string() + "/";
+    EXPECT_EQ(complete("vibscore check " + root), root + "a.score.xml\n" + root + "scores/\n");
+    EXPECT_EQ(complete("vibscore render a.score.xml --out " + root),
+              root + "scores/\n" + root + "take.csv\n" + root + "take.wav\n");
+    EXPECT_EQ(complete("vibscore play --clefs " + root), root + "scores/\n");
+}
+
+TEST_F(Completion, OffersEveryAliasAndTheClefsFolderOption) {
+    EXPECT_EQ(complete("vibscore edit --b"), "--button-map\n--buttons\n");
+    EXPECT_EQ(complete("vibscore show --col"), "--color\n--colour\n");
+    EXPECT_EQ(complete("vibscore check --c"), "--clefs\n");
+}
+
+TEST_F(Completion, WorksForTheClientInTheBuildTreeNotOnPath) {
+    const std::string built = client.string();
+    EXPECT_EQ(complete(built + " driver tr", false), "trace\n");
+    EXPECT_THAT(complete(built + " get clef lra-", false), HasSubstr("lra-phone\n"));
+    const auto registered =
+        testing::run_command({"/bin/bash", "-c",
+                              "source " + testing::required_env("VIBSCORE_COMPLETION") +
+                                  " && complete -p build/client/vibscore"});
+    EXPECT_EQ(registered.exit_code, 0) << registered.err;
+}
+
+TEST_F(Completion, OffersConvertItsOptionsFormatsAndPictureFiles) {
+    EXPECT_EQ(complete("vibscore conv"), "convert\n");
+    EXPECT_EQ(complete("vibscore convert --t"), "--to\n--track\n");
+    EXPECT_EQ(complete("vibscore convert a.mid b.score.xml --from "),
+              "ahap\nandroid-envelope\nandroid-json\nandroid-xml\nmidi\nrtttl\nscore\n");
+    EXPECT_EQ(complete("vibscore convert x.ahap --to android-"),
+              "android-envelope\nandroid-json\nandroid-xml\n");
+    EXPECT_EQ(complete("vibscore show ringtone --s"), "--svg\n");
+    EXPECT_EQ(complete("vibscore render x.xml --p"), "--plot\n--png\n");
+    // Pictures are offered by their extension.
+    testing::TempDir dir;
+    dir.write("staff.svg", "");
+    dir.write("staff.png", "");
+    EXPECT_EQ(complete("vibscore show ringtone --png " + (dir.path() / "st").string()),
+              (dir.path() / "staff.png").string() + "\n");
 }
 
 }  // namespace

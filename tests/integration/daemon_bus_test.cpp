@@ -223,6 +223,22 @@ TEST_F(DaemonBus, UsageDecidesWhichPlaybackWins) {
     client->Stop(alarm);
 }
 
+TEST_F(DaemonBus, ARequestThatWouldBeRefusedIsRefusedBeforeItsScoreIsRead) {
+    auto client = daemon.client();
+    const auto alarm =
+        client->Play("alarm", options({{"usage", sdbus::Variant(std::string("alarm"))},
+                                       {"repeat", sdbus::Variant(std::int32_t{-1})}}));
+    const auto touch = options({{"usage", sdbus::Variant(std::string("touch"))}});
+    // Neither a broken document nor a missing one is looked at: the answer is Busy.
+    EXPECT_EQ(error_name_of([&] { client->Play("<VibScore><Bar", touch); }).substr(0, 32),
+              "org.vibscore.Haptics1.Error.Busy");
+    EXPECT_EQ(error_name_of([&] { client->Play("no-such-score", touch); }).substr(0, 32),
+              "org.vibscore.Haptics1.Error.Busy");
+    client->Stop(alarm);
+    EXPECT_EQ(error_name_of([&] { client->Play("<VibScore><Bar", touch); }).substr(0, 43),
+              "org.vibscore.Haptics1.Error.InvalidDocument");
+}
+
 TEST_F(DaemonBus, OptionsChangeWhatPlays) {
     auto client = daemon.client();
     // The same score through the plain ERM clef: no frequency, strength from the line levels.
@@ -340,11 +356,56 @@ TEST_F(DaemonBus, AnUnprivilegedCallerMayPlayButNotComposeDeleteOrStopOthers) {
 
 TEST_F(DaemonBus, SigtermSwitchesTheActuatorOffAndExitsCleanly) {
     auto client = daemon.client();
-    client->Play("ringtone", options({{"repeat", sdbus::Variant(std::int32_t{-1})}}));
+    const auto id =
+        client->Play("ringtone", options({{"repeat", sdbus::Variant(std::int32_t{-1})}}));
     std::this_thread::sleep_for(std::chrono::milliseconds(30));
     EXPECT_EQ(daemon.stop_daemon(), 0);
     EXPECT_EQ(daemon.trace_rows().back().amplitude, 0.0);
     EXPECT_NE(daemon.daemon_log().find("stopping"), std::string::npos);
+    std::string reason;
+    ASSERT_TRUE(client->wait_finished(id, &reason));
+    EXPECT_EQ(reason, "service-stopped") << "not a caller's Stop";
+}
+
+TEST_F(DaemonBus, SafeOffSwitchesTheActuatorOffAfterTheDaemonWasKilledMidNote) {
+    const char* const kLongNote =
+        "<VibScore><Title>long</Title><Clef id=\"l\" href=\"lra-phone.clef.xml\"/>"
+        "<Bar clef=\"l\"><Note length=\"whole\" number=\"9\" string=\"6\"/></Bar></VibScore>";
+    auto client = daemon.client();
+    client->Play(kLongNote, options());
+    for (int i = 0;
+         i < 500 && (daemon.trace_rows().empty() || daemon.trace_rows().back().amplitude == 0.0);
+         ++i) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    }
+    daemon.kill_daemon();
+    ASSERT_FALSE(daemon.trace_rows().empty());
+    ASSERT_GT(daemon.trace_rows().back().amplitude, 0.0) << "killed mid-note, left on";
+    const auto safe_off = testing::run_command(
+        {testing::required_env("VIBSCORED"), "--config", daemon.config().string(), "--safe-off"});
+    EXPECT_EQ(safe_off.exit_code, 0) << safe_off.err;
+    ASSERT_FALSE(daemon.trace_rows().empty());
+    EXPECT_EQ(daemon.trace_rows().back().amplitude, 0.0);
+}
+
+TEST_F(DaemonBus, PlaybackIdsOfARestartedDaemonAreNewAndOldOnesAreNotFound) {
+    auto client = daemon.client();
+    const auto first = client->Play("touch-tick", options());
+    const auto second = client->Play("touch-tick", options());
+    EXPECT_EQ(second, first + 1);
+    client.reset();
+    daemon.kill_daemon();
+    daemon.start_daemon();
+    client = daemon.client();
+    const auto after_restart =
+        client->Play("ringtone", options({{"repeat", sdbus::Variant(std::int32_t{-1})}}));
+    EXPECT_GT(after_restart, second);
+    EXPECT_NE(after_restart & 0xffffffffu, 0u);
+    EXPECT_EQ(error_name_of([&] { client->Stop(first); }).substr(0, 36),
+              "org.vibscore.Haptics1.Error.NotFound");
+    EXPECT_FALSE(client->wait_finished(after_restart, nullptr, std::chrono::milliseconds(100)))
+        << "an earlier run's id stopped this playback";
+    client->Stop(after_restart);
 }
 
 TEST_F(DaemonBus, ComposedDocumentsSurviveARestart) {
@@ -515,8 +576,10 @@ TEST_F(DaemonBus, TheClientPlaysAndWaitsListsComposesAndExplainsErrors) {
     const auto played =
         testing::run_command(vibscore_command({"play", "notification-message", "--wait"}));
     EXPECT_EQ(played.exit_code, 0) << played.err;
-    EXPECT_NE(played.out.find("playback 1: bar 1"), std::string::npos) << played.out;
-    EXPECT_NE(played.out.find("playback 1 completed"), std::string::npos) << played.out;
+    // "playback N: bar 1"
+    const auto id = played.out.substr(9, played.out.find_first_not_of("0123456789", 9) - 9);
+    EXPECT_NE(played.out.find("playback " + id + ": bar 1"), std::string::npos) << played.out;
+    EXPECT_NE(played.out.find("playback " + id + " completed"), std::string::npos) << played.out;
     const auto listed = testing::run_command(vibscore_command({"list", "clefs"}));
     EXPECT_NE(listed.out.find("lra-phone\tsine, tempo 0.2 s, 6 strings"), std::string::npos);
     const auto file = daemon.store().parent_path() / "mine.score.xml";
@@ -537,6 +600,40 @@ TEST_F(DaemonBus, TheClientPlaysAndWaitsListsComposesAndExplainsErrors) {
     EXPECT_NE(not_root.err.find("vibscore: not permitted: Delete needs org.vibscore.compose"),
               std::string::npos)
         << not_root.err;
+}
+
+// `vibscore play --wait` on a ringtone that never ends, in the background; returns once the
+// first bar has been shown.
+std::unique_ptr<testing::Process> waiting_client(const std::filesystem::path& output) {
+    auto waiting = std::make_unique<testing::Process>(
+        vibscore_command({"play", "ringtone", "--usage", "ringtone", "--repeat", "-1", "--wait"}),
+        output);
+    for (int i = 0; i < 1000 && testing::read_file(output).find(": bar 1") == std::string::npos;
+         ++i) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    EXPECT_NE(testing::read_file(output).find(": bar 1"), std::string::npos)
+        << testing::read_file(output);
+    return waiting;
+}
+
+TEST_F(DaemonBus, PlayWaitSaysTheDaemonLeftAndFailsWhenItIsKilled) {
+    const auto output = daemon.store().parent_path() / "play-wait.out";
+    auto waiting = waiting_client(output);
+    daemon.kill_daemon();
+    EXPECT_EQ(waiting->wait(), 1) << testing::read_file(output);
+    EXPECT_NE(testing::read_file(output).find("vibscore: vibscored left the bus during playback "),
+              std::string::npos)
+        << testing::read_file(output);
+}
+
+TEST_F(DaemonBus, PlayWaitSaysTheServiceStoppedThePlaybackOnSigterm) {
+    const auto output = daemon.store().parent_path() / "play-wait.out";
+    auto waiting = waiting_client(output);
+    EXPECT_EQ(daemon.stop_daemon(), 0);
+    EXPECT_EQ(waiting->wait(), 1) << testing::read_file(output);
+    EXPECT_NE(testing::read_file(output).find(" service-stopped\n"), std::string::npos)
+        << testing::read_file(output);
 }
 
 TEST(ClientWithoutDaemon, SaysTheBusCannotBeReached) {

@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <filesystem>
 #include <random>
 #include <thread>
 
@@ -163,6 +164,13 @@ TEST_F(EditorEndToEnd, ComposesATactonWithSixButtonsSavesItAndPlaysIt) {
                                                 "my-buzz", {"lra-phone", "lra-phone.clef.xml"}),
                                             editor::registry_clefs(clef_names)),
                         {}};
+    // ... and proposals learned from every score the daemon lists, as the editor learns them.
+    std::vector<editor::NamedScore> registry;
+    for (const auto& entry : client->List("score")) {
+        const std::string name = entry.get<0>();
+        registry.push_back({name, read_score(client->Get("score", name), name).score});
+    }
+    copy.model.learn_from(editor::learned_from_others(registry, {"my-buzz", copy.model.score()}));
     const auto plan = editor::plan_presses(copy, wanted);
     ASSERT_TRUE(plan.reached);
     for (const Button button : plan.presses) {
@@ -214,6 +222,110 @@ TEST_F(EditorEndToEnd, ComposesATactonWithSixButtonsSavesItAndPlaysIt) {
     EXPECT_EQ(pane.wait_exit(), "0") << pane.screen();
 }
 
+TEST_F(EditorEndToEnd, ATwoBarRingtoneFromTheShippedOneIsSavedAsANewNameAndTheShippedOneStays) {
+    const auto shipped_file =
+        std::filesystem::path(testing::required_env("VIBSCORE_CLEFS")) / "ringtone.score.xml";
+    const std::string shipped_text = testing::read_file(shipped_file);
+    ASSERT_EQ(client->Get("score", "ringtone"), shipped_text);
+
+    // A copy of what `vibscore edit ringtone` opens: the shipped score, the registry's clefs
+    // and names, and proposals learned from every other score.
+    std::vector<std::string> clef_names;
+    for (const auto& entry : client->List("clef")) {
+        clef_names.push_back(entry.get<0>());
+    }
+    std::vector<std::string> score_names;
+    std::vector<editor::NamedScore> registry;
+    for (const auto& entry : client->List("score")) {
+        const std::string name = entry.get<0>();
+        score_names.push_back(name);
+        registry.push_back({name, read_score(client->Get("score", name), name).score});
+    }
+    const Score shipped = read_score(shipped_text, "ringtone").score;
+    editor::Editor copy{editor::EditorModel(shipped, editor::registry_clefs(clef_names)), {}};
+    copy.model.learn_from(editor::learned_from_others(registry, {"ringtone", shipped}));
+    copy.scheme.set_openable(score_names);
+    copy.scheme.set_taken(score_names);
+    copy.scheme.set_destination("ringtone", false);
+
+    // Two bars of it, composed with the six buttons: bars 3 and 4 marked as a block and
+    // deleted, and the first note raised a string.
+    std::vector<Button> compose;
+    const auto go = [&](const std::vector<Button>& presses) {
+        for (const Button button : presses) {
+            copy.press(button);
+        }
+        compose.insert(compose.end(), presses.begin(), presses.end());
+    };
+    const auto go_to_menu = [&](const std::string& label) {
+        const auto presses = menu_presses(copy, label);  // pressed on the copy already
+        compose.insert(compose.end(), presses.begin(), presses.end());
+    };
+    while (copy.model.cursor() != editor::Position{2, 0}) {
+        go({Button::right});
+    }
+    go_to_menu("mark block");
+    while (copy.model.cursor() != editor::Position{3, 1}) {
+        go({Button::right});
+    }
+    go_to_menu("delete");
+    while (copy.model.score().bars.size() > 2) {
+        go({Button::left});
+        go_to_menu("delete");
+        ASSERT_LT(compose.size(), 200u) << "bars 3 and 4 do not go";
+    }
+    while (copy.model.cursor() != editor::Position{0, 0}) {
+        go({Button::left});
+    }
+    go({Button::select, Button::up});  // the first note a string higher, then leave entering
+    // Its number and length kept; on the next note, Back Back leaves.
+    for (int i = 0; i < 6 && copy.scheme.mode() != editor::ButtonScheme::Mode::browse; ++i) {
+        go(copy.scheme.entry_step() == editor::EntrySteps::Step::string
+               ? std::vector<Button>{Button::back, Button::back}
+               : std::vector<Button>{Button::select});
+    }
+    ASSERT_EQ(copy.scheme.mode(), editor::ButtonScheme::Mode::browse);
+    const Score composed = copy.model.score();
+
+    ASSERT_EQ(composed.bars.size(), 2u);
+    ASSERT_NE(composed.bars[0], shipped.bars[0]);
+    EXPECT_EQ(composed.bars[1], shipped.bars[1]);
+
+    TmuxPane pane(edit_command("ringtone"), 40, 12);
+    ASSERT_TRUE(pane.wait_for_text("[lra")) << pane.screen();
+    send(pane, compose);
+    ASSERT_TRUE(pane.wait_for_text("bar 1/2")) << pane.screen();
+
+    // "save" over the shipped name asks first; Back leaves it unsaved.
+    send(pane, menu_presses(copy, "save"));
+    ASSERT_TRUE(pane.wait_for_text("ringtone exists")) << pane.screen();
+    EXPECT_NE(pane.screen().find("replace ringtone"), std::string::npos) << pane.screen();
+    EXPECT_NE(pane.screen().find("shipped files stay"), std::string::npos) << pane.screen();
+    send(pane, {Button::back});
+    copy.press(Button::back);
+
+    // Save as: the free name is proposed, and one Select saves under it.
+    send(pane, menu_presses(copy, "save as..."));
+    ASSERT_TRUE(pane.wait_for_text("ringtone-[2]")) << pane.screen();
+    EXPECT_NE(pane.screen().find("S:save B:more"), std::string::npos) << pane.screen();
+    send(pane, {Button::select});
+    EXPECT_EQ(copy.press(Button::select),
+              (editor::Request{editor::Request::Kind::save_as, "ringtone-2"}));
+    ASSERT_TRUE(pane.wait_for_text("saved as ringtone-2")) << pane.screen();
+
+    const auto stored = read_score(client->Get("score", "ringtone-2"), "ringtone-2").score;
+    EXPECT_EQ(stored.title, "ringtone-2");
+    EXPECT_EQ(stored.bars, composed.bars);
+    // The shipped ringtone is as it was, on the bus and on disk.
+    EXPECT_EQ(client->Get("score", "ringtone"), shipped_text);
+    EXPECT_EQ(testing::read_file(shipped_file), shipped_text);
+
+    // Saved: quitting asks nothing.
+    copy.model.mark_saved();
+    send(pane, menu_presses(copy, "quit"));
+    EXPECT_EQ(pane.wait_exit(), "0") << pane.screen();
+}
+
 TEST_F(EditorEndToEnd, PlaysFromTheCursorsBarFollowsThePositionAndAnyButtonStops) {
     TmuxPane pane(edit_command("ode-to-joy"), 40, 12);
     ASSERT_TRUE(pane.wait_for_text("[shaker 4]")) << pane.screen();
@@ -240,6 +352,46 @@ TEST_F(EditorEndToEnd, PlaysFromTheCursorsBarFollowsThePositionAndAnyButtonStops
     EXPECT_TRUE(pane.wait_for_text("stopped")) << pane.screen();
     // Editing works again, and nothing was changed by the button that stopped playback.
     EXPECT_EQ(pane.screen().find("*"), std::string::npos) << pane.screen();
+    pane.key("q");
+    EXPECT_EQ(pane.wait_exit(), "0") << pane.screen();
+}
+
+TEST_F(EditorEndToEnd, AFileOpenedSavesWithoutAskingAndSaveAsWritesANewFileBesideIt) {
+    testing::TempDir dir;
+    const auto file = dir.path() / "buzz.score.xml";
+    const auto shipped_file =
+        std::filesystem::path(testing::required_env("VIBSCORE_CLEFS")) / "success.score.xml";
+    std::filesystem::copy_file(shipped_file, file);
+    editor::Editor copy{editor::EditorModel(read_score(testing::read_file(file), "buzz").score, {}),
+                        {}};
+    copy.scheme.set_taken({"buzz"});
+    copy.scheme.set_destination("buzz", true);
+
+    TmuxPane pane(edit_command(file.string()), 40, 12);
+    ASSERT_TRUE(pane.wait_for_text("[lra")) << pane.screen();
+    send(pane, {Button::select, Button::up, Button::select, Button::select});  // a change
+    send(pane, {Button::back, Button::back});
+    ASSERT_TRUE(pane.wait_for_text("*")) << pane.screen();
+    for (const Button button :
+         {Button::select, Button::up, Button::select, Button::select, Button::back, Button::back}) {
+        copy.press(button);
+    }
+    send(pane, menu_presses(copy, "save"));
+    ASSERT_TRUE(pane.wait_for_text("saved /")) << pane.screen();  // the path, cut at 40
+    EXPECT_NE(testing::read_file(file), testing::read_file(shipped_file));
+
+    send(pane, menu_presses(copy, "save as..."));
+    ASSERT_TRUE(pane.wait_for_text("buzz-[2]")) << pane.screen();
+    send(pane, {Button::select});
+    const auto beside = dir.path() / "buzz-2.score.xml";
+    for (int i = 0; i < 500 && !std::filesystem::exists(beside); ++i) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    ASSERT_TRUE(std::filesystem::exists(beside)) << pane.screen();
+    EXPECT_EQ(pane.screen().find("exists"), std::string::npos) << pane.screen();
+    const auto saved = read_score(testing::read_file(beside), "buzz-2").score;
+    EXPECT_EQ(saved.bars, read_score(testing::read_file(file), "buzz").score.bars);
+    EXPECT_EQ(saved.title, "success");  // a title other than the name stays
     pane.key("q");
     EXPECT_EQ(pane.wait_exit(), "0") << pane.screen();
 }

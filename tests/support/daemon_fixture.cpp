@@ -15,10 +15,22 @@ extern char** environ;
 
 namespace vibscore::testing {
 
-Process::Process(const std::vector<std::string>& argv, const std::filesystem::path& output) {
+Process::Process(const std::vector<std::string>& argv, const std::filesystem::path& output,
+                 bool stdin_pipe) {
     posix_spawn_file_actions_t actions;
     posix_spawn_file_actions_init(&actions);
-    posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
+    UniqueFd stdin_read;
+    if (stdin_pipe) {
+        int ends[2];
+        if (::pipe2(ends, O_CLOEXEC) != 0) {
+            throw std::runtime_error("cannot make a pipe for " + argv.at(0));
+        }
+        stdin_read = UniqueFd(ends[0]);
+        stdin_ = UniqueFd(ends[1]);
+        posix_spawn_file_actions_adddup2(&actions, stdin_read.get(), STDIN_FILENO);
+    } else {
+        posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
+    }
     posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, output.c_str(),
                                      O_WRONLY | O_CREAT | O_APPEND, 0644);
     posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
@@ -43,6 +55,13 @@ Process::~Process() {
 
 void Process::signal(int signo) const {
     ::kill(pid_, signo);
+}
+
+void Process::write_stdin(const std::string& text) const {
+    if (::write(stdin_.get(), text.data(), text.size()) != static_cast<ssize_t>(text.size())) {
+        throw std::runtime_error("cannot write to the standard input of process " +
+                                 std::to_string(pid_));
+    }
 }
 
 int Process::wait() {

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "common/unique_fd.hpp"
 #include "haptics1-proxy.h"
 #include "tests/support/run_command.hpp"
 #include "tests/support/support.hpp"
@@ -22,7 +23,10 @@ namespace vibscore::testing {
 // A child process, killed and reaped when this goes out of scope.
 class Process {
   public:
-    Process(const std::vector<std::string>& argv, const std::filesystem::path& output);
+    // stdout and stderr go to `output`. stdin is /dev/null, or with `stdin_pipe` a pipe that
+    // stays open until close_stdin() (some programs act on end of input, fbcli for one).
+    Process(const std::vector<std::string>& argv, const std::filesystem::path& output,
+            bool stdin_pipe = false);
     ~Process();
     Process(const Process&) = delete;
     Process& operator=(const Process&) = delete;
@@ -32,10 +36,13 @@ class Process {
     // Waits for the exit; returns the exit code, or 128 + signal.
     int wait();
     bool running();
+    void write_stdin(const std::string& text) const;
+    void close_stdin() { stdin_.close(); }
 
   private:
     pid_t pid_ = -1;
     int status_ = -1;
+    UniqueFd stdin_;
 };
 
 // A signal seen by the test client, in arrival order.
@@ -88,6 +95,7 @@ class DaemonFixture {
     const std::string& bus_address() const { return bus_address_; }
     const std::filesystem::path& trace() const { return trace_; }
     const std::filesystem::path& store() const { return store_; }
+    const std::filesystem::path& config() const { return config_; }
     std::string daemon_log() const;
 
     std::unique_ptr<HapticsClient> client() const;

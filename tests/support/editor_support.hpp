@@ -28,6 +28,16 @@ namespace vibscore::testing {
 inline const ClefDeclaration kLra{"lra", "lra-phone.clef.xml"};
 inline const ClefDeclaration kErm{"erm", "erm-phone.clef.xml"};
 
+// The six buttons by their initials, for press sequences: `using namespace testing::buttons;`.
+namespace buttons {
+inline constexpr auto U = editor::Button::up;
+inline constexpr auto D = editor::Button::down;
+inline constexpr auto L = editor::Button::left;
+inline constexpr auto R = editor::Button::right;
+inline constexpr auto S = editor::Button::select;
+inline constexpr auto B = editor::Button::back;
+}  // namespace buttons
+
 // A new score on clef "lra", with "erm" available for bars too.
 inline editor::Editor fresh_editor() {
     return {editor::EditorModel(editor::EditorModel::blank_score("t", kLra), {kLra, kErm}), {}};
@@ -40,6 +50,18 @@ inline std::vector<Bar> bars(const std::string& bars_xml) {
         "<Clef id=\"erm\" href=\"erm-phone.clef.xml\"/>" +
         bars_xml + "</VibScore>";
     return read_score(text, "expected.xml").score.bars;
+}
+
+// A score (no title, no clefs declared) of bars written as XML, all on clef "lra".
+inline Score score_of(const std::string& bars_xml) {
+    Score score;
+    score.bars = bars(bars_xml);
+    return score;
+}
+
+// The end of the last bar: where entering goes on.
+inline editor::Position end_of(const Score& score) {
+    return {score.bars.size() - 1, score.bars.back().symbols.size()};
 }
 
 // Types keys (ncurses codes; characters as themselves) into the editor.
@@ -58,6 +80,23 @@ inline void press(editor::Editor& editor, std::initializer_list<editor::Button> 
     for (const auto button : buttons) {
         editor.press(button);
     }
+}
+
+// The highlighted line of the open menu or list, or "".
+inline std::string highlighted(const editor::Editor& editor) {
+    const auto menu = editor.scheme.menu_view(editor.model);
+    return menu.lines.empty() ? "" : menu.lines[static_cast<std::size_t>(menu.highlighted)];
+}
+
+// Opens the menu and moves down to `label`; returns the presses that took.
+inline std::vector<editor::Button> to_menu_entry(editor::Editor& editor, const std::string& label) {
+    std::vector<editor::Button> presses{editor::Button::back};
+    editor.press(editor::Button::back);
+    for (int i = 0; i < 40 && highlighted(editor) != label; ++i) {
+        editor.press(editor::Button::down);
+        presses.push_back(editor::Button::down);
+    }
+    return presses;
 }
 
 inline int ctrl(char letter) {

@@ -67,6 +67,18 @@ std::string sine_clef(double tempo, const std::vector<double>& frequencies,
     return text + "</Strings></VibClef>";
 }
 
+std::vector<Note> notes_in(const Score& score) {
+    std::vector<Note> notes;
+    for (const auto& bar : score.bars) {
+        for (const auto& symbol : bar.symbols) {
+            if (const auto* note = std::get_if<Note>(&symbol)) {
+                notes.push_back(*note);
+            }
+        }
+    }
+    return notes;
+}
+
 std::string one_clef_score(const std::string& bars_xml) {
     return "<VibScore version=\"1.0\"><Title>t</Title><Clef id=\"c\" href=\"c.xml\"/>" + bars_xml +
            "</VibScore>";

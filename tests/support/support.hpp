@@ -39,6 +39,9 @@ ScoreBundle bundle_from(const std::string& score_xml,
 std::string sine_clef(double tempo, const std::vector<double>& frequencies,
                       const std::vector<double>& amplitudes);
 
+// The score's notes in order, rests left out.
+std::vector<Note> notes_in(const Score& score);
+
 // Wraps bar contents (Note/Rest elements) into a one-clef score using clef "c" at "c.xml".
 std::string one_clef_score(const std::string& bars_xml);
 

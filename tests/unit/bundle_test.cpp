@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include "score/bundle.hpp"
+#include "score/clef_xml.hpp"
 #include "score/limits.hpp"
 #include "tests/support/support.hpp"
 
@@ -25,6 +26,72 @@ TEST(Bundle, LoadsClefsRelativeToTheScoreFile) {
     const auto bundle = load_score_file(path);
     EXPECT_EQ(bundle.file, path.string());
     EXPECT_EQ(bundle.clef_of(bundle.score.bars[0]).strings[2].frequency, 200.0);
+}
+
+// A lookup of registry clefs by name that knows only "lra-phone", recording what it was asked.
+struct NamedClefs {
+    std::vector<std::string> asked;
+    NamedClefLookup lookup() {
+        return {[this](const std::string& name) -> std::optional<NamedClef> {
+                    asked.push_back(name);
+                    if (name != "lra-phone") {
+                        return std::nullopt;
+                    }
+                    return NamedClef{read_clef(sine_clef(0.5, {300}, {1}), "registry"), "registry"};
+                },
+                "the test's registry"};
+    }
+};
+
+const std::string kNamedScore =
+    "<VibScore><Clef id=\"c\" href=\"lra-phone.clef.xml\"/><Bar clef=\"c\"><Note "
+    "length=\"quarter\" number=\"1\" string=\"1\"/></Bar></VibScore>";
+
+TEST(Bundle, ABareClefNameWithNoFileBesideTheScoreIsLookedUpByName) {
+    TempDir dir;
+    const auto path = dir.write("s.score.xml", kNamedScore);
+    NamedClefs named;
+    std::map<std::string, std::string> origins;
+    const auto bundle = load_score_file(path, named.lookup(), &origins);
+    EXPECT_EQ(named.asked, std::vector<std::string>{"lra-phone"});
+    EXPECT_EQ(bundle.clef_of(bundle.score.bars[0]).strings[0].frequency, 300.0);
+    EXPECT_EQ(origins.at("c"), "registry");
+}
+
+TEST(Bundle, AClefFileBesideTheScoreWinsOverTheNamedOne) {
+    TempDir dir;
+    dir.write("lra-phone.clef.xml", kClef);
+    const auto path = dir.write("s.score.xml", kNamedScore);
+    NamedClefs named;
+    std::map<std::string, std::string> origins;
+    const auto bundle = load_score_file(path, named.lookup(), &origins);
+    EXPECT_TRUE(named.asked.empty());
+    EXPECT_EQ(bundle.clef_of(bundle.score.bars[0]).strings[0].frequency, 100.0);
+    EXPECT_EQ(origins.at("c"), (dir.path() / "lra-phone.clef.xml").string());
+}
+
+TEST(Bundle, AHrefWithAFolderIsAPathNeverAName) {
+    TempDir dir;
+    const auto path = dir.write("s.score.xml",
+                                "<VibScore><Clef id=\"c\" href=\"clefs/lra-phone.clef.xml\"/><Bar "
+                                "clef=\"c\"/></VibScore>");
+    NamedClefs named;
+    const auto diagnostic = first_diagnostic([&] { load_score_file(path, named.lookup()); });
+    EXPECT_TRUE(named.asked.empty());
+    EXPECT_NE(diagnostic.message.find("cannot open"), std::string::npos) << diagnostic.message;
+}
+
+TEST(Bundle, ANameFoundNowhereSaysWhereItWasLookedFor) {
+    TempDir dir;
+    const auto path = dir.write("s.score.xml",
+                                "<VibScore><Clef id=\"c\" href=\"erm-phone.clef.xml\"/><Bar "
+                                "clef=\"c\"/></VibScore>");
+    NamedClefs named;
+    const auto diagnostic = first_diagnostic([&] { load_score_file(path, named.lookup()); });
+    EXPECT_EQ(diagnostic.message,
+              "clef \"c\": " + (dir.path() / "erm-phone.clef.xml").string() +
+                  ": no such file beside the score, and no clef \"erm-phone\" in the test's "
+                  "registry");
 }
 
 TEST(Bundle, MissingClefFileNamesTheDeclarationAndThePath) {

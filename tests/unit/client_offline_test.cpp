@@ -39,6 +39,7 @@ TEST(ClientOffline, HelpOnTheProgramAndEveryVerb) {
     for (const std::vector<std::string>& args : {std::vector<std::string>{"--help"},
                                                  {"check", "--help"},
                                                  {"render", "--help"},
+                                                 {"convert", "--help"},
                                                  {"info", "--help"}}) {
         std::vector<std::string> argv{vibscore()};
         argv.insert(argv.end(), args.begin(), args.end());

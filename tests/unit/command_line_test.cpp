@@ -44,11 +44,14 @@ TEST(CommandLine, HelpAndVersionEndWithSuccess) {
     EXPECT_THAT(out, ::testing::HasSubstr("vibscored " VIBSCORE_VERSION));
 }
 
-TEST(CommandLine, AnUnknownOptionOrAnExtraArgumentEndsWithFailure) {
+TEST(CommandLine, AnUnknownOptionOrAnExtraArgumentIsAUsageErrorNamingIt) {
     ::testing::internal::CaptureStderr();
-    EXPECT_NE(std::get<int>(parse({"--bogus"})), 0);
-    EXPECT_NE(std::get<int>(parse({"extra"})), 0);
-    ::testing::internal::GetCapturedStderr();
+    EXPECT_EQ(std::get<int>(parse({"--bogus"})), 2);
+    EXPECT_EQ(std::get<int>(parse({"extra"})), 2);
+    const std::string err = ::testing::internal::GetCapturedStderr();
+    EXPECT_THAT(err, ::testing::HasSubstr("vibscored: "));
+    EXPECT_THAT(err, ::testing::HasSubstr("--bogus"));
+    EXPECT_THAT(err, ::testing::HasSubstr("extra"));
 }
 
 TEST(ReadConfig, AMissingDefaultFileMeansTheBuiltInDefaultsAndTheInstalledClefs) {

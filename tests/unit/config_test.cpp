@@ -43,7 +43,8 @@ TEST(Config, EveryDaemonKeyIsRead) {
         "shipped = /tmp/shipped\n"
         "separation-ms = 12.5\n"
         "requests-per-second = 7\n"
-        "request-burst = 9\n",
+        "request-burst = 9\n"
+        "rt-priority = 0\n",
         "x");
     EXPECT_EQ(config.driver, "gpio-erm");
     EXPECT_EQ(config.drivers_dir, "/opt/drivers");
@@ -52,6 +53,7 @@ TEST(Config, EveryDaemonKeyIsRead) {
     EXPECT_EQ(config.separation_ms, 12.5);
     EXPECT_EQ(config.requests_per_second, 7.0);
     EXPECT_EQ(config.request_burst, 9.0);
+    EXPECT_EQ(config.rt_priority, 0);
 }
 
 TEST(Config, SpacesAndCommentsAroundKeysAndValuesAreDropped) {
@@ -100,17 +102,50 @@ TEST(Config, ANumberThatIsNotPositiveOrTooLargeOrNotANumberIsAnError) {
                 StartsWith("test.conf:2: request-burst = \"x\""));
 }
 
+TEST(Config, ThePlaybackThreadsPriorityIsAWholeNumberUpTo99) {
+    EXPECT_EQ(parse_config("", "x").rt_priority, 40);
+    EXPECT_EQ(parse_config("[daemon]\nrt-priority = 99\n", "x").rt_priority, 99);
+    for (const auto* value : {"-1", "100", "5.5", "high"}) {
+        EXPECT_EQ(config_error(std::string("[daemon]\nrt-priority = ") + value + "\n"),
+                  std::string("test.conf:2: rt-priority = \"") + value +
+                      "\" is not a whole number from 0 to 99")
+            << value;
+    }
+}
+
 TEST(Config, AKeyWithoutAValueIsAnError) {
     EXPECT_EQ(config_error("[daemon]\nstore =\n"), "test.conf:2: store has no value");
 }
 
-TEST(Config, AFileThatCannotBeOpenedIsAnErrorNamingIt) {
+TEST(Config, AFileThatCannotBeOpenedIsAnErrorNamingItAndTheReason) {
     try {
         load_config("/nonexistent/vibscored.conf");
         ADD_FAILURE() << "no error";
     } catch (const ConfigError& error) {
-        EXPECT_THAT(error.what(), StartsWith("/nonexistent/vibscored.conf: "));
+        EXPECT_EQ(std::string(error.what()),
+                  "/nonexistent/vibscored.conf: cannot open: No such file or directory");
     }
+}
+
+TEST(Config, EachSettingRemembersItsFileAndLine) {
+    const auto config =
+        parse_config("[daemon]\ndriver = sim\n\n[sim]\nmodel = erm\n[led-vibrator]\n", "t.conf");
+    EXPECT_EQ(config.where("sim", "model"), "t.conf:5: ");
+    EXPECT_EQ(config.where("sim", "max-on-time-ms"), "t.conf:4: ");
+    EXPECT_EQ(config.where("led-vibrator", "led"), "t.conf:6: ");
+    EXPECT_EQ(DaemonConfig{}.where("sim", "model"), "");
+}
+
+TEST(Config, AnUnknownSectionIsAWarningWithItsLineAndTheClosestName) {
+    const auto config = parse_config(
+        "[daemon]\n[led-vibrater]\nled = x\n[sim]\n[zzzzzz]\n[virtual-vibra]\n", "t.conf");
+    EXPECT_THAT(unknown_sections(config, {"sim", "led-vibrator", "evdev"}),
+                ::testing::ElementsAre(
+                    "t.conf:2: unknown section [led-vibrater]: no driver of that name, so its keys "
+                    "apply nowhere (did you mean [led-vibrator]?)",
+                    "t.conf:5: unknown section [zzzzzz]: no driver of that name, so its keys apply "
+                    "nowhere"));
+    EXPECT_THAT(unknown_sections(config, {"sim", "led-vibrater", "zzzzzz"}), ::testing::IsEmpty());
 }
 
 TEST(Config, AFileIsReadWithItsPathInErrors) {

@@ -28,6 +28,18 @@ std::vector<Timing> timings(const std::vector<render::Cue>& cues) {
     return result;
 }
 
+// Play's options with a clef override, or none.
+PlayOptions with_clef(const std::string& clef = "") {
+    PlayOptions options;
+    options.clef = clef;
+    return options;
+}
+
+// One pass of a request's cues, as the player reads them.
+std::vector<Timing> cue_timings(const PlaybackRequest& request) {
+    return timings(render::collect(*request.cues->pass()));
+}
+
 DeviceClefs clef_map(const std::string& lines) {
     return parse_config("[clefs]\n" + lines, "test.conf").device_clefs;
 }
@@ -40,8 +52,8 @@ class DeviceClefsTest : public ::testing::Test {
 
     // The cues Play makes of `score` on a device with `map`.
     std::vector<Timing> played(const std::string& score, const DeviceClefs& map) const {
-        return timings(
-            make_playback_request(find_score_to_play(registry, score, "", map), {}, 0.030).cues);
+        return cue_timings(make_playback_request(
+            find_score_to_play(registry, score, with_clef(), map), {}, 0.030));
     }
     // The cues of the shipped score `name` rewritten with other clef hrefs, replaced in turn:
     // what a composer writing for those clefs would have sent.
@@ -54,8 +66,8 @@ class DeviceClefsTest : public ::testing::Test {
                 text.replace(at, old_href.size(), "href=\"" + to + ".clef.xml\"");
             }
         }
-        return timings(
-            make_playback_request(find_score_to_play(registry, text, ""), {}, 0.030).cues);
+        return cue_timings(
+            make_playback_request(find_score_to_play(registry, text, with_clef()), {}, 0.030));
     }
 };
 
@@ -82,8 +94,24 @@ TEST_F(DeviceClefsTest, AMapReplacesOnlyTheClefsItNamesUnlessItHasADefault) {
 
 TEST_F(DeviceClefsTest, ACallersClefWinsOverTheMap) {
     const auto map = clef_map("* = erm-phone\n");
-    const auto chosen = find_score_to_play(registry, "success", "soft-shapes", map);
+    const auto chosen = find_score_to_play(registry, "success", with_clef("soft-shapes"), map);
     EXPECT_EQ(chosen.bundle.clefs.at("lra").type, registry.clef("soft-shapes").type);
+}
+
+TEST_F(DeviceClefsTest, AClefSentAlongWithTheScorePlaysAsSentWhileItsRegistryClefsAreMapped) {
+    const auto mine = vibscore::testing::sine_clef(0.5, {60, 80, 100, 120, 140, 160},
+                                                   {0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9});
+    auto score = vibscore::testing::read_file(shipped / "delete-folder.score.xml");
+    const std::string high = "href=\"shaker-sine-high.clef.xml\"";
+    score.replace(score.find(high), high.size(), "href=\"clefs/mine.clef.xml\"");
+    PlayOptions options;
+    options.clef_documents["clefs/mine.clef.xml"] = mine;
+    const auto found = find_score_to_play(registry, score, options, clef_map("* = erm-phone\n"));
+    const auto bars = found.bundle.score.bars;
+    ASSERT_GE(bars.size(), 2u);
+    EXPECT_EQ(found.bundle.clef_of(bars[0]).tempo, 0.5);
+    EXPECT_EQ(found.bundle.clef_of(bars[1]).type, registry.clef("erm-phone").type);
+    EXPECT_EQ(found.bundle.clef_of(bars[1]).tempo, registry.clef("erm-phone").tempo);
 }
 
 TEST_F(DeviceClefsTest, EachBarShowsTheClefItNamesAndTheOneItPlaysThroughHere) {
@@ -99,7 +127,8 @@ TEST_F(DeviceClefsTest, EachBarShowsTheClefItNamesAndTheOneItPlaysThroughHere) {
 
 TEST_F(DeviceClefsTest, ADeviceClefMissingFromTheRegistryIsNotFoundNamingTheMapping) {
     try {
-        find_score_to_play(registry, "success", "", clef_map("lra-phone = my-board-erm\n"));
+        find_score_to_play(registry, "success", with_clef(),
+                           clef_map("lra-phone = my-board-erm\n"));
         FAIL() << "no error";
     } catch (const RegistryError& error) {
         EXPECT_EQ(error.code(), RegistryError::Code::not_found);

@@ -13,19 +13,11 @@ using editor::Position;
 using editor::Request;
 using testing::bars;
 using testing::fresh_editor;
+using testing::highlighted;
 using testing::press;
+using testing::to_menu_entry;
 
-constexpr auto U = Button::up;
-constexpr auto D = Button::down;
-constexpr auto L = Button::left;
-constexpr auto R = Button::right;
-constexpr auto S = Button::select;
-constexpr auto B = Button::back;
-
-std::string highlighted(const editor::Editor& editor) {
-    const auto menu = editor.scheme.menu_view(editor.model);
-    return menu.lines.empty() ? "" : menu.lines[static_cast<std::size_t>(menu.highlighted)];
-}
+using namespace testing::buttons;
 
 const Symbol& symbol(const editor::Editor& editor, std::size_t index, std::size_t bar = 0) {
     return editor.model.score().bars.at(bar).symbols.at(index);
@@ -88,7 +80,7 @@ TEST(EditorButtons, RightAndLeftChangeByTwoAndBackOffersTheRest) {
     EXPECT_EQ(editor.scheme.hint(editor.model),
               "\u2191quarter \u2193"
               "16th \u2192half \u2190"
-              "32th S:ok B:more");
+              "32nd S:ok B:more");
     press(editor, {S});
     EXPECT_EQ(entered(editor).at(2), (Symbol{Note{Length::eighth, 6, 2}}));
 }
@@ -300,14 +292,18 @@ TEST(EditorButtons, TiesFromTheMenu) {
     EXPECT_EQ(std::get<Note>(symbols[1]).portamento, 1);
 }
 
-std::vector<Button> to_menu_entry(editor::Editor& editor, const std::string& label) {
-    std::vector<Button> presses{B};
-    editor.press(B);
-    for (int i = 0; i < 40 && highlighted(editor) != label; ++i) {
-        editor.press(D);
-        presses.push_back(D);
-    }
-    return presses;
+TEST(EditorButtons, LeftFromInsideAGroupGoesToThePreviousGroupAndTheTitleNamesIt) {
+    // A newcomer pressed Left three times from "bar clef..." and landed on a hairpin.
+    auto editor = fresh_editor();
+    to_menu_entry(editor, "bar clef...");
+    EXPECT_EQ(editor.scheme.menu_view(editor.model).title, "menu: symbol, bar 3/7");
+    press(editor, {L});
+    EXPECT_EQ(highlighted(editor), "legato with previous");
+    EXPECT_EQ(editor.scheme.menu_view(editor.model).title, "menu: ties 2/7");
+    press(editor, {L, L});
+    EXPECT_EQ(highlighted(editor), "save");
+    press(editor, {R});
+    EXPECT_EQ(highlighted(editor), "decrescendo  >");
 }
 
 TEST(EditorButtons, ABlockMarkedWithButtonsIsCopiedPastedAndRaised) {
@@ -319,8 +315,8 @@ TEST(EditorButtons, ABlockMarkedWithButtonsIsCopiedPastedAndRaised) {
     ASSERT_TRUE(editor.model.block());
     to_menu_entry(editor, "copy");
     press(editor, {S});
-    to_menu_entry(editor, "unmark block");
-    press(editor, {S, R});  // past the end: a new bar
+    EXPECT_FALSE(editor.model.block());  // copied: the block is let go
+    press(editor, {R});                  // past the end: a new bar
     to_menu_entry(editor, "paste");
     press(editor, {S});
     press(editor, {L, L});
@@ -335,6 +331,35 @@ TEST(EditorButtons, ABlockMarkedWithButtonsIsCopiedPastedAndRaised) {
                    "<Note length=\"quarter\" number=\"6\" string=\"3\"/></Bar>"
                    "<Bar clef=\"lra\"><Note length=\"quarter\" number=\"6\" string=\"4\"/>"
                    "<Note length=\"quarter\" number=\"7\" string=\"4\"/></Bar>"));
+}
+
+TEST(EditorButtons, ABarMarkedFromItsFirstToItsLastSymbolIsCopiedWhole) {
+    // A newcomer marked a bar from its first note to its last rest: the rest was lost.
+    auto editor = fresh_editor();
+    testing::type(editor, "10");  // a note, then a rest
+    ASSERT_EQ(editor.model.score().bars[0].symbols.size(), 2u);
+    press(editor, {L, L});
+    to_menu_entry(editor, "mark block");
+    press(editor, {S, R});  // on the rest
+    ASSERT_TRUE(std::holds_alternative<Rest>(symbol(editor, 1)));
+    to_menu_entry(editor, "copy");
+    press(editor, {S, R, R});  // the block let go, Right moves on and past the end: a new bar
+    ASSERT_EQ(editor.model.score().bars.size(), 2u);
+    to_menu_entry(editor, "paste");
+    press(editor, {S});
+    EXPECT_EQ(editor.model.score().bars[1].symbols, editor.model.score().bars[0].symbols);
+}
+
+TEST(EditorButtons, TheClipboardStaysWhenAnotherScoreIsOpened) {
+    auto first = fresh_editor();
+    testing::type(first, "10");  // a note, then a rest
+    first.model.apply(editor::Command{editor::Action::mark_block});
+    press(first, {L, L});
+    first.model.copy();
+    auto second = fresh_editor();  // what opening another score or a new one starts
+    second.model.carry_over(first.model);
+    ASSERT_TRUE(second.model.paste());
+    EXPECT_EQ(second.model.score().bars[0].symbols, first.model.score().bars[0].symbols);
 }
 
 TEST(EditorButtons, TheBarClefFromTheMenu) {
@@ -394,6 +419,26 @@ TEST(EditorButtons, SessionEntriesAreRequests) {
     press(editor, {S});  // unsaved changes: save and quit / quit without saving / cancel
     EXPECT_EQ(editor.scheme.mode(), ButtonScheme::Mode::quit_menu);
     EXPECT_EQ(editor.press(S).kind, Request::Kind::save_and_quit);
+}
+
+TEST(EditorButtons, TheMenuGoesToTheFirstAndLastBarAndPlaysFromTheStart) {
+    // A newcomer pressed Left 15 times to play from the start.
+    auto editor = fresh_editor();
+    press(editor, {S, S, S, S, S, S, S, S, S, S, B, B});  // nine quarters: three bars
+    ASSERT_EQ(editor.model.score().bars.size(), 3u);
+    to_menu_entry(editor, "to the first bar");
+    EXPECT_EQ(editor.scheme.menu_view(editor.model).title, "menu: play, go to, undo 6/7");
+    EXPECT_EQ(editor.press(S).kind, Request::Kind::none);
+    EXPECT_EQ(editor.model.cursor(), (Position{0, 0}));
+    to_menu_entry(editor, "to the last bar");
+    press(editor, {S});
+    EXPECT_EQ(editor.model.cursor(), (Position{2, 1}));
+    // The menu reopens on the last choice: the same place again is Back, Select.
+    press(editor, {L, L});
+    press(editor, {B, S});
+    EXPECT_EQ(editor.model.cursor(), (Position{2, 1}));
+    to_menu_entry(editor, "play from the start");
+    EXPECT_EQ(editor.press(S), (Request{Request::Kind::play, {}, 0}));
 }
 
 TEST(PressPlanner, FindsAndVerifiesTheButtonsForFigure23) {

@@ -105,6 +105,19 @@ TEST(StaffLayout, TheClefBoxShowsTheBeatCountColouredFewerExactMore) {
     }
 }
 
+TEST(StaffLayout, TheSymbolStillBeingEnteredIsNotCountedInTheBeats) {
+    const Score score = score_of(
+        "<Bar clef=\"lra\"><Note length=\"half\" number=\"1\" string=\"1\"/>"
+        "<Note length=\"half\" number=\"2\" string=\"1\"/></Bar>");
+    editor::LayoutOptions options;
+    options.entering = Position{0, 1};
+    const auto layout = layout_staff(score, options);
+    const auto clefs = row_text(layout, editor::row_clef);
+    EXPECT_EQ(clefs.substr(1, 7), "[lra 2]") << clefs;
+    EXPECT_EQ(cell(layout, editor::row_clef, 1).ink, Ink::clef_fewer);
+    EXPECT_EQ(cell(layout, row_of_string(1), layout.x_of({0, 1})).glyph, "2");  // still drawn
+}
+
 TEST(StaffLayout, BarLinesFrameEachBar) {
     const auto layout = layout_staff(
         score_of("<Bar clef=\"lra\"><Rest length=\"quarter\"/></Bar><Bar clef=\"lra\"/>"));

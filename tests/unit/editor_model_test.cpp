@@ -292,6 +292,15 @@ TEST(EditorKeys, TheClefMenuSetsTheBarsClefAndDeclaresIt) {
     EXPECT_EQ(editor.model.score().clefs, (std::vector<ClefDeclaration>{testing::kErm}));
 }
 
+TEST(EditorKeys, HomeAndEndGoToTheFirstAndTheLastBar) {
+    auto editor = fresh_editor();
+    type(editor, "5555`55");  // two bars
+    type(editor, {KEY_HOME});
+    EXPECT_EQ(editor.model.cursor(), (editor::Position{0, 0}));
+    type(editor, {KEY_END});
+    EXPECT_EQ(editor.model.cursor(), (editor::Position{1, 2}));
+}
+
 TEST(EditorKeys, FileAndPlaybackKeysAreRequests) {
     auto editor = fresh_editor();
     EXPECT_EQ(editor.key(ctrl('S')).kind, editor::Request::Kind::save);

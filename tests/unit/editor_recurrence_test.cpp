@@ -11,17 +11,8 @@ namespace {
 using editor::Position;
 using editor::recurrence_at;
 using testing::bars;
-
-Score score_of(const std::string& bars_xml) {
-    Score score;
-    score.bars = bars(bars_xml);
-    return score;
-}
-
-// The end of the last bar: where entering goes on.
-Position end_of(const Score& score) {
-    return {score.bars.size() - 1, score.bars.back().symbols.size()};
-}
+using testing::end_of;
+using testing::score_of;
 
 TEST(Recurrence, NoneBeforeTwoSymbolsOrWhenNothingIsAlike) {
     const auto one = score_of(

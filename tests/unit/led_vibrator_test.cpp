@@ -174,6 +174,35 @@ TEST_F(SysfsVibratorTest, TimedOutputWritesTheDurationToSwitchOnAndZeroToSwitchO
                                              "class/timed_output/vibrator/enable=0"));
 }
 
+TEST_F(SysfsVibratorTest, TimedOutputArmsTheKernelTimerWithTheTimeUntilTheScoreSwitchesOff) {
+    sysfs->add_timed_output("vibrator");
+    auto vibrator = timed_output({{"duration-ms", "800"}});
+    EXPECT_TRUE(vibrator->capabilities().off_timer);
+    sysfs->clear_writes();
+    vibrator->set_off_timer(0.2501);
+    vibrator->apply({0.4});
+    vibrator->apply({0.5});  // no time given: the longest
+    vibrator->set_off_timer(30.0);
+    vibrator->apply({0.6});
+    vibrator->set_off_timer(0.0);
+    vibrator->apply({0.7});
+    EXPECT_THAT(sysfs->writes(), ElementsAre("class/timed_output/vibrator/enable=251",
+                                             "class/timed_output/vibrator/enable=800",
+                                             "class/timed_output/vibrator/enable=800",
+                                             "class/timed_output/vibrator/enable=1"));
+}
+
+TEST_F(SysfsVibratorTest, LedTakesTheTimeUntilTheScoreSwitchesOffAsItsDuration) {
+    sysfs->add_led("vibrator");
+    const auto vibrator = led();
+    EXPECT_TRUE(vibrator->capabilities().off_timer);
+    sysfs->clear_writes();
+    vibrator->set_off_timer(0.3);
+    vibrator->apply({0.7});
+    EXPECT_THAT(sysfs->writes(),
+                ElementsAre("class/leds/vibrator/duration=300", "class/leds/vibrator/activate=1"));
+}
+
 TEST_F(SysfsVibratorTest, TimedOutputAmplitudeIsRelativeToTheDevice) {
     sysfs->add_timed_output("motor");
     sysfs->create("class/timed_output/motor/amp", "0");

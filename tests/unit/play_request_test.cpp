@@ -33,6 +33,11 @@ std::string refusal(RequestError::Code code, Body&& body) {
     return {};
 }
 
+// One pass of a request's cues, as the player reads them.
+std::vector<render::Cue> cues_of(const PlaybackRequest& request) {
+    return render::collect(*request.cues->pass());
+}
+
 std::string invalid_options(const Options& options) {
     return refusal(RequestError::Code::invalid, [&] { parse_play_options(options); });
 }
@@ -79,7 +84,7 @@ TEST(PlayOptions, AnUnknownUsageIsRefusedListingTheKnownOnes) {
 TEST(PlayOptions, RepeatTakesMinusOneForeverButNothingBelow) {
     EXPECT_EQ(parse_play_options({{"repeat", sdbus::Variant(std::int32_t{-1})}}).repeat, -1);
     EXPECT_THAT(invalid_options({{"repeat", sdbus::Variant(std::int32_t{-2})}}),
-                HasSubstr("repeat -2 is invalid (0 once, n more times, -1 forever)"));
+                HasSubstr("repeat -2 is invalid (0 once, n more times, -1 until stopped)"));
 }
 
 TEST(PlayOptions, AnIntensityOutsideZeroToOneIsRefused) {
@@ -109,7 +114,7 @@ TEST(PlayOptions, AValueOfTheWrongTypeIsRefusedNamingBothTypes) {
 TEST(PlayOptions, AnUnknownOptionIsRefusedListingTheKnownOnes) {
     EXPECT_THAT(invalid_options({{"volume", sdbus::Variant(1.0)}}),
                 HasSubstr("unknown option \"volume\" (expected usage, repeat, intensity, clef, "
-                          "start-bar)"));
+                          "start-bar, clefs)"));
 }
 
 class ScoreToPlayTest : public ::testing::Test {
@@ -128,13 +133,13 @@ class ScoreToPlayTest : public ::testing::Test {
 };
 
 TEST_F(ScoreToPlayTest, ARegistryScoreIsFoundByNameAndLabelledWithIt) {
-    const auto found = find_score_to_play(registry, "ringtone", "");
+    const auto found = find_score_to_play(registry, "ringtone", {});
     EXPECT_EQ(found.label, "ringtone");
     EXPECT_EQ(found.bundle.score.bars.size(), registry.score("ringtone").score.bars.size());
 }
 
 TEST_F(ScoreToPlayTest, TextStartingWithAnElementIsAnInlineDocumentOnRegistryClefs) {
-    const auto found = find_score_to_play(registry, inline_score(), "");
+    const auto found = find_score_to_play(registry, inline_score(), {});
     EXPECT_EQ(found.label, "<inline>");
     ASSERT_EQ(found.bundle.score.bars.size(), 2u);
     EXPECT_EQ(found.bundle.clefs.at("lra").tempo, registry.clef("lra-phone").tempo);
@@ -143,7 +148,7 @@ TEST_F(ScoreToPlayTest, TextStartingWithAnElementIsAnInlineDocumentOnRegistryCle
 TEST_F(ScoreToPlayTest, AMissingScoreOrOverrideClefIsNotFound) {
     const auto code_of = [&](const std::string& score, const std::string& clef) {
         try {
-            find_score_to_play(registry, score, clef);
+            find_score_to_play(registry, score, PlayOptions{.clef = clef});
         } catch (const RegistryError& error) {
             return error.code();
         }
@@ -154,9 +159,10 @@ TEST_F(ScoreToPlayTest, AMissingScoreOrOverrideClefIsNotFound) {
 }
 
 TEST_F(ScoreToPlayTest, AClefOverrideReplacesEveryClefTheScoreDeclares) {
-    const auto own = find_score_to_play(registry, "delete-folder", "");
+    const auto own = find_score_to_play(registry, "delete-folder", {});
     ASSERT_GE(own.bundle.clefs.size(), 2u);
-    const auto found = find_score_to_play(registry, "delete-folder", "erm-phone");
+    const auto found =
+        find_score_to_play(registry, "delete-folder", PlayOptions{.clef = "erm-phone"});
     const Clef erm = registry.clef("erm-phone");
     ASSERT_EQ(found.bundle.clefs.size(), own.bundle.clefs.size());
     for (const auto& [id, clef] : found.bundle.clefs) {
@@ -165,8 +171,53 @@ TEST_F(ScoreToPlayTest, AClefOverrideReplacesEveryClefTheScoreDeclares) {
     }
 }
 
+TEST(PlayOptions, ClefDocumentsComeAsADictionaryOfStrings) {
+    const std::map<std::string, std::string> clefs{{"my.clef.xml", "<VibClef/>"}};
+    EXPECT_EQ(parse_play_options({{"clefs", sdbus::Variant(clefs)}}).clef_documents, clefs);
+    EXPECT_THAT(invalid_options({{"clefs", sdbus::Variant(std::string("x"))}}),
+                HasSubstr("option \"clefs\" must be a dictionary of strings (a{ss}), not s"));
+}
+
+TEST_F(ScoreToPlayTest, AClefSentAlongWithAnInlineScoreIsUsedUnderItsHrefEvenAPath) {
+    PlayOptions options;
+    options.clef_documents["clefs/mine.clef.xml"] = vibscore::testing::sine_clef(
+        0.5, {60, 80, 100, 120, 140, 160}, {0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9});
+    std::string score = inline_score();
+    score.replace(score.find("lra-phone.clef.xml"), 18, "clefs/mine.clef.xml");
+    const auto found = find_score_to_play(registry, score, options);
+    EXPECT_EQ(found.bundle.clefs.at("lra").tempo, 0.5);
+}
+
+TEST_F(ScoreToPlayTest, AClefDocumentNoHrefNamesOrSentWithARegistryScoreIsRefused) {
+    PlayOptions options;
+    options.clef_documents["other.clef.xml"] = vibscore::testing::sine_clef(
+        0.5, {60, 80, 100, 120, 140, 160}, {0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9});
+    try {
+        find_score_to_play(registry, inline_score(), options);
+        ADD_FAILURE() << "no error";
+    } catch (const RegistryError& error) {
+        EXPECT_EQ(error.code(), RegistryError::Code::invalid_document);
+        EXPECT_THAT(error.what(), HasSubstr("\"other.clef.xml\" is not named by any"));
+    }
+    EXPECT_THAT(refusal(RequestError::Code::invalid,
+                        [&] { find_score_to_play(registry, "ringtone", options); }),
+                HasSubstr("option \"clefs\" goes with an inline score"));
+}
+
+TEST_F(ScoreToPlayTest, AnInvalidClefSentAlongIsAnInvalidDocumentNamingItsHref) {
+    PlayOptions options;
+    options.clef_documents["lra-phone.clef.xml"] = "<VibClef type=\"sine\"";
+    try {
+        find_score_to_play(registry, inline_score(), options);
+        ADD_FAILURE() << "no error";
+    } catch (const RegistryError& error) {
+        EXPECT_EQ(error.code(), RegistryError::Code::invalid_document);
+        EXPECT_THAT(error.what(), HasSubstr("<inline clef \"lra-phone.clef.xml\">"));
+    }
+}
+
 TEST_F(ScoreToPlayTest, TheRequestHoldsTheScoresCuesAndTheCallersChoices) {
-    const auto score = find_score_to_play(registry, "ringtone", "");
+    const auto score = find_score_to_play(registry, "ringtone", {});
     PlayOptions options;
     options.usage = Usage::ringtone;
     options.repeat = -1;
@@ -177,10 +228,11 @@ TEST_F(ScoreToPlayTest, TheRequestHoldsTheScoresCuesAndTheCallersChoices) {
     render_options.separation_s = 0.030;
     const render::Performance performance(score.bundle, render_options);
     const auto expected = render::cue_schedule(performance);
-    ASSERT_EQ(request.cues.size(), expected.size());
+    const auto cues = cues_of(request);
+    ASSERT_EQ(cues.size(), expected.size());
     for (std::size_t i = 0; i < expected.size(); ++i) {
-        EXPECT_EQ(request.cues[i].at, expected[i].at) << i;
-        EXPECT_EQ(request.cues[i].amplitude, expected[i].amplitude) << i;
+        EXPECT_EQ(cues[i].at, expected[i].at) << i;
+        EXPECT_EQ(cues[i].amplitude, expected[i].amplitude) << i;
     }
     EXPECT_EQ(request.duration_s, performance.duration());
     EXPECT_EQ(request.label, "ringtone");
@@ -190,7 +242,7 @@ TEST_F(ScoreToPlayTest, TheRequestHoldsTheScoresCuesAndTheCallersChoices) {
 }
 
 TEST_F(ScoreToPlayTest, TheStartBarSkipsEarlierBarsAndTimeStartsThere) {
-    const auto score = find_score_to_play(registry, inline_score(), "");
+    const auto score = find_score_to_play(registry, inline_score(), {});
     PlayOptions options;
     options.start_bar = 1;
     const PlaybackRequest from_bar_1 = make_playback_request(score, options, 0.030);
@@ -198,17 +250,18 @@ TEST_F(ScoreToPlayTest, TheStartBarSkipsEarlierBarsAndTimeStartsThere) {
     const double tempo = registry.clef("lra-phone").tempo;
     EXPECT_NEAR(whole.duration_s, 4 * tempo, 1e-9);
     EXPECT_NEAR(from_bar_1.duration_s, 2 * tempo, 1e-9);
-    const auto first_position = std::find_if(
-        from_bar_1.cues.begin(), from_bar_1.cues.end(),
-        [](const render::Cue& cue) { return cue.kind == render::Cue::Kind::position; });
-    ASSERT_NE(first_position, from_bar_1.cues.end());
+    const auto cues = cues_of(from_bar_1);
+    const auto first_position = std::find_if(cues.begin(), cues.end(), [](const render::Cue& cue) {
+        return cue.kind == render::Cue::Kind::position;
+    });
+    ASSERT_NE(first_position, cues.end());
     EXPECT_EQ(first_position->at, 0.0);
     EXPECT_EQ(first_position->bar, 1u);
     EXPECT_EQ(first_position->symbol, 0u);
 }
 
 TEST_F(ScoreToPlayTest, AStartBarPastTheLastBarIsRefusedWithTheBarCount) {
-    const auto score = find_score_to_play(registry, inline_score(), "");
+    const auto score = find_score_to_play(registry, inline_score(), {});
     PlayOptions options;
     options.start_bar = 2;
     EXPECT_EQ(
@@ -217,9 +270,9 @@ TEST_F(ScoreToPlayTest, AStartBarPastTheLastBarIsRefusedWithTheBarCount) {
 }
 
 TEST_F(ScoreToPlayTest, TheSeparationCutsTheEndOfANoteFollowedByAnother) {
-    const auto score = find_score_to_play(registry, inline_score(), "");
+    const auto score = find_score_to_play(registry, inline_score(), {});
     const auto first_off = [](const PlaybackRequest& request) {
-        for (const auto& cue : request.cues) {
+        for (const auto& cue : cues_of(request)) {
             if (cue.kind == render::Cue::Kind::drive && cue.amplitude == 0.0) {
                 return cue.at;
             }

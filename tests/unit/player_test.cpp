@@ -24,6 +24,7 @@ class RecordingActuator : public drivers::Actuator {
     }
     void off() noexcept override { applied.push_back({monotonic_now_us(), {}}); }
     void prepare(const drivers::Drive& next) override { prepared.push_back(next); }
+    void set_off_timer(double seconds) override { off_timers.push_back(seconds); }
     void set_gain(double gain) override {
         if (fail_gain) {
             throw drivers::DeviceError("/dev/fake: gain: No such device");
@@ -33,6 +34,7 @@ class RecordingActuator : public drivers::Actuator {
     std::vector<Applied> applied;
     std::vector<drivers::Drive> prepared;
     std::vector<double> gains;
+    std::vector<double> off_timers;
     int fail_after = -1;
     bool fail_gain = false;
     drivers::Capabilities capabilities_{.frequency_control = true};
@@ -78,11 +80,15 @@ Cue position(double at, std::size_t bar, std::size_t symbol) {
     return cue;
 }
 
+std::shared_ptr<const render::CueSource> cue_list(std::vector<Cue> cues) {
+    return std::make_shared<render::CueList>(std::move(cues));
+}
+
 PlaybackRequest request(Usage usage = Usage::notification, int repeat = 0, uid_t owner = 1000) {
     PlaybackRequest request;
     request.label = "tacton";
-    request.cues = {drive(0, 0.5, 170), position(0, 0, 0), drive(0.004, 0.8, 200),
-                    position(0.004, 0, 1), drive(0.008, 0)};
+    request.cues = cue_list({drive(0, 0.5, 170), position(0, 0, 0), drive(0.004, 0.8, 200),
+                             position(0.004, 0, 1), drive(0.008, 0)});
     request.duration_s = 0.01;
     request.usage = usage;
     request.repeat = repeat;
@@ -140,7 +146,8 @@ TEST_F(PlayerTest, IntensityScalesAndIsClampedToFullDrive) {
     EXPECT_DOUBLE_EQ(actuator.applied[0].drive.amplitude, 0.125);
     player.stop(0, 1000, false);
     auto over = request();
-    over.cues[0].amplitude = 7.0;
+    over.cues = cue_list({drive(0, 7.0, 170), position(0, 0, 0), drive(0.004, 0.8, 200),
+                          position(0.004, 0, 1), drive(0.008, 0)});
     player.set_master_intensity(1.0);
     player.play(over);
     EXPECT_EQ(actuator.applied.back().drive.amplitude, 1.0);
@@ -175,6 +182,18 @@ TEST_F(PlayerTest, ARepeatingPlaybackKeepsItsTurnAgainstAnEqualOneShot) {
     EXPECT_EQ(player.current_id(), 2u);
 }
 
+TEST_F(PlayerTest, AdmissionIsAnsweredWithoutPlayingAsPlayWouldAnswer) {
+    EXPECT_NO_THROW(player.check_admission(Usage::touch, 0));  // nothing plays
+    player.play(request(Usage::alarm, -1));
+    const auto driven = actuator.applied.size();
+    EXPECT_THROW(player.check_admission(Usage::notification, 0), PlayerBusy);
+    EXPECT_THROW(player.check_admission(Usage::alarm, 0), PlayerBusy);
+    EXPECT_NO_THROW(player.check_admission(Usage::alarm, -1));
+    EXPECT_NO_THROW(player.check_admission(Usage::ringtone, 0));
+    EXPECT_EQ(actuator.applied.size(), driven);
+    EXPECT_EQ(player.current_id(), 1u);
+}
+
 TEST_F(PlayerTest, CommunicationAndAccessibilityAreEquallyImportant) {
     player.play(request(Usage::accessibility));
     player.play(request(Usage::communication));
@@ -192,6 +211,17 @@ TEST_F(PlayerTest, StopSilencesAtOnceAndReportsStopped) {
     EXPECT_EQ(listener.events.back(), "finished 1 stopped");
     EXPECT_EQ(player.stop(id, 1000, false), Player::StopResult::not_playing);
     EXPECT_EQ(player.stop(99, 1000, false), Player::StopResult::not_found);
+}
+
+TEST_F(PlayerTest, AnIdThisPlayerNeverGaveOutIsNotFound) {
+    Player later_run{loop, actuator, &listener, (std::uint64_t{3} << 32) + 1};
+    const auto id = later_run.play(request(Usage::ringtone, -1));
+    EXPECT_EQ(id, (std::uint64_t{3} << 32) + 1);
+    EXPECT_EQ(later_run.stop(1, 1000, true), Player::StopResult::not_found);
+    EXPECT_EQ(later_run.stop((std::uint64_t{2} << 32) + 1, 1000, true),
+              Player::StopResult::not_found);
+    EXPECT_EQ(later_run.current_id(), id);
+    EXPECT_EQ(later_run.stop(id, 1000, false), Player::StopResult::stopped);
 }
 
 TEST_F(PlayerTest, OnlyTheOwnerOrAPrivilegedCallerMayStop) {
@@ -260,7 +290,7 @@ TEST_F(PlayerTest, AnOnOffActuatorFeelsStrengthAsPulseWidth) {
     actuator.capabilities_ = {.amplitude_control = false};
     actuator.applied.clear();
     auto half = request();
-    half.cues = {drive(0, 0.5), drive(0.2, 0)};
+    half.cues = cue_list({drive(0, 0.5), drive(0.2, 0)});
     half.duration_s = 0.2;
     player.play(half);
     loop.run();
@@ -302,8 +332,8 @@ TEST_F(PlayerTest, AnActuatorIsHeldOffAfterItsMaximumOnTimeUntilTheScorePauses) 
     actuator.applied.clear();
     auto long_note = request();
     // 60 ms on (two notes, tied), a pause, then a new note that may drive again.
-    long_note.cues = {drive(0, 0.5, 170), drive(0.03, 0.6, 170), drive(0.06, 0),
-                      drive(0.07, 0.7, 170), drive(0.08, 0)};
+    long_note.cues = cue_list({drive(0, 0.5, 170), drive(0.03, 0.6, 170), drive(0.06, 0),
+                               drive(0.07, 0.7, 170), drive(0.08, 0)});
     long_note.duration_s = 0.09;
     player.play(long_note);
     loop.run();
@@ -316,6 +346,24 @@ TEST_F(PlayerTest, AnActuatorIsHeldOffAfterItsMaximumOnTimeUntilTheScorePauses) 
     ASSERT_GE(actuator.applied.size(), 2u);
     const auto on_us = actuator.applied[1].at_us - actuator.applied[0].at_us;
     EXPECT_GE(on_us, 20'000u);
+}
+
+TEST_F(PlayerTest, AKernelTimerIsArmedWithTheTimeUntilTheScoreSwitchesOff) {
+    actuator.capabilities_ = {.off_timer = true};
+    player.play(request());  // on at 0, stronger at 4 ms, off at 8 ms
+    loop.run();
+    ASSERT_EQ(actuator.off_timers.size(), 2u) << "one for each drive that switches on";
+    EXPECT_GT(actuator.off_timers[0], 0.004);
+    EXPECT_LE(actuator.off_timers[0], 0.008);
+    EXPECT_LE(actuator.off_timers[1], 0.004);
+}
+
+TEST_F(PlayerTest, AKernelTimerIsNeverArmedPastTheMaximumOnTime) {
+    actuator.capabilities_ = {.max_on_time_s = 0.002, .off_timer = true};
+    player.play(request());
+    ASSERT_FALSE(actuator.off_timers.empty());
+    EXPECT_EQ(actuator.off_timers[0], 0.002);
+    player.stop(0, 1000, false);
 }
 
 }  // namespace

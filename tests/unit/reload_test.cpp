@@ -26,7 +26,7 @@ class ReloadTest : public ::testing::Test {
         PlaybackRequest request;
         render::Cue drive;
         drive.amplitude = 0.5;
-        request.cues = {drive};
+        request.cues = std::make_shared<render::CueList>(std::vector<render::Cue>{drive});
         request.duration_s = 10.0;
         request.repeat = -1;
         player->play(request);

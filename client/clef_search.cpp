@@ -1,0 +1,53 @@
+#include "client/clef_search.hpp"
+
+#include "config.h"
+#include "score/clef_xml.hpp"
+#include "score/registry_names.hpp"
+
+namespace vibscore::client {
+
+ClefSearch::ClefSearch() : shipped(VIBSCORE_CLEFDIR) {}
+
+NamedClefLookup ClefSearch::lookup() const {
+    std::string places;
+    for (const auto& folder : folders) {
+        places += folder.string() + ", ";
+    }
+    if (registry) {
+        places += "vibscored's registry, ";
+    }
+    places += shipped.string() + " (--clefs DIR looks in a folder of your own first)";
+    const auto find = [search = *this](const std::string& name) -> std::optional<NamedClef> {
+        const std::string file_name = name + std::string(kClefSuffix);
+        const auto from_folder =
+            [&](const std::filesystem::path& folder) -> std::optional<NamedClef> {
+            const auto path = folder / file_name;
+            std::error_code ignored;
+            if (folder.empty() || !std::filesystem::is_regular_file(path, ignored)) {
+                return std::nullopt;
+            }
+            return NamedClef{load_clef_file(path), path.string()};
+        };
+        for (const auto& folder : search.folders) {
+            if (auto found = from_folder(folder)) {
+                return found;
+            }
+        }
+        if (search.registry) {
+            if (const auto text = search.registry(name)) {
+                return NamedClef{read_clef(*text, "registry clef \"" + name + "\""),
+                                 kRegistryOrigin};
+            }
+        }
+        return from_folder(search.shipped);
+    };
+    return {find, places};
+}
+
+LoadedScore load_score(const std::filesystem::path& path, const ClefSearch& search) {
+    LoadedScore loaded;
+    loaded.bundle = load_score_file(path, search.lookup(), &loaded.clef_origins);
+    return loaded;
+}
+
+}  // namespace vibscore::client

@@ -1,0 +1,50 @@
+#include "client/daemon_watch.hpp"
+
+#include "dbus/haptics1_names.hpp"
+
+namespace vibscore::client {
+
+DaemonWatch::DaemonWatch(sdbus::IConnection& connection) : connection_(connection) {
+    match_ = connection_.addMatch(
+        std::string("type='signal',sender='org.freedesktop.DBus',interface='org.freedesktop.DBus',"
+                    "member='NameOwnerChanged',arg0='") +
+            haptics1::kBusName + "'",
+        [this](sdbus::Message& message) {
+            std::string name, old_owner, new_owner;
+            message >> name >> old_owner >> new_owner;
+            const std::lock_guard lock(mutex_);
+            if (!old_owner.empty()) {
+                left_.insert(old_owner);
+            }
+            if (!new_owner.empty() && left_.count(owner_) != 0) {
+                restarted_ = true;
+            }
+        });
+}
+
+void DaemonWatch::follow() {
+    std::string owner;
+    try {
+        const auto bus =
+            sdbus::createProxy(connection_, "org.freedesktop.DBus", "/org/freedesktop/DBus");
+        bus->callMethod("GetNameOwner")
+            .onInterface("org.freedesktop.DBus")
+            .withArguments(std::string(haptics1::kBusName))
+            .storeResultsTo(owner);
+    } catch (const sdbus::Error&) {
+        // Nobody owns the name any more: the daemon that answered has already left.
+    }
+    const std::lock_guard lock(mutex_);
+    owner_ = owner;
+    restarted_ = false;
+}
+
+std::optional<std::string> DaemonWatch::gone() {
+    const std::lock_guard lock(mutex_);
+    if (!owner_.empty() && left_.count(owner_) == 0) {
+        return std::nullopt;
+    }
+    return restarted_ ? "vibscored was restarted" : "vibscored left the bus";
+}
+
+}  // namespace vibscore::client

@@ -1,0 +1,202 @@
+#include "client/formats/grid_fit.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <set>
+
+#include "daemon/render/performance.hpp"
+#include "score/limits.hpp"
+
+namespace vibscore::formats {
+
+namespace {
+
+// Android counts whole milliseconds, so a time may be half of one off; a millisecond of slack
+// covers that and float noise.
+constexpr double kTimeSlack = 0.001;
+// Strength and pitch changes smaller than this are noise from 8-bit or float storage.
+constexpr double kChangeSlack = 0.004;
+
+double grid_error(const std::vector<double>& times, double grid) {
+    double worst = 0.0;
+    for (const double t : times) {
+        worst = std::max(worst, std::abs(t - std::round(t / grid) * grid));
+    }
+    return worst;
+}
+
+bool fits(const std::vector<double>& times, double tempo) {
+    const double grid = tempo / ticks_per_quarter;
+    return grid_error(times, grid) <= std::max(kTimeSlack, 0.02 * grid);
+}
+
+double clamp_tempo(double tempo) {
+    return std::clamp(tempo, limits::min_tempo_s, limits::max_tempo_s);
+}
+
+// The tempo whose grid the times sit on: the clef's, or one built around the most common time
+// between onsets.
+double fit_tempo(const std::vector<double>& times, const std::vector<double>& onsets,
+                 double clef_tempo) {
+    if (fits(times, clef_tempo)) {
+        return clef_tempo;
+    }
+    std::map<long long, int> counts;  // intervals in microseconds
+    for (std::size_t i = 1; i < onsets.size(); ++i) {
+        const auto interval = std::llround((onsets[i] - onsets[i - 1]) * 1e6);
+        if (interval > 0) {
+            ++counts[interval];
+        }
+    }
+    if (counts.empty()) {
+        return clef_tempo;
+    }
+    const auto common = std::max_element(counts.begin(), counts.end(),
+                                         [](auto a, auto b) { return a.second < b.second; })
+                            ->first /
+                        1e6;
+    // The common interval as a quarter first, then as the lengths nearest to it.
+    for (const double as_beats : {1.0, 0.5, 2.0, 0.25, 1.5, 0.75, 4.0, 3.0, 0.125, 0.375}) {
+        const double tempo = clamp_tempo(common / as_beats);
+        if (fits(times, tempo)) {
+            return tempo;
+        }
+    }
+    // Irregular times: keep the common interval a quarter note and round to its grid.
+    return clamp_tempo(common);
+}
+
+bool changes(double from, double to) {
+    return std::abs(to - from) > kChangeSlack;
+}
+
+}  // namespace
+
+GridPlacement place_on_grid(std::vector<SoundEvent> events, double total, const Clef& clef,
+                            const StringOf& string_of) {
+    std::stable_sort(events.begin(), events.end(),
+                     [](const auto& a, const auto& b) { return a.onset < b.onset; });
+    const render::RenderOptions defaults;
+    const std::size_t n = events.size();
+    // How each note ends: at the next onset (touching: tied; within the default silence: not
+    // tied, no rest) or at its own end, a rest following.
+    std::vector<bool> tied(n, false), runs_on(n, false);
+    std::vector<double> times, onsets;
+    for (std::size_t i = 0; i < n; ++i) {
+        auto& event = events[i];
+        onsets.push_back(event.onset);
+        times.push_back(event.onset);
+        if (i + 1 < n) {
+            const double next = events[i + 1].onset;
+            event.duration = std::min(event.duration, next - event.onset);  // one voice
+            const double gap = next - event.end();
+            const double silence = std::min(
+                defaults.separation_s, defaults.separation_max_fraction * (next - event.onset));
+            tied[i] = gap <= 1e-9 && event.duration > 0.0;
+            runs_on[i] = tied[i] || (event.duration > 0.0 && gap <= silence + kTimeSlack);
+        }
+        if (!runs_on[i] && event.duration > 0.0) {
+            times.push_back(event.end());
+        }
+    }
+    const double last_end = n > 0 ? events.back().end() : 0.0;
+    if (total > last_end) {
+        times.push_back(total);
+    }
+
+    GridPlacement placement;
+    placement.tempo = fit_tempo(times, onsets, clef.tempo);
+    const double grid = placement.tempo / ticks_per_quarter;
+    placement.worst_error = grid_error(times, grid);
+    const auto tick = [&](double t) { return static_cast<std::int64_t>(std::llround(t / grid)); };
+
+    Dynamics previous = Dynamics::none;
+    for (std::size_t i = 0; i < n; ++i) {
+        const auto& event = events[i];
+        GridNote note;
+        note.start = tick(event.onset);
+        const std::int64_t end = runs_on[i] ? tick(events[i + 1].onset) : tick(event.end());
+        note.length = std::max<std::int64_t>(1, end - note.start);
+        note.string = string_of(event);
+
+        const double from = event.strength_start, to = event.strength_end;
+        const bool glides_pitch = tied[i] && changes(event.pitch_start, event.pitch_end);
+        const bool glides_strength = tied[i] && changes(from, to) && to > kChangeSlack &&
+                                     !changes(to, events[i + 1].strength_start);
+        // A hairpin goes on only through notes tied into this one: after a gap, a rise that
+        // glides in pitch is the glide's own, whatever the note before did.
+        const Dynamics before = i > 0 && tied[i - 1] ? previous : Dynamics::none;
+        double own = from;
+        if (!changes(from, to)) {
+            note.dynamics = Dynamics::none;
+        } else if (to > from) {
+            // A rise that starts from silence, or goes on from a crescendo, is a crescendo;
+            // one from a sounding strength that glides in pitch into the next note is part of
+            // that glide. On one pitch a ramp is a hairpin: it sounds the same, and reads as
+            // the score most likely wrote it.
+            const bool crescendo =
+                !glides_pitch || !changes(from, 0.0) || before == Dynamics::crescendo;
+            note.dynamics = crescendo ? Dynamics::crescendo : Dynamics::none;
+            own = crescendo ? to : from;
+        } else {
+            note.dynamics = glides_pitch && changes(to, 0.0) && before != Dynamics::decrescendo
+                                ? Dynamics::none
+                                : Dynamics::decrescendo;
+        }
+        previous = note.dynamics;
+        note.number = nearest_number(clef, own);
+        // Tied notes glide (portamento) when the pitch moves on, or when the strength does and
+        // no hairpin explains it; otherwise they are joined by legato.
+        if (!tied[i]) {
+            note.tie_to_next = GridNote::Tie::none;
+        } else if (glides_pitch || (glides_strength && note.dynamics == Dynamics::none)) {
+            note.tie_to_next = GridNote::Tie::portamento;
+        } else {
+            note.tie_to_next = GridNote::Tie::legato;
+        }
+        placement.notes.push_back(note);
+    }
+    placement.total_ticks = tick(std::max(total, last_end));
+    return placement;
+}
+
+std::vector<int> strings_by_contour(const std::vector<double>& pitches, int strings) {
+    const std::set<double> distinct(pitches.begin(), pitches.end());
+    std::vector<int> result;
+    if (distinct.empty()) {
+        return result;
+    }
+    const double low = *distinct.begin();
+    const double high = *distinct.rbegin();
+    const auto count = static_cast<int>(distinct.size());
+    for (const double pitch : pitches) {
+        int string = 1;
+        if (count <= strings) {
+            const auto rank =
+                static_cast<int>(std::distance(distinct.begin(), distinct.find(pitch)));
+            string = count == 1 ? 1
+                                : 1 + static_cast<int>(std::lround(static_cast<double>(rank) *
+                                                                   (strings - 1) / (count - 1)));
+        } else {
+            string = 1 + static_cast<int>(std::floor((pitch - low) / (high - low) * strings));
+        }
+        result.push_back(std::clamp(string, 1, strings));
+    }
+    return result;
+}
+
+int nearest_string(const Clef& clef, double frequency) {
+    int best = 1;
+    double best_distance = INFINITY;
+    for (std::size_t s = 0; s < clef.strings.size(); ++s) {
+        const double distance = std::abs(std::log(frequency / clef.strings[s].frequency));
+        if (distance < best_distance) {
+            best_distance = distance;
+            best = static_cast<int>(s + 1);
+        }
+    }
+    return best;
+}
+
+}  // namespace vibscore::formats

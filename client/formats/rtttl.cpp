@@ -1,0 +1,265 @@
+#include "client/formats/rtttl.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <optional>
+
+#include "client/formats/grid_fit.hpp"
+#include "score/line_index.hpp"
+
+namespace vibscore::formats {
+
+namespace {
+
+constexpr std::size_t kMaxNameChars = 64;
+constexpr int kMaxBpm = 900;
+
+struct Parsed {
+    std::string name;
+    int bpm = 63;  // the format's defaults
+    struct Tone {
+        std::int64_t ticks = 0;
+        std::optional<double> pitch;  // semitones (MIDI numbering); none for a pause
+        std::ptrdiff_t offset = 0;
+    };
+    std::vector<Tone> tones;
+};
+
+class RtttlParser {
+  public:
+    RtttlParser(std::string_view text, const LineIndex& lines, DiagnosticSink& sink)
+        : text_(text), lines_(lines), sink_(sink) {}
+
+    Parsed parse() {
+        Parsed parsed;
+        const auto first_colon = text_.find(':');
+        const auto second_colon =
+            first_colon == std::string_view::npos ? first_colon : text_.find(':', first_colon + 1);
+        if (second_colon == std::string_view::npos) {
+            report(0, "an RTTTL text is NAME:DEFAULTS:NOTES, e.g. tune:d=4,o=5,b=120:c,e,g");
+            return parsed;
+        }
+        parsed.name = std::string(trim(text_.substr(0, first_colon)));
+        if (parsed.name.size() > kMaxNameChars) {
+            report(0, "the name is longer than " + std::to_string(kMaxNameChars) + " characters");
+        }
+        read_defaults(first_colon + 1, second_colon, parsed);
+        read_notes(second_colon + 1, parsed);
+        return parsed;
+    }
+
+  private:
+    void report(std::size_t offset, const std::string& message) {
+        sink_.report(lines_.at(static_cast<std::ptrdiff_t>(offset)), message);
+    }
+
+    static std::string_view trim(std::string_view text) {
+        while (!text.empty() && std::isspace(static_cast<unsigned char>(text.front()))) {
+            text.remove_prefix(1);
+        }
+        while (!text.empty() && std::isspace(static_cast<unsigned char>(text.back()))) {
+            text.remove_suffix(1);
+        }
+        return text;
+    }
+
+    // Splits [begin, end) at commas, calling each(offset of the trimmed item, item).
+    template <typename Each>
+    void for_each_item(std::size_t begin, std::size_t end, Each&& each) {
+        while (begin < end) {
+            std::size_t comma = text_.find(',', begin);
+            if (comma == std::string_view::npos || comma > end) {
+                comma = end;
+            }
+            std::size_t start = begin;
+            while (start < comma && std::isspace(static_cast<unsigned char>(text_[start]))) {
+                ++start;
+            }
+            const auto item = trim(text_.substr(start, comma - start));
+            if (!item.empty()) {
+                each(start, item);
+            } else if (comma < end) {
+                report(start, "an empty item between commas");
+            }
+            begin = comma + 1;
+        }
+    }
+
+    // A whole number of up to four digits at the front of `item`, removed from it.
+    static std::optional<int> take_number(std::string_view& item) {
+        std::size_t digits = 0;
+        while (digits < item.size() && std::isdigit(static_cast<unsigned char>(item[digits]))) {
+            ++digits;
+        }
+        if (digits == 0 || digits > 4) {
+            return std::nullopt;
+        }
+        const int value = std::stoi(std::string(item.substr(0, digits)));
+        item.remove_prefix(digits);
+        return value;
+    }
+
+    static bool valid_duration(int duration) {
+        return duration == 1 || duration == 2 || duration == 4 || duration == 8 || duration == 16 ||
+               duration == 32;
+    }
+
+    void read_defaults(std::size_t begin, std::size_t end, Parsed& parsed) {
+        for_each_item(begin, end, [&](std::size_t offset, std::string_view item) {
+            const auto equals = item.find('=');
+            if (equals == std::string_view::npos) {
+                report(offset, "a default is d=, o= or b= with a number, not \"" +
+                                   std::string(item) + "\"");
+                return;
+            }
+            const auto key =
+                std::tolower(static_cast<unsigned char>(trim(item.substr(0, equals)).front()));
+            auto value_text = trim(item.substr(equals + 1));
+            const auto value = take_number(value_text);
+            if (!value || !value_text.empty() || trim(item.substr(0, equals)).size() != 1) {
+                report(offset, "\"" + std::string(item) + "\" is not d=, o= or b= with a number");
+                return;
+            }
+            if (key == 'd' && valid_duration(*value)) {
+                duration_ = *value;
+            } else if (key == 'o' && *value >= 0 && *value <= 9) {
+                octave_ = *value;
+            } else if (key == 'b' && *value >= 1 && *value <= kMaxBpm) {
+                parsed.bpm = *value;
+            } else if (key == 'd' || key == 'o' || key == 'b') {
+                report(offset, "\"" + std::string(item) +
+                                   "\" is out of range (d: 1, 2, 4, 8, 16, 32; o: 0 to 9; b: 1 "
+                                   "to 900)");
+            } else {
+                report(offset,
+                       "unknown default \"" + std::string(item) + "\" (expected d=, o= or b=)");
+            }
+        });
+    }
+
+    void read_notes(std::size_t begin, Parsed& parsed) {
+        for_each_item(begin, text_.size(), [&](std::size_t offset, std::string_view item) {
+            read_note(offset, item, parsed);
+        });
+        if (parsed.tones.empty()) {
+            report(begin, "no notes after the second colon");
+        }
+    }
+
+    // [duration] letter [#] [.] [octave] [.]
+    void read_note(std::size_t offset, std::string_view item, Parsed& parsed) {
+        const std::string original(item);
+        const auto bad = [&](const std::string& why) {
+            report(offset, "note \"" + original + "\": " + why);
+        };
+        int duration = duration_;
+        if (std::isdigit(static_cast<unsigned char>(item.front()))) {
+            const auto read = take_number(item);
+            if (!read || !valid_duration(*read)) {
+                bad("the duration is 1, 2, 4, 8, 16 or 32");
+                return;
+            }
+            duration = *read;
+        }
+        if (item.empty()) {
+            bad("no note letter");
+            return;
+        }
+        static constexpr std::string_view kLetters = "cdefgab";
+        static constexpr int kSemitones[] = {0, 2, 4, 5, 7, 9, 11};
+        const char letter =
+            static_cast<char>(std::tolower(static_cast<unsigned char>(item.front())));
+        item.remove_prefix(1);
+        std::optional<int> semitone;
+        if (letter == 'h') {
+            semitone = 11;  // the German B some ringtones use
+        } else if (const auto found = kLetters.find(letter); found != std::string_view::npos) {
+            semitone = kSemitones[found];
+        } else if (letter != 'p') {
+            bad("the note letter is a to g, or p for a pause");
+            return;
+        }
+        if (!item.empty() && item.front() == '#') {
+            if (!semitone) {
+                bad("a pause cannot be sharp");
+                return;
+            }
+            ++*semitone;
+            item.remove_prefix(1);
+        }
+        bool dotted = false;
+        if (!item.empty() && item.front() == '.') {
+            dotted = true;
+            item.remove_prefix(1);
+        }
+        int octave = octave_;
+        if (!item.empty() && std::isdigit(static_cast<unsigned char>(item.front()))) {
+            octave = item.front() - '0';
+            item.remove_prefix(1);
+        }
+        if (!item.empty() && item.front() == '.' && !dotted) {
+            dotted = true;
+            item.remove_prefix(1);
+        }
+        if (!item.empty()) {
+            bad("unexpected \"" + std::string(item) + "\" after the note");
+            return;
+        }
+        // A note of duration d lasts 4/d quarter notes: 32 ticks / d on the score's grid.
+        std::int64_t ticks = 4 * ticks_per_quarter / duration;
+        if (dotted) {
+            if (ticks % 2 != 0) {
+                bad("a dotted 32nd lasts 3/16 of a beat, finer than a score's 32nd-note grid");
+                return;
+            }
+            ticks += ticks / 2;
+        }
+        Parsed::Tone tone{ticks, std::nullopt, static_cast<std::ptrdiff_t>(offset)};
+        if (semitone) {
+            tone.pitch = 12.0 * (octave + 1) + *semitone;
+        }
+        parsed.tones.push_back(tone);
+    }
+
+    std::string_view text_;
+    const LineIndex& lines_;
+    DiagnosticSink& sink_;
+    int duration_ = 4;
+    int octave_ = 6;
+};
+
+}  // namespace
+
+ImportedScore read_rtttl(std::string_view text, const std::string& file, const ChosenClef& chosen) {
+    const LineIndex lines(text, file);
+    DiagnosticSink sink;
+    RtttlParser parser(text, lines, sink);
+    const auto parsed = parser.parse();
+    sink.throw_if_any();
+
+    std::vector<double> pitches;
+    for (const auto& tone : parsed.tones) {
+        if (tone.pitch) {
+            pitches.push_back(*tone.pitch);
+        }
+    }
+    const auto strings = strings_by_contour(pitches, static_cast<int>(chosen.clef.strings.size()));
+    const int strongest = nearest_number(chosen.clef, 1.0);
+    std::vector<GridNote> notes;
+    std::int64_t now = 0;
+    std::size_t pitched = 0;
+    for (const auto& tone : parsed.tones) {
+        if (tone.pitch) {
+            GridNote note;
+            note.start = now;
+            note.length = tone.ticks;
+            note.string = strings[pitched++];
+            note.number = strongest;
+            notes.push_back(note);
+        }
+        now += tone.ticks;
+    }
+    return build_score(notes, {{0, 60.0 / parsed.bpm}}, now, chosen, parsed.name, file);
+}
+
+}  // namespace vibscore::formats

@@ -1,0 +1,263 @@
+#include "client/formats/score_builder.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "score/document_error.hpp"
+#include "score/limits.hpp"
+
+namespace vibscore::formats {
+
+namespace {
+
+constexpr std::int64_t kTicksPerBar = 4 * ticks_per_quarter;
+
+std::int64_t ticks_of(Length length) {
+    return static_cast<std::int64_t>(std::lround(beats(length) * ticks_per_quarter));
+}
+
+// A symbol in playing order before it goes into a bar, with the tie to the note after it.
+struct Written {
+    Symbol symbol;
+    std::int64_t ticks = 0;
+    GridNote::Tie tie_to_next = GridNote::Tie::none;
+};
+
+// Tie serials count up from 1, separately for legato and portamento, as people number them; a
+// note tied in one way and out the other carries both serials.
+void number_ties(std::vector<Written>& sequence) {
+    std::int64_t legato = 0, portamento = 0;
+    GridNote::Tie incoming = GridNote::Tie::none;
+    for (auto& written : sequence) {
+        auto* note = std::get_if<Note>(&written.symbol);
+        if (note == nullptr) {
+            incoming = GridNote::Tie::none;
+            continue;
+        }
+        if (incoming == GridNote::Tie::legato) {
+            note->legato = legato;
+        } else if (incoming == GridNote::Tie::portamento) {
+            note->portamento = portamento;
+        }
+        if (written.tie_to_next == GridNote::Tie::legato && incoming != GridNote::Tie::legato) {
+            note->legato = ++legato;
+        } else if (written.tie_to_next == GridNote::Tie::portamento &&
+                   incoming != GridNote::Tie::portamento) {
+            note->portamento = ++portamento;
+        }
+        incoming = written.tie_to_next;
+    }
+}
+
+// Fills bars of four beats with the sequence: a bar closes early rather than split a note,
+// rests split at bar lines, and a new bar begins wherever the tempo changes.
+class BarLayout {
+  public:
+    BarLayout(const std::vector<TempoChange>& tempi, const ChosenClef& chosen)
+        : tempi_(tempi), chosen_(chosen) {}
+
+    void add(const Written& written) {
+        if (std::holds_alternative<Rest>(written.symbol)) {
+            for (std::int64_t left = written.ticks; left > 0;) {
+                const std::int64_t take = std::min(left, room());
+                for (const Length length : lengths_for(take)) {
+                    place(Rest{length}, ticks_of(length));
+                }
+                left -= take;
+            }
+            return;
+        }
+        place(written.symbol, written.ticks);
+    }
+
+    std::vector<Bar> bars() && { return std::move(bars_); }
+    const std::vector<double>& tempi_used() const { return used_; }
+
+  private:
+    bool tempo_changes() const {
+        return next_tempo_ < tempi_.size() && tempi_[next_tempo_].at <= now_;
+    }
+    std::int64_t room() {
+        if (bars_.empty() || bar_ticks_ >= kTicksPerBar || tempo_changes()) {
+            open_bar();
+        }
+        return kTicksPerBar - bar_ticks_;
+    }
+    void open_bar() {
+        while (tempo_changes()) {
+            tempo_ = tempi_[next_tempo_++].tempo;
+        }
+        if (std::find(used_.begin(), used_.end(), tempo_) == used_.end()) {
+            used_.push_back(tempo_);
+        }
+        bars_.push_back(Bar{clef_id_for(chosen_, tempo_), {}});
+        bar_ticks_ = 0;
+    }
+    void place(Symbol symbol, std::int64_t ticks) {
+        if (bars_.empty() || bar_ticks_ + ticks > kTicksPerBar || tempo_changes()) {
+            open_bar();
+        }
+        bars_.back().symbols.push_back(std::move(symbol));
+        bar_ticks_ += ticks;
+        now_ += ticks;
+    }
+
+    const std::vector<TempoChange>& tempi_;
+    const ChosenClef& chosen_;
+    std::vector<Bar> bars_;
+    std::vector<double> used_;
+    std::size_t next_tempo_ = 0;
+    double tempo_ = 0.0;
+    std::int64_t now_ = 0;
+    std::int64_t bar_ticks_ = 0;
+};
+
+std::string bpm_label(double tempo) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.2f", 60.0 / tempo);
+    std::string label = text;
+    label.erase(label.find_last_not_of('0') + 1);
+    if (label.back() == '.') {
+        label.pop_back();
+    }
+    return label + "bpm";
+}
+
+}  // namespace
+
+std::vector<Length> lengths_for(std::int64_t ticks) {
+    std::vector<Length> parts;
+    for (int i = 0; i < length_count && ticks > 0;) {
+        const auto length = static_cast<Length>(i);
+        if (ticks_of(length) <= ticks) {
+            parts.push_back(length);
+            ticks -= ticks_of(length);
+        } else {
+            ++i;
+        }
+    }
+    return parts;
+}
+
+std::string clef_id_for(const ChosenClef& chosen, double tempo) {
+    if (tempo == chosen.clef.tempo) {
+        return chosen.name;
+    }
+    // Room for the suffix within the id limit.
+    const std::string suffix = "-" + bpm_label(tempo);
+    return chosen.name.substr(0, limits::id_chars - suffix.size()) + suffix;
+}
+
+int nearest_number(const Clef& clef, double strength) {
+    double peak = 0.0;
+    for (const double amplitude : clef.numbers) {
+        peak = std::max(peak, std::abs(amplitude));
+    }
+    const double target = strength * peak;
+    int best = 1;
+    for (std::size_t n = 0; n < clef.numbers.size(); ++n) {
+        if (std::abs(clef.numbers[n] - target) <
+            std::abs(clef.numbers[static_cast<std::size_t>(best - 1)] - target)) {
+            best = static_cast<int>(n + 1);
+        }
+    }
+    return best;
+}
+
+ImportedScore build_score(std::vector<GridNote> notes, std::vector<TempoChange> tempi,
+                          std::int64_t total_ticks, const ChosenClef& chosen, std::string title,
+                          const std::string& file) {
+    for (auto& change : tempi) {
+        change.tempo = std::clamp(change.tempo, limits::min_tempo_s, limits::max_tempo_s);
+    }
+    std::stable_sort(notes.begin(), notes.end(),
+                     [](const GridNote& a, const GridNote& b) { return a.start < b.start; });
+    // One voice: a note that starts while another sounds cuts it short; of notes starting
+    // together the last one stays.
+    std::vector<GridNote> voice;
+    for (const auto& note : notes) {
+        if (!voice.empty() && voice.back().start == note.start) {
+            voice.back() = note;
+            continue;
+        }
+        if (!voice.empty() && voice.back().start + voice.back().length > note.start) {
+            voice.back().length = note.start - voice.back().start;
+        }
+        voice.push_back(note);
+    }
+    for (std::size_t i = 0; i < voice.size(); ++i) {
+        voice[i].length = std::max<std::int64_t>(voice[i].length, 1);
+        const bool abuts =
+            i + 1 < voice.size() && voice[i].start + voice[i].length == voice[i + 1].start;
+        if (!abuts) {
+            voice[i].tie_to_next = GridNote::Tie::none;  // a tie needs a next note to reach
+        }
+    }
+
+    std::vector<Written> sequence;
+    std::int64_t now = 0;
+    for (const auto& note : voice) {
+        if (note.start > now) {
+            sequence.push_back({Rest{}, note.start - now});
+        }
+        const auto parts = lengths_for(note.length);
+        for (std::size_t p = 0; p < parts.size(); ++p) {
+            Note written;
+            written.length = parts[p];
+            written.number = note.number;
+            written.string = note.string;
+            written.dynamics = note.dynamics;
+            // The parts of a note too long for one symbol are tied by legato.
+            const bool last = p + 1 == parts.size();
+            sequence.push_back(
+                {written, ticks_of(parts[p]), last ? note.tie_to_next : GridNote::Tie::legato});
+        }
+        now = note.start + note.length;
+    }
+    if (total_ticks > now) {
+        sequence.push_back({Rest{}, total_ticks - now});
+    }
+    number_ties(sequence);
+    BarLayout layout(tempi, chosen);
+    for (const auto& written : sequence) {
+        layout.add(written);
+    }
+
+    ImportedScore imported;
+    imported.score.title = title.substr(0, limits::title_chars);
+    const auto tempi_used = layout.tempi_used();
+    imported.score.bars = std::move(layout).bars();
+    for (const double tempo : tempi_used) {
+        Clef clef = chosen.clef;
+        clef.tempo = tempo;
+        const auto id = clef_id_for(chosen, tempo);
+        imported.score.clefs.push_back({id, ""});
+        imported.clefs.push_back({id, clef, tempo != chosen.clef.tempo});
+    }
+
+    std::size_t symbols = 0;
+    double seconds = 0.0;
+    for (const auto& bar : imported.score.bars) {
+        symbols += bar.symbols.size();
+        for (const auto& clef : imported.clefs) {
+            if (clef.id == bar.clef) {
+                seconds += Score::beat_count(bar) * clef.clef.tempo;
+            }
+        }
+    }
+    if (imported.score.bars.empty()) {
+        throw DocumentError({file}, "holds no notes or rests to make a score of");
+    }
+    if (symbols > limits::symbols || imported.score.bars.size() > limits::bars ||
+        imported.clefs.size() > limits::clefs_per_score || seconds > limits::max_score_seconds) {
+        throw DocumentError({file}, "too long for a score: " + std::to_string(symbols) +
+                                        " symbols in " +
+                                        std::to_string(imported.score.bars.size()) + " bars, " +
+                                        std::to_string(static_cast<long long>(seconds)) +
+                                        " s (limits: 100000 symbols, 10000 bars, 3600 s)");
+    }
+    return imported;
+}
+
+}  // namespace vibscore::formats

@@ -1,0 +1,77 @@
+#include "client/pictures/picture_file.hpp"
+
+#include <cairo-svg.h>
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace vibscore::pictures {
+
+namespace {
+
+void check(cairo_status_t status, const std::filesystem::path& path) {
+    if (status != CAIRO_STATUS_SUCCESS) {
+        throw std::runtime_error(path.string() + ": " + cairo_status_to_string(status));
+    }
+}
+
+void paint(const Drawing& drawing, cairo_surface_t* surface) {
+    const CairoPtr cairo(cairo_create(surface), &cairo_destroy);
+    cairo_set_source_rgb(cairo.get(), 1, 1, 1);
+    cairo_paint(cairo.get());
+    drawing.draw(cairo.get());
+    cairo_surface_flush(surface);
+}
+
+}  // namespace
+
+PictureFormat picture_format_for(const std::filesystem::path& path) {
+    const auto extension = path.extension().string();
+    if (extension == ".svg") {
+        return PictureFormat::svg;
+    }
+    if (extension == ".png") {
+        return PictureFormat::png;
+    }
+    throw std::invalid_argument("cannot tell the picture format of \"" + path.string() +
+                                "\": name it .svg or .png");
+}
+
+SurfacePtr render_image(const Drawing& drawing) {
+    SurfacePtr surface(cairo_image_surface_create(CAIRO_FORMAT_ARGB32,
+                                                  static_cast<int>(std::ceil(drawing.width())),
+                                                  static_cast<int>(std::ceil(drawing.height()))),
+                       &cairo_surface_destroy);
+    check(cairo_surface_status(surface.get()), "picture");
+    paint(drawing, surface.get());
+    return surface;
+}
+
+void write_picture(const Drawing& drawing, const std::filesystem::path& path) {
+    const auto format = picture_format_for(path);
+    auto temporary = path;
+    temporary += ".partial";
+    try {
+        if (format == PictureFormat::svg) {
+            SurfacePtr surface(
+                cairo_svg_surface_create(temporary.c_str(), drawing.width(), drawing.height()),
+                &cairo_surface_destroy);
+            check(cairo_surface_status(surface.get()), path);
+            cairo_svg_surface_restrict_to_version(surface.get(), CAIRO_SVG_VERSION_1_1);
+            paint(drawing, surface.get());
+            cairo_surface_finish(surface.get());
+            check(cairo_surface_status(surface.get()), path);
+        } else {
+            const auto surface = render_image(drawing);
+            check(cairo_surface_write_to_png(surface.get(), temporary.c_str()), path);
+        }
+        std::filesystem::rename(temporary, path);
+    } catch (...) {
+        std::error_code ignored;
+        std::filesystem::remove(temporary, ignored);
+        throw;
+    }
+}
+
+}  // namespace vibscore::pictures

@@ -1,0 +1,390 @@
+#include "client/pictures/staff_picture.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <string>
+
+#include "client/editor/score_edits.hpp"
+
+namespace vibscore::pictures {
+
+namespace {
+
+using editor::Span;
+
+constexpr double kColumn = 9.0;  // pixels per layout column
+constexpr double kLine = 12.0;   // between two strings
+constexpr double kMargin = 14.0;
+constexpr double kTitle = 30.0;
+constexpr double kClefRow = 18.0;
+constexpr double kDynamicsRow = 20.0;  // between the clef row and the top string
+constexpr double kBelowStaff = 34.0;   // room for legato arcs and the gap to the next system
+constexpr double kSystemHeight = kClefRow + kDynamicsRow + 5 * kLine + kBelowStaff;
+constexpr double kHeadRx = 7.0, kHeadRy = 5.5;
+constexpr double kStem = 3.2 * kLine;
+
+void set_rgb(cairo_t* cairo, const double (&rgb)[3]) {
+    cairo_set_source_rgb(cairo, rgb[0], rgb[1], rgb[2]);
+}
+
+void ellipse(cairo_t* cairo, double x, double y, double rx, double ry) {
+    cairo_save(cairo);
+    cairo_translate(cairo, x, y);
+    cairo_scale(cairo, rx, ry);
+    cairo_new_path(cairo);
+    cairo_arc(cairo, 0, 0, 1, 0, 2 * M_PI);
+    cairo_restore(cairo);
+}
+
+void centred_text(cairo_t* cairo, double x, double y, const std::string& text) {
+    cairo_text_extents_t extents;
+    cairo_text_extents(cairo, text.c_str(), &extents);
+    cairo_move_to(cairo, x - extents.width / 2 - extents.x_bearing,
+                  y - extents.height / 2 - extents.y_bearing);
+    cairo_show_text(cairo, text.c_str());
+}
+
+void font(cairo_t* cairo, double size, bool bold) {
+    cairo_select_font_face(cairo, "DejaVu Sans", CAIRO_FONT_SLANT_NORMAL,
+                           bold ? CAIRO_FONT_WEIGHT_BOLD : CAIRO_FONT_WEIGHT_NORMAL);
+    cairo_set_font_size(cairo, size);
+}
+
+bool hollow(Length length) {
+    return length == Length::whole || length == Length::half || length == Length::half_dot;
+}
+
+int flags(Length length) {
+    switch (length) {
+        case Length::eighth:
+        case Length::eighth_dot:
+            return 1;
+        case Length::sixteenth:
+        case Length::sixteenth_dot:
+            return 2;
+        case Length::thirty_second:
+            return 3;
+        default:
+            return 0;
+    }
+}
+
+const Span* symbol_span(const editor::StaffLayout& layout, std::size_t bar, std::size_t symbol) {
+    for (const auto& span : layout.spans) {
+        if (span.kind == Span::Kind::symbol && span.bar == bar && span.symbol == symbol) {
+            return &span;
+        }
+    }
+    return nullptr;
+}
+
+}  // namespace
+
+StaffPicture::StaffPicture(const Score& score, const Options& options)
+    : score_(score), layout_(editor::layout_staff(score)) {
+    double top = kTitle;
+    int widest = 0;
+    for (const auto& [begin, end] : editor::systems(layout_, options.columns_per_system)) {
+        systems_.push_back({begin, end, top});
+        top += kSystemHeight;
+        widest = std::max(widest, end - begin);
+    }
+    // Wide enough for the title too.
+    const SurfacePtr scratch(cairo_image_surface_create(CAIRO_FORMAT_ARGB32, 1, 1),
+                             &cairo_surface_destroy);
+    const CairoPtr measure(cairo_create(scratch.get()), &cairo_destroy);
+    font(measure.get(), 14, true);
+    cairo_text_extents_t title;
+    cairo_text_extents(measure.get(), title_text().c_str(), &title);
+    width_ = std::ceil(2 * kMargin + std::max(widest * kColumn, title.x_advance));
+    height_ = std::ceil(top + kMargin / 2);
+}
+
+std::string StaffPicture::title_text() const {
+    return score_.title.empty() ? "(untitled)" : score_.title;
+}
+
+double StaffPicture::column_x(const System& system, double column) const {
+    return kMargin + (column - system.begin) * kColumn;
+}
+
+double StaffPicture::string_y(const System& system, int string) const {
+    return system.top + kClefRow + kDynamicsRow + (6 - std::clamp(string, 1, 6)) * kLine;
+}
+
+std::vector<StaffPicture::Point> StaffPicture::head_centres() const {
+    std::vector<Point> centres;
+    for (const auto& system : systems_) {
+        for (const auto& span : layout_.spans) {
+            if (span.kind != Span::Kind::symbol || span.x < system.begin || span.x >= system.end) {
+                continue;
+            }
+            if (const auto* note = std::get_if<Note>(&score_.bars[span.bar].symbols[span.symbol])) {
+                centres.push_back({column_x(system, span.x + 0.5), string_y(system, note->string)});
+            }
+        }
+    }
+    return centres;
+}
+
+void StaffPicture::draw(cairo_t* cairo) const {
+    cairo_set_source_rgb(cairo, 0, 0, 0);
+    font(cairo, 14, true);
+    cairo_move_to(cairo, kMargin, 20);
+    cairo_show_text(cairo, title_text().c_str());
+    for (const auto& system : systems_) {
+        draw_system(cairo, system);
+    }
+}
+
+void StaffPicture::draw_system(cairo_t* cairo, const System& system) const {
+    const double left = column_x(system, system.begin);
+    const double right = column_x(system, system.end - 1) + 1;
+    cairo_set_line_width(cairo, 1.0);
+    cairo_set_source_rgb(cairo, 0.45, 0.45, 0.45);
+    for (int string = 1; string <= 6; ++string) {
+        cairo_move_to(cairo, left, string_y(system, string) + 0.5);
+        cairo_line_to(cairo, right, string_y(system, string) + 0.5);
+    }
+    cairo_stroke(cairo);
+    for (const auto& span : layout_.spans) {
+        if (span.x < system.begin || span.x >= system.end) {
+            continue;
+        }
+        if (span.kind == Span::Kind::bar_line) {
+            const double x = std::round(column_x(system, span.x + 0.5)) + 0.5;
+            cairo_set_source_rgb(cairo, 0, 0, 0);
+            cairo_set_line_width(cairo, 1.2);
+            cairo_move_to(cairo, x, string_y(system, 6));
+            cairo_line_to(cairo, x, string_y(system, 1) + 1);
+            cairo_stroke(cairo);
+            // The bar line closing a system opens the next bar, whose clef box heads the next
+            // system.
+            if (span.bar < score_.bars.size() && span.x + 1 < system.end) {
+                draw_clef_box(cairo, system, span);
+            }
+            continue;
+        }
+        if (span.kind != Span::Kind::symbol) {
+            continue;
+        }
+        const Symbol& symbol = score_.bars[span.bar].symbols[span.symbol];
+        if (const auto* note = std::get_if<Note>(&symbol)) {
+            draw_note(cairo, system, span, *note);
+        } else if (const auto* rest = std::get_if<Rest>(&symbol)) {
+            draw_rest(cairo, system, span, *rest);
+        }
+    }
+    // Hairpins and ties may run into the next system: draw each whole, clipped to this one.
+    cairo_save(cairo);
+    cairo_rectangle(cairo, left - kColumn / 2, system.top, right - left + kColumn, kSystemHeight);
+    cairo_clip(cairo);
+    draw_hairpins(cairo, system);
+    draw_ties(cairo, system);
+    cairo_restore(cairo);
+}
+
+void StaffPicture::draw_note(cairo_t* cairo, const System& system, const Span& span,
+                             const Note& note) const {
+    const double x = column_x(system, span.x + 0.5);
+    const double y = string_y(system, note.string);
+    const bool open = hollow(note.length);
+    ellipse(cairo, x, y, kHeadRx, kHeadRy);
+    if (open) {
+        cairo_set_source_rgb(cairo, 1, 1, 1);
+    } else {
+        set_rgb(cairo, head_ink);
+    }
+    cairo_fill_preserve(cairo);
+    set_rgb(cairo, head_ink);
+    cairo_set_line_width(cairo, 1.4);
+    cairo_stroke(cairo);
+
+    font(cairo, 9, true);
+    if (open) {
+        cairo_set_source_rgb(cairo, 0, 0, 0);
+    } else {
+        cairo_set_source_rgb(cairo, 1, 1, 1);
+    }
+    centred_text(cairo, x, y, std::to_string(note.number));
+
+    cairo_set_source_rgb(cairo, 0, 0, 0);
+    cairo_set_line_width(cairo, 1.2);
+    if (note.length != Length::whole) {
+        const double stem_x = x + kHeadRx - 0.6;
+        cairo_move_to(cairo, stem_x, y - 1);
+        cairo_line_to(cairo, stem_x, y - kStem);
+        cairo_stroke(cairo);
+        for (int flag = 0; flag < flags(note.length); ++flag) {
+            const double top = y - kStem + flag * 5.0;
+            cairo_move_to(cairo, stem_x, top);
+            cairo_curve_to(cairo, stem_x + 2, top + 4, stem_x + 8, top + 5, stem_x + 6, top + 12);
+            cairo_stroke(cairo);
+        }
+    }
+    if (editor::is_dotted(note.length)) {
+        cairo_arc(cairo, x + kHeadRx + 4.5, y - 2.5, 1.7, 0, 2 * M_PI);
+        cairo_fill(cairo);
+    }
+}
+
+void StaffPicture::draw_rest(cairo_t* cairo, const System& system, const Span& span,
+                             const Rest& rest) const {
+    const double x = column_x(system, span.x + 0.5);
+    const double line4 = string_y(system, 4);
+    const double line3 = string_y(system, 3);
+    const double middle = (line4 + line3) / 2;
+    cairo_set_source_rgb(cairo, 0, 0, 0);
+    cairo_set_line_width(cairo, 1.6);
+    switch (rest.length) {
+        case Length::whole:
+            cairo_rectangle(cairo, x - 5, line4, 10, 5);  // hangs from a line
+            cairo_fill(cairo);
+            break;
+        case Length::half:
+        case Length::half_dot:
+            cairo_rectangle(cairo, x - 5, line3 - 5, 10, 5);  // sits on a line
+            cairo_fill(cairo);
+            break;
+        case Length::quarter:
+        case Length::quarter_dot:
+            cairo_move_to(cairo, x - 2, middle - 10);
+            cairo_line_to(cairo, x + 3, middle - 4);
+            cairo_line_to(cairo, x - 2, middle + 1);
+            cairo_line_to(cairo, x + 3, middle + 6);
+            cairo_curve_to(cairo, x - 3, middle + 4, x - 3, middle + 10, x + 1, middle + 11);
+            cairo_stroke(cairo);
+            break;
+        default: {
+            // A slanted stem with one blob for each flag of the note of the same length.
+            cairo_set_line_width(cairo, 1.3);
+            cairo_move_to(cairo, x + 3, middle - 9);
+            cairo_line_to(cairo, x - 2, middle + 10);
+            cairo_stroke(cairo);
+            for (int flag = 0; flag < flags(rest.length); ++flag) {
+                const double y = middle - 8 + flag * 5.5;
+                cairo_arc(cairo, x - 2 + flag * -1.2, y + 1, 2.0, 0, 2 * M_PI);
+                cairo_fill(cairo);
+                cairo_move_to(cairo, x - 2 + flag * -1.2, y + 2);
+                cairo_line_to(cairo, x + 3 - flag * 1.3, y);
+                cairo_stroke(cairo);
+            }
+        }
+    }
+    if (editor::is_dotted(rest.length)) {
+        cairo_arc(cairo, x + 8, middle - 3, 1.7, 0, 2 * M_PI);
+        cairo_fill(cairo);
+    }
+}
+
+void StaffPicture::draw_clef_box(cairo_t* cairo, const System& system, const Span& bar_line) const {
+    const Bar& bar = score_.bars[bar_line.bar];
+    const double beats = Score::beat_count(bar);
+    const std::string label = bar.clef + "  " + editor::beat_label(beats);
+    font(cairo, 10, false);
+    cairo_text_extents_t extents;
+    cairo_text_extents(cairo, label.c_str(), &extents);
+    const double x = std::round(column_x(system, bar_line.x + 1)) + 0.5;
+    const double y = system.top + 0.5;
+    cairo_rectangle(cairo, x, y, extents.x_advance + 8, kClefRow - 3);
+    if (beats < editor::beats_in_a_full_bar) {
+        cairo_set_source_rgb(cairo, 0.55, 0.93, 0.96);  // cyan: fewer beats than four
+    } else if (beats > editor::beats_in_a_full_bar) {
+        cairo_set_source_rgb(cairo, 0.96, 0.62, 0.96);  // magenta: more
+    } else {
+        cairo_set_source_rgb(cairo, 1, 1, 1);  // white: exactly four
+    }
+    cairo_fill_preserve(cairo);
+    cairo_set_source_rgb(cairo, 0.35, 0.35, 0.35);
+    cairo_set_line_width(cairo, 1.0);
+    cairo_stroke(cairo);
+    cairo_set_source_rgb(cairo, 0, 0, 0);
+    cairo_move_to(cairo, x + 4, y + kClefRow - 7);
+    cairo_show_text(cairo, label.c_str());
+}
+
+void StaffPicture::draw_hairpins(cairo_t* cairo, const System& system) const {
+    const double y = system.top + kClefRow + kDynamicsRow / 2 - 2;
+    const auto wedge = [&](std::size_t first_bar, std::size_t first, std::size_t last_bar,
+                           std::size_t last, Dynamics dynamics) {
+        const Span* from = symbol_span(layout_, first_bar, first);
+        const Span* to = symbol_span(layout_, last_bar, last);
+        const double x0 = column_x(system, from->x + 0.2);
+        const double x1 = column_x(system, to->x + std::max(to->width - 1, 1));
+        const double open = 4.5;
+        cairo_set_source_rgb(cairo, 0.55, 0.35, 0.0);
+        cairo_set_line_width(cairo, 1.2);
+        if (dynamics == Dynamics::crescendo) {
+            cairo_move_to(cairo, x1, y - open);
+            cairo_line_to(cairo, x0, y);
+            cairo_line_to(cairo, x1, y + open);
+        } else {
+            cairo_move_to(cairo, x0, y - open);
+            cairo_line_to(cairo, x1, y);
+            cairo_line_to(cairo, x0, y + open);
+        }
+        cairo_stroke(cairo);
+    };
+    // A run of notes with the same dynamics is one hairpin; rests end it, blanks do not.
+    Dynamics run = Dynamics::none;
+    std::size_t first_bar = 0, first = 0, last_bar = 0, last = 0;
+    for (std::size_t b = 0; b < score_.bars.size(); ++b) {
+        for (std::size_t s = 0; s < score_.bars[b].symbols.size(); ++s) {
+            const Symbol& symbol = score_.bars[b].symbols[s];
+            if (std::holds_alternative<Blank>(symbol)) {
+                continue;
+            }
+            const auto* note = std::get_if<Note>(&symbol);
+            const Dynamics here = note != nullptr ? note->dynamics : Dynamics::none;
+            if (here != run) {
+                if (run != Dynamics::none) {
+                    wedge(first_bar, first, last_bar, last, run);
+                }
+                run = here;
+                first_bar = b;
+                first = s;
+            }
+            last_bar = b;
+            last = s;
+        }
+    }
+    if (run != Dynamics::none) {
+        wedge(first_bar, first, last_bar, last, run);
+    }
+}
+
+void StaffPicture::draw_ties(cairo_t* cairo, const System& system) const {
+    const double below = string_y(system, 1) + 8;
+    for (std::size_t b = 0; b < score_.bars.size(); ++b) {
+        for (std::size_t s = 0; s < score_.bars[b].symbols.size(); ++s) {
+            const editor::Position at{b, s};
+            const Note* note = editor::note_at(score_, at);
+            const auto next_at = editor::symbol_after(score_, at);
+            const Note* next = next_at ? editor::note_at(score_, *next_at) : nullptr;
+            if (note == nullptr || next == nullptr) {
+                continue;
+            }
+            const double x0 = column_x(system, layout_.x_of(at) + 0.5);
+            const double x1 = column_x(system, layout_.x_of(*next_at) + 0.5);
+            if (note->legato != 0 && note->legato == next->legato) {
+                // A slur under the staff.
+                cairo_set_source_rgb(cairo, 0.0, 0.45, 0.15);
+                cairo_set_line_width(cairo, 1.4);
+                cairo_move_to(cairo, x0, below);
+                cairo_curve_to(cairo, x0 + 4, below + 10, x1 - 4, below + 10, x1, below);
+                cairo_stroke(cairo);
+            }
+            if (note->portamento != 0 && note->portamento == next->portamento) {
+                // A glide: a straight line from head to head.
+                cairo_set_source_rgb(cairo, 0.0, 0.35, 0.7);
+                cairo_set_line_width(cairo, 1.6);
+                cairo_move_to(cairo, x0 + kHeadRx + 1, string_y(system, note->string));
+                cairo_line_to(cairo, x1 - kHeadRx - 1, string_y(system, next->string));
+                cairo_stroke(cairo);
+            }
+        }
+    }
+}
+
+}  // namespace vibscore::pictures

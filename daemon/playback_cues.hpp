@@ -1,0 +1,48 @@
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <deque>
+#include <memory>
+
+#include "daemon/render/cue_adaptation.hpp"
+
+namespace vibscore::daemon {
+
+// A cue of a playback and the pass through the score it belongs to (0 is the first).
+struct PassCue {
+    render::Cue cue;
+    std::uint64_t pass = 0;
+};
+
+// The cues a playback runs: pass after pass of its score (`repeat` more after the first, -1
+// without end), each adapted to the actuator, made as playback advances. The player reads a
+// few cues ahead (the next drive to prepare, the next switch-off for a kernel timer); nothing
+// else is kept, so the memory a playback holds does not grow with its score's length.
+class PlaybackCues {
+  public:
+    PlaybackCues(std::shared_ptr<const render::CueSource> source, double duration_s, int repeat,
+                 const render::CueAdaptation& adaptation);
+
+    // The cue `index` places ahead (0: the next one), read as far as needed; nullptr when the
+    // playback ends before it. Valid until pop() drops it.
+    const PassCue* ahead(std::size_t index);
+    // Drops the next cue.
+    void pop();
+
+  private:
+    // Appends the next cue of the playback to the read-ahead; false when there is none.
+    bool read();
+
+    std::shared_ptr<const render::CueSource> source_;
+    double duration_s_;
+    int repeat_;
+    render::CueAdaptation adaptation_;
+    std::unique_ptr<render::CueStream> pass_stream_;
+    std::uint64_t pass_ = 0;
+    bool pass_had_cues_ = false;
+    bool ended_ = false;
+    std::deque<PassCue> read_ahead_;
+};
+
+}  // namespace vibscore::daemon

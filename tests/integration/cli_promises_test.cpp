@@ -1,0 +1,324 @@
+// The command line keeps the README's promises, run as a new user runs it: the exit status and
+// message of each wrong usage, one rule for how a score names its clefs in check and play (both
+// ways), and every command the README shows, verbatim, against the real daemon on a private bus.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <signal.h>
+
+#include <fstream>
+#include <regex>
+#include <thread>
+
+#include "client/editor/documents.hpp"
+#include "client/editor/editor_model.hpp"
+#include "score/score_xml.hpp"
+#include "tests/support/daemon_fixture.hpp"
+
+namespace vibscore {
+namespace {
+
+using testing::DaemonFixture;
+using ::testing::HasSubstr;
+
+std::vector<std::string> command(const char* program_env, std::vector<std::string> args) {
+    args.insert(args.begin(), testing::required_env(program_env));
+    return args;
+}
+
+struct WrongUsage {
+    const char* program;  // the environment variable holding its path
+    std::vector<std::string> args;
+    int status;
+    std::string message;  // a line of standard error
+};
+
+TEST(WrongUsage, EachEndsWithTheReadmesStatusAndAMessageNamingWhatIsWrong) {
+    const std::vector<WrongUsage> table = {
+        {"VIBSCORED",
+         {"--bogus"},
+         2,
+         "vibscored: The following argument was not expected: --bogus"},
+        {"VIBSCORED", {"extra"}, 2, "vibscored: The following argument was not expected: extra"},
+        {"VIBSCORED",
+         {"--config", "/nonexistent.conf"},
+         1,
+         "/nonexistent.conf: cannot open: No such file or directory"},
+        {"VIBSCORE", {}, 2, "vibscore: a command is required (see --help for the commands)"},
+        {"VIBSCORE", {"--bogus"}, 2, "vibscore: unknown option --bogus"},
+        {"VIBSCORE",
+         {"frobnicate"},
+         2,
+         "vibscore: unknown command \"frobnicate\"; the commands are: check render convert info "
+         "play stop "
+         "list get compose delete drivers driver show edit"},
+        {"VIBSCORE",
+         {"lsit"},
+         2,
+         "vibscore: unknown command \"lsit\" (did you mean list?); the commands are: check render "
+         "convert "
+         "info play stop list get compose delete drivers driver show edit"},
+        {"VIBSCORE",
+         {"play", "x", "--usage", "bogus"},
+         2,
+         "vibscore: --usage: bogus not in {ringtone,alarm,notification,communication,"
+         "accessibility,hardware-feedback,touch,media}"},
+        {"VIBSCORE",
+         {"play", "x", "--repeat", "-5"},
+         2,
+         "vibscore: --repeat: -5 is out of range (-1 to 2147483647)"},
+        {"VIBSCORE",
+         {"play", "x", "--repeat", "1.5"},
+         2,
+         "vibscore: --repeat: not a whole number: 1.5"},
+        {"VIBSCORE",
+         {"play", "x", "--intensity", "2"},
+         2,
+         "vibscore: --intensity: 2 is out of range (0 to 1)"},
+        {"VIBSCORE", {"render", "f", "--rate", "abc"}, 2, "vibscore: --rate: not a number: abc"},
+        {"VIBSCORE",
+         {"render", "f", "--width", "5"},
+         2,
+         "vibscore: --width: 5 is out of range (10 to 1000)"},
+        {"VIBSCORE", {"list", "foo"}, 2, "vibscore: KIND: foo not in {score,scores,clef,clefs}"},
+        {"VIBSCORE",
+         {"get", "sco", "x"},
+         2,
+         "vibscore: KIND: sco not in {score,scores,clef,clefs}"},
+        {"VIBSCORE", {"stop", "abc"}, 2, "vibscore: ID: not a number: abc"},
+        {"VIBSCORE", {"stop", "0"}, 2, "vibscore: ID: 0 is out of range (1 or more)"},
+        {"VIBSCORE", {"check"}, 2, "vibscore: FILE is required"},
+        {"VIBSCORE",
+         {"check", "--clefs", "/nonexistent", "f.xml"},
+         2,
+         "vibscore: --clefs: Directory does not exist: /nonexistent"},
+        // Not usage errors: the file is missing, said the same way by both verbs.
+        {"VIBSCORE",
+         {"play", "nope.score.xml"},
+         1,
+         "nope.score.xml: cannot open: No such file or directory"},
+        {"VIBSCORE",
+         {"show", "nope.score.xml"},
+         1,
+         "nope.score.xml: cannot open: No such file or directory"},
+    };
+    setenv("DBUS_SYSTEM_BUS_ADDRESS", "unix:path=/nonexistent/bus", 1);
+    for (const auto& usage : table) {
+        const auto result = testing::run_command(command(usage.program, usage.args));
+        std::string shown = usage.program;
+        for (const auto& arg : usage.args) {
+            shown += " " + arg;
+        }
+        EXPECT_EQ(result.exit_code, usage.status) << shown << "\n" << result.err;
+        EXPECT_THAT(result.err, HasSubstr(usage.message + "\n")) << shown;
+    }
+}
+
+TEST(WrongUsage, EveryProgramAndVerbHasHelpEndingInSuccess) {
+    for (const char* verb : {"check", "render", "info", "play", "stop", "list", "get", "compose",
+                             "delete", "drivers", "driver", "show", "edit"}) {
+        const auto result = testing::run_command(command("VIBSCORE", {verb, "--help"}));
+        EXPECT_EQ(result.exit_code, 0) << verb;
+        EXPECT_THAT(result.out, HasSubstr("Usage:")) << verb;
+    }
+    EXPECT_EQ(testing::run_command(command("VIBSCORE", {"--help"})).exit_code, 0);
+    EXPECT_EQ(testing::run_command(command("VIBSCORED", {"--help"})).exit_code, 0);
+    const std::filesystem::path source = testing::required_env("VIBSCORE_SOURCE_ROOT");
+    const auto vm_run = testing::run_command({(source / "tests/hil/vm-run").string(), "--help"});
+    EXPECT_EQ(vm_run.exit_code, 0) << vm_run.err;
+    EXPECT_THAT(vm_run.out, HasSubstr("usage: vm-run"));
+}
+
+// A score in a folder of its own, with the daemon's shipped lra-phone clef under clefs/.
+class ClefRule : public ::testing::Test {
+  protected:
+    ClefRule() {
+        std::filesystem::create_directories(work.path() / "scores");
+        std::filesystem::create_directories(work.path() / "clefs");
+        std::filesystem::copy_file(shipped / "lra-phone.clef.xml",
+                                   work.path() / "clefs" / "lra-phone.clef.xml");
+    }
+
+    testing::CommandResult vibscore(std::vector<std::string> args) const {
+        setenv("DBUS_SYSTEM_BUS_ADDRESS", daemon.bus_address().c_str(), 1);
+        return testing::run_command(command("VIBSCORE", std::move(args)));
+    }
+
+    // check and play agree: both accept the file, and it plays to its end on the actuator.
+    void expect_checks_and_plays(const std::filesystem::path& file) const {
+        const auto checked = vibscore({"check", file.string()});
+        EXPECT_EQ(checked.exit_code, 0) << checked.err;
+        const auto played = vibscore({"play", file.string(), "--wait"});
+        EXPECT_EQ(played.exit_code, 0) << played.err;
+        EXPECT_THAT(played.out, HasSubstr(" completed\n"));
+    }
+
+    const std::filesystem::path shipped{testing::required_env("VIBSCORE_CLEFS")};
+    DaemonFixture daemon;
+    testing::TempDir work{};
+    const std::string bar =
+        "<Bar clef=\"l\"><Note length=\"8th\" number=\"9\" string=\"6\"/></Bar>";
+};
+
+TEST_F(ClefRule, AFileWrittenByTheEditorChecksAndPlays) {
+    Score score = editor::EditorModel::blank_score("mine", {"lra-phone", "lra-phone.clef.xml"});
+    score.bars = {read_score("<VibScore><Clef id=\"lra-phone\" href=\"x\"/><Bar clef=\"lra-phone\">"
+                             "<Note length=\"8th\" number=\"9\" string=\"6\"/></Bar></VibScore>",
+                             "bar")
+                      .score.bars};
+    const auto file = work.path() / "scores" / "mine.score.xml";
+    editor::write_score_file(file, score);
+    expect_checks_and_plays(file);
+    const auto info = vibscore({"info", file.string()});
+    EXPECT_THAT(info.out, HasSubstr("from registry")) << info.out;
+    EXPECT_EQ(vibscore({"compose", "mine", file.string()}).exit_code, 0);
+
+    // Without a daemon the offline verbs find it in a clefs folder given with --clefs.
+    setenv("DBUS_SYSTEM_BUS_ADDRESS", "unix:path=/nonexistent/bus", 1);
+    const auto offline = testing::run_command(
+        command("VIBSCORE", {"check", "--clefs", (work.path() / "clefs").string(), file.string()}));
+    EXPECT_EQ(offline.exit_code, 0) << offline.err;
+}
+
+TEST_F(ClefRule, AFileNamingItsClefByARelativePathChecksPlaysAndComposes) {
+    const auto file = work.path() / "scores" / "relative.score.xml";
+    std::ofstream(file) << "<VibScore><Title>r</Title><Clef id=\"l\" "
+                           "href=\"../clefs/lra-phone.clef.xml\"/>" +
+                               bar + "</VibScore>";
+    expect_checks_and_plays(file);
+    const auto composed = vibscore({"compose", "relative", file.string()});
+    EXPECT_EQ(composed.exit_code, 0) << composed.err;
+    const auto stored = vibscore({"get", "score", "relative"});
+    EXPECT_THAT(stored.out, HasSubstr("href=\"lra-phone.clef.xml\"")) << stored.out;
+}
+
+TEST_F(ClefRule, AClefFileOfItsOwnIsSentWithThePlayButComposeAsksToStoreItFirst) {
+    std::string clef = testing::read_file(work.path() / "clefs" / "lra-phone.clef.xml");
+    clef = std::regex_replace(clef, std::regex("<Tempo>[^<]*</Tempo>"), "<Tempo>0.3</Tempo>");
+    std::ofstream(work.path() / "clefs" / "slower.clef.xml") << clef;
+    const auto file = work.path() / "scores" / "own.score.xml";
+    std::ofstream(file) << "<VibScore><Clef id=\"l\" href=\"../clefs/slower.clef.xml\"/>" + bar +
+                               "</VibScore>";
+    expect_checks_and_plays(file);
+    const auto composed = vibscore({"compose", "own", file.string()});
+    EXPECT_EQ(composed.exit_code, 1);
+    EXPECT_THAT(composed.err, HasSubstr("the registry has no clef \"slower\"; store it first: "
+                                        "vibscore compose slower"));
+}
+
+TEST_F(ClefRule, AFileFetchedWithGetChecksAndPlays) {
+    const auto fetched = vibscore({"get", "score", "notification-message"});
+    ASSERT_EQ(fetched.exit_code, 0) << fetched.err;
+    const auto file = work.path() / "fetched.score.xml";
+    std::ofstream(file) << fetched.out;
+    expect_checks_and_plays(file);
+}
+
+TEST_F(ClefRule, AFileThatFailsCheckFailsPlayWithTheSameMessage) {
+    const auto file = work.path() / "scores" / "unknown.score.xml";
+    std::ofstream(file) << "<VibScore><Clef id=\"l\" href=\"no-such.clef.xml\"/>" + bar +
+                               "</VibScore>";
+    const auto checked = vibscore({"check", file.string()});
+    const auto played = vibscore({"play", file.string()});
+    EXPECT_EQ(checked.exit_code, 1);
+    EXPECT_EQ(played.exit_code, 1);
+    EXPECT_THAT(played.err, HasSubstr("no clef \"no-such\" in vibscored's registry"));
+    EXPECT_THAT(checked.err, HasSubstr(played.err));
+}
+
+TEST_F(ClefRule, StopSaysWhetherAnythingOfYoursWasPlaying) {
+    const auto idle = vibscore({"stop"});
+    EXPECT_EQ(idle.exit_code, 0) << idle.err;
+    EXPECT_EQ(idle.out, "none of your playbacks was playing\n");
+    // A repeating playback lasts as long as its caller stays: one waits in the background.
+    const auto output = work.path() / "playing.out";
+    testing::Process playing(command("VIBSCORE", {"play", "ringtone", "--repeat", "-1", "--wait"}),
+                             output);
+    for (int i = 0; i < 500 && testing::read_file(output).find("bar 1") == std::string::npos; ++i) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    const auto stopped = vibscore({"stop"});
+    EXPECT_EQ(stopped.out, "stopped your playback\n");
+    EXPECT_EQ(playing.wait(), 0);
+    EXPECT_THAT(testing::read_file(output), HasSubstr(" stopped\n"));
+}
+
+// The README's command lines (backslash continuations joined), from its ```sh blocks.
+std::vector<std::string> readme_commands(const std::filesystem::path& readme) {
+    std::ifstream in(readme);
+    std::vector<std::string> commands;
+    std::string line, pending;
+    bool in_block = false;
+    while (std::getline(in, line)) {
+        if (line.starts_with("```")) {
+            in_block = line == "```sh";
+            continue;
+        }
+        if (!in_block || line.empty()) {
+            continue;
+        }
+        if (line.ends_with("\\")) {
+            pending += line.substr(0, line.size() - 1);
+            continue;
+        }
+        commands.push_back(pending + line);
+        pending.clear();
+    }
+    return commands;
+}
+
+TEST(Readme, EveryCommandItShowsWorksVerbatim) {
+    const std::filesystem::path source = testing::required_env("VIBSCORE_SOURCE_ROOT");
+    const std::filesystem::path build = testing::required_env("VIBSCORE_BUILD_ROOT");
+    // Not run here, each for its reason: the test run is `./dev test` (or the by-hand build)
+    // itself; `./dev run` is the interactive demo; the editor is driven in tmux by editor_e2e;
+    // the packages are built by suite package (tests/package/build-debs, as `./dev package`) and
+    // installed with apt under systemd by suite hil-systemd, in a Debian 12 guest, not here.
+    const std::vector<std::string> run_elsewhere = {
+        "./dev run", "./dev test", "meson setup build && ninja -C build && meson test -C build",
+        "./dev package                                   # build/debs: vibscored, vibscore, "
+        "vibscore-dev",
+        "sudo apt install ./build/debs/vibscored_*.deb ./build/debs/vibscore_*.deb"};
+    // A daemon with the example driver module too, as installed.
+    DaemonFixture daemon{"drivers-dir = " + testing::required_env("VIBSCORE_EXAMPLE_DRIVERS")};
+    testing::TempDir work;
+    // The checkout's folders the commands read; docs/pictures/ fresh, so the README's picture
+    // commands do not rewrite the committed pictures.
+    for (const char* folder : {"clefs", "examples"}) {
+        std::filesystem::create_directory_symlink(source / folder, work.path() / folder);
+    }
+    std::filesystem::create_directories(work.path() / "docs" / "pictures");
+    std::filesystem::create_directory_symlink(build, work.path() / "build");
+    const std::string environment =
+        "cd " + work.path().string() + " && export PATH=" + (build / "client").string() + ":" +
+        (build / "daemon").string() + ":/usr/bin:/bin DBUS_SYSTEM_BUS_ADDRESS='" +
+        daemon.bus_address() + "' COLUMNS=80 && ";
+
+    int ran = 0;
+    for (const auto& line : readme_commands(source / "README.md")) {
+        if (std::find(run_elsewhere.begin(), run_elsewhere.end(), line) != run_elsewhere.end() ||
+            line.starts_with("vibscore edit ")) {
+            continue;
+        }
+        ++ran;
+        if (line.find("--repeat -1 --wait") != std::string::npos) {
+            // "Ctrl-C stops it": it plays until interrupted, then says so and succeeds.
+            const auto output = work.path() / "interrupted.out";
+            testing::Process playing({"/bin/bash", "-c", environment + "exec " + line}, output);
+            for (int i = 0;
+                 i < 500 && testing::read_file(output).find("bar 1") == std::string::npos; ++i) {
+                std::this_thread::sleep_for(std::chrono::milliseconds(20));
+            }
+            playing.signal(SIGINT);
+            EXPECT_EQ(playing.wait(), 0) << line << "\n" << testing::read_file(output);
+            EXPECT_THAT(testing::read_file(output), HasSubstr(" stopped\n")) << line;
+            continue;
+        }
+        const auto result = testing::run_command({"/bin/bash", "-c", environment + line});
+        EXPECT_EQ(result.exit_code, 0) << line << "\n" << result.out << result.err;
+    }
+    EXPECT_GE(ran, 15);
+}
+
+}  // namespace
+}  // namespace vibscore

@@ -1,0 +1,319 @@
+// vibscore-feedback with its real peers: Debian's fbcli (and so libfeedback) on a private session
+// bus, the real vibscored with the sim trace on a private system bus, and a typed client of the
+// feedbackd API for what fbcli cannot show (ids, end reasons, Haptic.Vibrate).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <thread>
+
+#include "daemon/render/cue_adaptation.hpp"
+#include "feedback/theme.hpp"
+#include "tests/hil/score_expectations.hpp"
+#include "tests/support/feedback_fixture.hpp"
+
+namespace vibscore {
+namespace {
+
+using namespace std::chrono_literals;
+using feedback::Profile;
+using testing::DaemonFixture;
+using testing::EndedFeedback;
+using testing::Fbcli;
+using testing::FeedbackClient;
+using testing::FeedbackServer;
+using testing::SessionBus;
+using TraceRow = DaemonFixture::TraceRow;
+
+constexpr std::uint32_t kNatural = 0, kExpired = 1, kExplicit = 2, kNotFound = 0xffffffff;
+constexpr const char* kFeedbackdTheme = "/usr/share/feedbackd/themes/default.json";
+constexpr const char* kInvalidArgs = "org.freedesktop.DBus.Error.InvalidArgs";
+
+// What the sim actuator is sent for a shipped score: the daemon's own render code.
+std::vector<render::Cue> expected_drives_of(const std::string& score) {
+    const auto path =
+        std::filesystem::path(testing::required_env("VIBSCORE_CLEFS")) / (score + ".score.xml");
+    return hil::expected_drives(testing::read_file(path), {.frequency = true, .amplitude = true});
+}
+
+double ms_between(std::int64_t from_ns, std::int64_t to_ns) {
+    return static_cast<double>(to_ns - from_ns) / 1e6;
+}
+
+std::string error_of(const std::function<void()>& call) {
+    try {
+        call();
+    } catch (const sdbus::Error& error) {
+        return error.getName() + ": " + error.getMessage();
+    }
+    return "<no error>";
+}
+
+class FeedbackApi : public ::testing::Test {
+  protected:
+    // vibscore-feedback with a theme (its own shipped one unless told).
+    void serve(const std::vector<std::string>& args = {}) {
+        std::vector<std::string> full{"--verbose"};
+        full.insert(full.end(), args.begin(), args.end());
+        if (std::find(args.begin(), args.end(), "--theme") == args.end()) {
+            full.insert(full.end(), {"--theme", testing::required_env("VIBSCORE_FEEDBACK_THEME")});
+        }
+        server = std::make_unique<FeedbackServer>(session, testing::vibscore_feedback(full));
+        client = std::make_unique<FeedbackClient>(session);
+    }
+    void SetUp() override { serve(); }
+
+    std::vector<TraceRow> rows_from(std::size_t first) const {
+        auto rows = daemon.trace_rows();
+        rows.erase(rows.begin(), rows.begin() + static_cast<std::ptrdiff_t>(first));
+        return rows;
+    }
+    // Runs fbcli to its end: its exit status, within `timeout`.
+    int fbcli(const std::vector<std::string>& args, std::chrono::milliseconds timeout = 10s) {
+        Fbcli run(session, args);
+        const auto status = run.wait(timeout);
+        EXPECT_TRUE(status) << "fbcli " << args.at(0) << " still runs\n" << server->log();
+        return status.value_or(-1);
+    }
+    std::string profile() {
+        return session
+            .busctl({"get-property", testing::kFeedbackName, testing::kFeedbackPath,
+                     "org.sigxcpu.Feedback", "Profile"})
+            .out;
+    }
+
+    DaemonFixture daemon;  // first: vibscore-feedback finds vibscored's bus in the environment
+    SessionBus session;
+    std::unique_ptr<FeedbackServer> server;
+    std::unique_ptr<FeedbackClient> client;
+};
+
+// Checks that `rows` (one playback's, from its first drive) are `expected`, in values and
+// times, followed by nothing but off.
+void expect_plays(const std::vector<TraceRow>& rows, const std::vector<render::Cue>& expected,
+                  const std::string& what, double scale = 1.0) {
+    ASSERT_GE(rows.size(), expected.size()) << what;
+    for (std::size_t i = 0; i < expected.size(); ++i) {
+        EXPECT_NEAR(rows[i].amplitude, std::clamp(expected[i].amplitude * scale, 0.0, 1.0), 1e-9)
+            << what << " drive " << i;
+        if (expected[i].amplitude > 0.0) {
+            EXPECT_EQ(rows[i].frequency_hz, expected[i].frequency_hz) << what << " drive " << i;
+        }
+        EXPECT_NEAR(ms_between(rows[0].time_ns, rows[i].time_ns),
+                    (expected[i].at - expected[0].at) * 1000.0, 25.0)
+            << what << " drive " << i;
+    }
+    for (std::size_t i = expected.size(); i < rows.size(); ++i) {
+        EXPECT_EQ(rows[i].amplitude, 0.0) << what << " row " << i;
+    }
+}
+
+TEST_F(FeedbackApi, EveryEventOfTheShippedThemePlaysItsScore) {
+    const auto theme = feedback::load_theme(testing::required_env("VIBSCORE_FEEDBACK_THEME"));
+    ASSERT_GE(theme.events().size(), 12u);
+    for (const auto& [event, levels] : theme.events()) {
+        const auto* entry = theme.lookup(event, Profile::full);
+        ASSERT_NE(entry, nullptr) << event;
+        const auto first = daemon.trace_rows().size();
+        EXPECT_EQ(fbcli({"-E", event}), 0) << event;
+        expect_plays(rows_from(first), expected_drives_of(entry->score), event);
+    }
+    EXPECT_TRUE(server->running());
+}
+
+TEST_F(FeedbackApi, ATimeoutRepeatsTheScoreUntilItRunsOut) {
+    // message-new-instant is notification-message: 0.4 s, so three passes start in one second.
+    Fbcli run(session, {"-E", "message-new-instant", "-t", "1"});
+    ASSERT_TRUE(run.wait(5s));
+    const auto elapsed = std::chrono::steady_clock::now() - run.started();
+    EXPECT_GT(elapsed, 900ms);
+    EXPECT_LT(elapsed, 2500ms);
+    const auto ended = client->wait_ended(1);
+    ASSERT_TRUE(ended);
+    EXPECT_EQ(ended->reason, kExpired);
+    const auto rows = daemon.trace_rows();
+    const auto first_drive = expected_drives_of("notification-message").front();
+    int passes = 0;
+    for (const auto& row : rows) {
+        passes += row.amplitude == first_drive.amplitude ? 1 : 0;
+    }
+    EXPECT_EQ(passes, 3);
+    ASSERT_FALSE(rows.empty());
+    EXPECT_EQ(rows.back().amplitude, 0.0);
+    EXPECT_NEAR(ms_between(rows[1].time_ns, rows.back().time_ns), 1000.0, 100.0);
+}
+
+TEST_F(FeedbackApi, ReturnInFbcliEndsALoopingEventAtOnce) {
+    Fbcli run(session, {"-E", "phone-incoming-call", "-t", "0"});
+    std::this_thread::sleep_for(500ms);
+    ASSERT_FALSE(run.wait(0ms)) << "a looping event ended by itself";
+    EXPECT_GT(daemon.trace_rows().size(), 3u);
+    const auto pressed_ns = std::chrono::steady_clock::now().time_since_epoch().count();
+    run.press_return();
+    ASSERT_TRUE(run.wait(3s));
+    const auto ended = client->wait_ended(1);
+    ASSERT_TRUE(ended);
+    EXPECT_EQ(ended->reason, kExplicit);
+    const auto rows = daemon.trace_rows();
+    EXPECT_EQ(rows.back().amplitude, 0.0);
+    EXPECT_LT(ms_between(pressed_ns, rows.back().time_ns), 200.0);
+}
+
+TEST_F(FeedbackApi, TheSilentProfilePlaysNothingAndAChangeIsSignalledAndEndsWhatPlays) {
+    EXPECT_EQ(profile(), "s \"full\"\n");
+    const auto looping = client->TriggerFeedback("org.vibscore.test", "phone-incoming-call", {}, 0);
+    std::this_thread::sleep_for(300ms);
+    EXPECT_EQ(fbcli({"-P", "quiet"}), 0);  // the ringtone is a quiet entry: it goes on
+    EXPECT_FALSE(client->wait_ended(looping, 300ms));
+    EXPECT_EQ(fbcli({"-P", "silent"}), 0);
+    EXPECT_EQ(profile(), "s \"silent\"\n");
+    const auto ended = client->wait_ended(looping);
+    ASSERT_TRUE(ended);
+    EXPECT_EQ(ended->reason, kExplicit);
+    EXPECT_EQ(daemon.trace_rows().back().amplitude, 0.0);
+    EXPECT_EQ(client->profile_changes(), (std::vector<std::string>{"quiet", "silent"}));
+
+    const auto before = daemon.trace_rows().size();
+    EXPECT_EQ(fbcli({"-E", "button-pressed"}), 0);
+    const auto id = client->TriggerFeedback("org.vibscore.test", "message-new-sms", {}, -1);
+    EXPECT_EQ(client->wait_ended(id)->reason, kNotFound);
+    EXPECT_EQ(daemon.trace_rows().size(), before);
+}
+
+TEST_F(FeedbackApi, AProfileHintOnlyLowersTheLevelAndMustBeAProfile) {
+    const auto hinted =
+        client->TriggerFeedback("org.vibscore.test", "button-pressed",
+                                {{"profile", sdbus::Variant(std::string("silent"))}}, -1);
+    EXPECT_EQ(client->wait_ended(hinted)->reason, kNotFound);
+    EXPECT_EQ(error_of([&] {
+                  client->TriggerFeedback("org.vibscore.test", "button-pressed",
+                                          {{"profile", sdbus::Variant(std::string("loud"))}}, -1);
+              }),
+              std::string(kInvalidArgs) +
+                  ": hint \"profile\": unknown profile \"loud\" (expected full, quiet or silent)");
+    EXPECT_EQ(error_of([&] {
+                  client->TriggerFeedback("org.vibscore.test", "button-pressed",
+                                          {{"profile", sdbus::Variant(3)}}, -1);
+              }),
+              std::string(kInvalidArgs) + ": hint \"profile\" must be a string (s), not i");
+    const auto played = client->TriggerFeedback("org.vibscore.test", "button-pressed",
+                                                {{"important", sdbus::Variant(true)}}, -1);
+    EXPECT_EQ(client->wait_ended(played)->reason, kNatural);
+}
+
+TEST_F(FeedbackApi, AnUnknownEventGivesNoFeedbackAndNoErrorAsFeedbackdDoes) {
+    const auto before = daemon.trace_rows().size();
+    EXPECT_EQ(fbcli({"-E", "no-such-event"}, 3s), 0);
+    const auto id = client->TriggerFeedback("org.vibscore.test", "no-such-event", {}, 0);
+    EXPECT_GT(id, 1u);
+    EXPECT_EQ(client->wait_ended(id)->reason, kNotFound);
+    EXPECT_EQ(daemon.trace_rows().size(), before);
+    EXPECT_EQ(error_of([&] { client->TriggerFeedback("", "button-pressed", {}, -1); }),
+              std::string(kInvalidArgs) + ": Invalid app id ");
+    EXPECT_EQ(error_of([&] { client->TriggerFeedback("org.vibscore.test", "", {}, -1); }),
+              std::string(kInvalidArgs) + ": Invalid event ");
+    client->EndFeedback(9999);  // not playing: ignored, as feedbackd does
+    EXPECT_TRUE(server->running());
+}
+
+TEST_F(FeedbackApi, AClientLeavingTheBusEndsItsFeedback) {
+    Fbcli run(session, {"-E", "phone-incoming-call", "-t", "0"});
+    std::this_thread::sleep_for(400ms);
+    run.kill();
+    const auto ended = client->wait_ended(1);
+    ASSERT_TRUE(ended);
+    EXPECT_EQ(ended->reason, kExplicit);
+    EXPECT_EQ(daemon.trace_rows().back().amplitude, 0.0);
+}
+
+TEST_F(FeedbackApi, AnEventVibscoredRefusesIsAnEventWithoutFeedback) {
+    auto haptics = daemon.client();
+    const auto alarm = haptics->Play(
+        "alarm", {{"usage", sdbus::Variant(std::string("alarm"))}, {"repeat", sdbus::Variant(-1)}});
+    const auto id = client->TriggerFeedback("org.vibscore.test", "button-pressed", {}, -1);
+    EXPECT_EQ(client->wait_ended(id)->reason, kNotFound);
+    EXPECT_FALSE(haptics->wait_finished(alarm, nullptr, 100ms));
+    haptics->Stop(alarm);
+}
+
+TEST_F(FeedbackApi, HapticVibratePlaysItsStepsAndAnEmptyPatternEndsThem) {
+    const auto first = daemon.trace_rows().size();
+    EXPECT_TRUE(client->Vibrate("org.vibscore.test", {{1.0, 100u}, {0.0, 50u}, {0.25, 100u}}));
+    std::this_thread::sleep_for(400ms);
+    const auto rows = rows_from(first);
+    ASSERT_GE(rows.size(), 4u);
+    EXPECT_EQ(rows[0].amplitude, 1.0);
+    EXPECT_EQ(rows[1].amplitude, 0.0);
+    EXPECT_NEAR(ms_between(rows[0].time_ns, rows[1].time_ns), 100.0, 25.0);
+    EXPECT_NEAR(rows[2].amplitude, 0.2222, 1e-9);  // the nearest ninth of the strongest step
+    EXPECT_NEAR(ms_between(rows[0].time_ns, rows[2].time_ns), 150.0, 25.0);
+    EXPECT_EQ(rows[3].amplitude, 0.0);
+    EXPECT_NEAR(ms_between(rows[0].time_ns, rows[3].time_ns), 250.0, 25.0);
+
+    EXPECT_TRUE(client->Vibrate("org.vibscore.test", {{0.8, 5000u}}));
+    std::this_thread::sleep_for(200ms);
+    EXPECT_NEAR(daemon.trace_rows().back().amplitude, 0.8, 1e-9);
+    EXPECT_TRUE(client->Vibrate("org.vibscore.test", {}));
+    EXPECT_EQ(daemon.trace_rows().back().amplitude, 0.0);
+}
+
+TEST_F(FeedbackApi, BadHapticPatternsGetErrorsAndSilentGetsFalse) {
+    const std::vector<sdbus::Struct<double, std::uint32_t>> eleven(11, {0.5, 10u});
+    EXPECT_EQ(error_of([&] { client->Vibrate("a", eleven); }),
+              std::string(kInvalidArgs) + ": the pattern has 11 steps; at most 10 are allowed");
+    EXPECT_EQ(error_of([&] {
+                  client->Vibrate("a", {{0.5, 10u}, {1.5, 10u}});
+              }),
+              std::string(kInvalidArgs) + ": step 2: strength 1.500000 is outside 0..1");
+    EXPECT_EQ(error_of([&] {
+                  client->Vibrate("a", {{std::nan(""), 10u}});
+              }),
+              std::string(kInvalidArgs) + ": step 1: strength nan is outside 0..1");
+    EXPECT_EQ(error_of([&] {
+                  client->Vibrate("a", {{0.5, 20000u}});
+              }),
+              std::string(kInvalidArgs) + ": step 1: 20000 ms is longer than 10000 ms");
+    client->Profile("silent");
+    const auto before = daemon.trace_rows().size();
+    EXPECT_FALSE(client->Vibrate("a", {{1.0, 100u}}));
+    EXPECT_EQ(daemon.trace_rows().size(), before);
+}
+
+TEST_F(FeedbackApi, FeedbackdsOwnThemePlaysItsRumblesAsFeedbackdWould) {
+    server.reset();
+    serve({"--theme", kFeedbackdTheme});
+    // message-new-sms: two rumbles of 150 ms, 100 ms apart, at feedbackd's rumble strength.
+    const auto first = daemon.trace_rows().size();
+    EXPECT_EQ(fbcli({"-E", "message-new-sms"}), 0);
+    const auto rows = rows_from(first);
+    const double strength = 32768.0 / 65535.0;
+    ASSERT_GE(rows.size(), 4u);
+    EXPECT_NEAR(rows[0].amplitude, strength, 1e-9);
+    EXPECT_EQ(rows[0].frequency_hz, 0.0);  // the actuator's own, as a rumble motor's
+    EXPECT_EQ(rows[1].amplitude, 0.0);
+    EXPECT_NEAR(ms_between(rows[0].time_ns, rows[1].time_ns), 150.0, 25.0);
+    EXPECT_NEAR(rows[2].amplitude, strength, 1e-9);
+    EXPECT_NEAR(ms_between(rows[0].time_ns, rows[2].time_ns), 250.0, 25.0);
+    EXPECT_EQ(rows[3].amplitude, 0.0);
+    EXPECT_NEAR(ms_between(rows[0].time_ns, rows[3].time_ns), 400.0, 25.0);
+    // A Sound-only event vibrates no more than feedbackd would make it.
+    const auto before = daemon.trace_rows().size();
+    EXPECT_EQ(fbcli({"-E", "camera-shutter"}), 0);
+    EXPECT_EQ(daemon.trace_rows().size(), before);
+}
+
+TEST(FeedbackActivation, TheFirstCallStartsVibscoreFeedbackOnTheSessionBus) {
+    DaemonFixture daemon;
+    const SessionBus session(
+        {{testing::kFeedbackName, testing::required_env("VIBSCORE_FEEDBACK") + " --theme " +
+                                      testing::required_env("VIBSCORE_FEEDBACK_THEME")}});
+    const auto before = daemon.trace_rows().size();
+    Fbcli run(session, {"-E", "button-pressed"});
+    ASSERT_TRUE(run.wait(10s)) << run.output();
+    EXPECT_TRUE(session.wait_for_owner(testing::kFeedbackName, 0ms));
+    const auto rows = daemon.trace_rows();
+    ASSERT_GT(rows.size(), before);
+    EXPECT_EQ(rows[before].amplitude, expected_drives_of("touch-click").front().amplitude);
+}
+
+}  // namespace
+}  // namespace vibscore

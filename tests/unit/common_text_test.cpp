@@ -1,0 +1,34 @@
+// Numbers and names in messages, as a person writes and types them.
+#include <gtest/gtest.h>
+
+#include "common/closest_name.hpp"
+#include "common/number_text.hpp"
+
+namespace vibscore {
+namespace {
+
+TEST(NumberText, PrintsTheShortestDecimalThatReadsBackTheSame) {
+    EXPECT_EQ(number_text(1000.0), "1000");
+    EXPECT_EQ(number_text(0.25), "0.25");
+    EXPECT_EQ(number_text(-1.0), "-1");
+    EXPECT_EQ(number_text(3600000.0), "3600000");
+    EXPECT_EQ(number_text(0.1), "0.1");
+    EXPECT_EQ(number_text(2.0 / 3.0), "0.6666666666666666");
+    EXPECT_EQ(number_text(0.0), "0");
+}
+
+TEST(ClosestName, FindsTheNameATypoWasMeantToBe) {
+    const std::vector<std::string> verbs{"list", "play", "stop", "compose", "check"};
+    EXPECT_EQ(closest_name("lsit", verbs), "list");  // two letters swapped
+    EXPECT_EQ(closest_name("plya", verbs), "play");
+    EXPECT_EQ(closest_name("compse", verbs), "compose");  // one left out
+    EXPECT_EQ(closest_name("led-vibrater", {"led-vibrator", "sim"}), "led-vibrator");
+}
+
+TEST(ClosestName, OffersNothingWhenNoNameIsClose) {
+    EXPECT_EQ(closest_name("frobnicate", {"list", "play"}), std::nullopt);
+    EXPECT_EQ(closest_name("x", {}), std::nullopt);
+}
+
+}  // namespace
+}  // namespace vibscore

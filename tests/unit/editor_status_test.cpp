@@ -1,0 +1,153 @@
+// The bottom line of a 40x12 screen: what the buttons do is never cut.
+#include <gtest/gtest.h>
+
+#include "client/editor/score_edits.hpp"
+#include "client/editor/status_line.hpp"
+#include "tests/support/editor_support.hpp"
+
+namespace vibscore {
+namespace {
+
+using editor::Button;
+using editor::columns_of;
+using editor::status_line;
+using editor::status_of;
+using editor::StatusParts;
+using testing::fresh_editor;
+using testing::press;
+
+using namespace testing::buttons;
+
+constexpr int kSmallWidth = 40;
+
+TEST(StatusLine, TheSymbolBeingEnteredGivesWayToTheHint) {
+    // A newcomer never saw "B:done": the symbol in front pushed it past column 40.
+    StatusParts parts{
+        true, "", "5 quarter_dot s3", "\u2191s4 S:s3 \u2193rest \u2190rest.. \u2192bar B:done",
+        1,    2};
+    const auto line = status_line(parts, kSmallWidth);
+    EXPECT_NE(line.find("B:done"), std::string::npos) << line;
+    EXPECT_EQ(line.find("quarter"), std::string::npos) << line;
+    EXPECT_LE(columns_of(line), kSmallWidth);
+}
+
+TEST(StatusLine, TheBarAndItsCountStandAtTheRightWhereRoomIsLeft) {
+    const auto line = status_line({false, "", "", "Sel:new note  Back:menu", 2, 3}, kSmallWidth);
+    EXPECT_EQ(columns_of(line), kSmallWidth);
+    EXPECT_TRUE(line.starts_with("Sel:new note  Back:menu"));
+    EXPECT_TRUE(line.ends_with("bar 2/3"));
+    EXPECT_EQ(status_line({false, "saved", "", "Sel:new note", 1, 1}, kSmallWidth), "saved");
+}
+
+// Every hint of every step and menu, on notes of every length, fits 40 columns whole, with the
+// mark of unsaved changes in front.
+TEST(StatusLine, EveryHintFitsFortyColumns) {
+    const std::vector<std::vector<Button>> to_steps{
+        {},        {S},          {S, B},          {S, S}, {S, S, B},
+        {S, S, S}, {S, S, S, B}, {S, S, S, B, D}, {B},    {S, B, B, B},
+    };
+    for (int longer = 0; longer < 10; ++longer) {
+        for (const auto& steps : to_steps) {
+            auto editor = fresh_editor();
+            editor.model.set_length(editor::stepped(Length::thirty_second, longer));
+            for (const auto button : steps) {
+                editor.press(button);
+            }
+            const std::string hint = editor.scheme.hint(editor.model);
+            const auto line = status_line({true, "", "", hint, 12, 12}, kSmallWidth);
+            EXPECT_NE(line.find(hint), std::string::npos) << "cut: " << line;
+        }
+    }
+}
+
+TEST(StatusLine, SaveAsHintsFitFortyColumnsAndHideTheLastAction) {
+    auto editor = fresh_editor();
+    editor.scheme.set_taken({"ringtone"});
+    editor.scheme.set_destination("ringtone", false);
+    testing::to_menu_entry(editor, "save as...");
+    press(editor, {S});  // the name entry
+    for (const bool more : {false, true}) {
+        if (more) {
+            press(editor, {B});  // delete, insert, cancel
+        }
+        const auto parts = status_of(editor.model, editor.scheme, "undone");
+        EXPECT_EQ(parts.message, "");
+        const auto line = status_line(parts, kSmallWidth);
+        EXPECT_NE(line.find(parts.hint), std::string::npos) << "cut: " << line;
+    }
+    press(editor, {B});  // cancelled
+    testing::to_menu_entry(editor, "save");
+    press(editor, {S});  // ringtone exists: another name, replace, cancel
+    const auto parts = status_of(editor.model, editor.scheme, "undone");
+    EXPECT_EQ(parts.message, "");
+    EXPECT_NE(status_line(parts, kSmallWidth).find("(shipped files stay)"), std::string::npos);
+}
+
+TEST(StatusLine, AListShowsItsHintNotWhatWasDoneBeforeIt) {
+    auto editor = fresh_editor();
+    editor.scheme.set_openable({"heartbeat", "ringtone"});
+    press(editor, {S, S, B, B});  // a note
+    ASSERT_TRUE(editor.model.undo());
+    ASSERT_EQ(editor.model.message(), "undone");
+    editor.scheme.command(editor::Command{editor::Action::open}, editor.model);
+    ASSERT_EQ(editor.scheme.mode(), editor::ButtonScheme::Mode::open_menu);
+    const auto line =
+        status_line(status_of(editor.model, editor.scheme, editor.model.message()), kSmallWidth);
+    EXPECT_TRUE(line.starts_with(editor.scheme.hint(editor.model))) << line;
+}
+
+TEST(StatusLine, TheShortestLengthIsA32nd) {
+    auto editor = fresh_editor();
+    editor.model.set_length(Length::thirty_second);
+    EXPECT_EQ(editor.model.message(), "length 32nd");
+    press(editor, {S, U, S});  // a 32nd note on string 4, at its length step
+    ASSERT_EQ(editor.scheme.entry_step(), editor::EntrySteps::Step::length);
+    EXPECT_EQ(editor::symbol_entered(editor.model), "5 32nd s4");
+    const auto hint = editor.scheme.hint(editor.model);
+    EXPECT_NE(hint.find("\u219332nd"), std::string::npos) << hint;  // Down: still a 32nd
+}
+
+TEST(StatusLine, AProposalUnlikeTheLastEnteredLengthOrStringIsInCapitals) {
+    // A newcomer took an 8th proposed after quarters for another quarter: it looked the same.
+    auto editor = fresh_editor();
+    auto& model = editor.model;
+    for (const int delta : {0, -1, +1}) {  // a quarter, an 8th, a quarter
+        model.begin_entry();
+        model.entry_length(delta);
+        model.end_entry();
+    }
+    model.begin_entry();  // what followed a quarter before: an 8th
+    ASSERT_EQ(editor::length_of(*editor::symbol_at(model.score(), model.cursor())), Length::eighth);
+    EXPECT_EQ(editor::symbol_entered(model), "5 8TH s3");
+    model.entry_length(+1);  // changed to the running length: plain again
+    EXPECT_EQ(editor::symbol_entered(model), "5 quarter s3");
+    model.entry_string(+1);  // the user's own string is the active one
+    EXPECT_EQ(editor::symbol_entered(model), "5 quarter s4");
+    model.end_entry();
+}
+
+TEST(StatusLine, AProposalOnAnotherStringThanTheLastNoteIsInCapitals) {
+    auto editor = fresh_editor();
+    auto& model = editor.model;
+    for (const int delta : {0, +2, -2}) {  // strings 3, 5, 3
+        model.begin_entry();
+        model.entry_string(delta);
+        model.end_entry();
+    }
+    model.begin_entry();  // what followed string 3 before: string 5
+    EXPECT_EQ(editor::symbol_entered(model), "5 quarter S5");
+    model.cancel_entry();
+    model.begin_entry();
+    model.entry_string(-2);  // the thumb's own choice
+    EXPECT_EQ(editor::symbol_entered(model), "5 quarter s3");
+}
+
+TEST(StatusLine, AFullKeyboardsScreenNamesTheDigitKeysInOneLine) {
+    const std::string keys = editor::keyboard_hint();
+    EXPECT_LE(columns_of(keys), 80);
+    EXPECT_NE(keys.find("1-9 note"), std::string::npos);
+    EXPECT_NE(keys.find("Shift+1..0 length"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace vibscore

@@ -1,0 +1,417 @@
+// The AHAP, Android and RTTTL readers and writers, and how imports become scores.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "client/formats/ahap.hpp"
+#include "client/formats/android.hpp"
+#include "client/formats/grid_fit.hpp"
+#include "client/formats/rtttl.hpp"
+#include "client/formats/score_builder.hpp"
+#include "client/formats/sound_events.hpp"
+#include "score/clef_xml.hpp"
+#include "tests/support/run_command.hpp"
+#include "tests/support/support.hpp"
+
+namespace vibscore {
+namespace {
+
+using testing::notes_in;
+
+using formats::ChosenClef;
+using formats::GridNote;
+using ::testing::HasSubstr;
+
+ChosenClef lra_phone() {
+    const auto path =
+        std::filesystem::path(testing::required_env("VIBSCORE_CLEFS")) / "lra-phone.clef.xml";
+    return {"lra-phone", load_clef_file(path)};
+}
+
+template <typename F>
+std::string first_error(F&& read) {
+    const auto diagnostic = testing::first_diagnostic(read);
+    return format(diagnostic);
+}
+
+// --- score builder ---------------------------------------------------------------------------
+
+TEST(ScoreBuilder, SplitsTicksIntoTheFewestLengths) {
+    using enum Length;
+    EXPECT_EQ(formats::lengths_for(8), std::vector<Length>{quarter});
+    EXPECT_EQ(formats::lengths_for(10), (std::vector<Length>{quarter, sixteenth}));
+    EXPECT_EQ(formats::lengths_for(72), (std::vector<Length>{whole, whole, quarter}));
+    EXPECT_EQ(formats::lengths_for(3), std::vector<Length>{sixteenth_dot});
+}
+
+TEST(ScoreBuilder, FillsBarsOfFourBeatsTiesLongNotesAndSplitsRestsAtBarLines) {
+    const auto chosen = lra_phone();
+    // A dotted half, a 9-beat note (tied: whole, whole, quarter), then rest to 20 beats.
+    const std::vector<GridNote> notes{{0, 24, 2, 5}, {24, 72, 3, 7}};
+    const auto imported = formats::build_score(notes, {{0, 0.2}}, 160, chosen, "t", "t");
+    ASSERT_EQ(imported.clefs.size(), 1u);
+    EXPECT_FALSE(imported.clefs[0].retimed);
+    const auto& bars = imported.score.bars;
+    ASSERT_EQ(bars.size(), 6u);
+    // The whole note does not fit after the dotted half: that bar closes early.
+    EXPECT_EQ(Score::beat_count(bars[0]), 3.0);
+    EXPECT_EQ(Score::beat_count(bars[1]), 4.0);
+    EXPECT_EQ(Score::beat_count(bars[2]), 4.0);
+    const auto written = notes_in(imported.score);
+    ASSERT_EQ(written.size(), 4u);
+    EXPECT_EQ(written[1].legato, written[2].legato);
+    EXPECT_EQ(written[2].legato, written[3].legato);
+    EXPECT_NE(written[1].legato, 0);
+    EXPECT_EQ(written[0].legato, 0);
+    // 12 beats of notes, then 8 of rest: the last quarter's bar is filled up, one more bar.
+    EXPECT_EQ(Score::beat_count(bars[3]), 4.0);
+    EXPECT_EQ(Score::beat_count(bars[4]), 4.0);
+}
+
+TEST(ScoreBuilder, ATempoChangeStartsABarOnAClefOfThatTempo) {
+    const auto chosen = lra_phone();
+    const std::vector<GridNote> notes{{0, 8, 1, 1}, {8, 8, 1, 1}, {16, 8, 1, 1}};
+    const auto imported = formats::build_score(notes, {{0, 0.2}, {16, 0.5}}, 24, chosen, "t", "t");
+    ASSERT_EQ(imported.score.bars.size(), 2u);
+    EXPECT_EQ(imported.score.bars[0].clef, "lra-phone");
+    EXPECT_EQ(imported.score.bars[1].clef, "lra-phone-120bpm");
+    ASSERT_EQ(imported.clefs.size(), 2u);
+    EXPECT_TRUE(imported.clefs[1].retimed);
+    EXPECT_EQ(imported.clefs[1].clef.tempo, 0.5);
+}
+
+TEST(ScoreBuilder, RefusesAPieceBeyondTheLimits) {
+    std::vector<GridNote> notes;
+    for (std::int64_t i = 0; i < 120'000; ++i) {
+        notes.push_back({i, 1, 1, 1});
+    }
+    EXPECT_THAT(first_error([&] {
+                    formats::build_score(notes, {{0, 0.001}}, 120'000, lra_phone(), "", "big");
+                }),
+                HasSubstr("big: too long for a score"));
+}
+
+TEST(GridFit, KeepsTheClefsTempoWhenTheTimesSitOnItsGrid) {
+    // lra-phone: a quarter is 0.2 s. Two 8ths with the default silence, then one after a rest.
+    std::vector<formats::SoundEvent> events(3);
+    events[0] = {0.0, 0.075, 0, 0.5, 0.5, 0, 0};
+    events[1] = {0.1, 0.1, 0, 0.5, 0.5, 0, 0};
+    events[2] = {0.4, 0.2, 0, 1.0, 1.0, 0, 0};
+    const auto placed = formats::place_on_grid(events, 0.0, lra_phone().clef,
+                                               [](const formats::SoundEvent&) { return 2; });
+    EXPECT_EQ(placed.tempo, 0.2);
+    ASSERT_EQ(placed.notes.size(), 3u);
+    EXPECT_EQ(placed.notes[0].length, 4);  // the 25 ms gap is the default silence, no rest
+    EXPECT_EQ(placed.notes[0].tie_to_next, GridNote::Tie::none);
+    EXPECT_EQ(placed.notes[1].length, 4);  // then a real rest of an 8th
+    EXPECT_EQ(placed.notes[2].start, 16);
+    EXPECT_EQ(placed.notes[2].number, 9);
+}
+
+TEST(GridFit, FindsATempoWhereTheClefsDoesNotFit) {
+    std::vector<formats::SoundEvent> events;
+    for (int i = 0; i < 4; ++i) {
+        events.push_back({i * 0.33, 0.33, 0, 0.6, 0.6, 0, 0});  // touching: legato quarters
+    }
+    const auto placed = formats::place_on_grid(events, 0.0, lra_phone().clef,
+                                               [](const formats::SoundEvent&) { return 1; });
+    EXPECT_DOUBLE_EQ(placed.tempo, 0.33);
+    ASSERT_EQ(placed.notes.size(), 4u);
+    EXPECT_EQ(placed.notes[0].length, 8);
+    EXPECT_EQ(placed.notes[0].tie_to_next, GridNote::Tie::legato);
+    EXPECT_EQ(placed.notes[3].tie_to_next, GridNote::Tie::none);
+}
+
+TEST(GridFit, ReadsRampsAsHairpinsAndGlidesIntoTheNextNoteAsPortamento) {
+    std::vector<formats::SoundEvent> events(3);
+    events[0] = {0.0, 0.2, 0, 0.0, 0.8, 0.2, 0.2};  // rises from silence: crescendo to 8
+    events[1] = {0.2, 0.2, 0, 0.8, 0.5, 0.2, 1.0};  // glides on, pitch and strength
+    events[2] = {0.4, 0.2, 0, 0.5, 0.0, 1.0, 1.0};  // falls to silence: decrescendo from 5
+    const auto placed = formats::place_on_grid(
+        events, 0.0, lra_phone().clef,
+        [](const formats::SoundEvent& e) { return formats::string_at(e.pitch_start, 6); });
+    ASSERT_EQ(placed.notes.size(), 3u);
+    EXPECT_EQ(placed.notes[0].dynamics, Dynamics::crescendo);
+    EXPECT_EQ(placed.notes[0].number, 7);  // 0.8 of lra-phone's 1.0 is its number 7
+    EXPECT_EQ(placed.notes[0].tie_to_next, GridNote::Tie::legato);
+    EXPECT_EQ(placed.notes[1].dynamics, Dynamics::none);
+    EXPECT_EQ(placed.notes[1].tie_to_next, GridNote::Tie::portamento);
+    EXPECT_EQ(placed.notes[1].string, 2);
+    EXPECT_EQ(placed.notes[2].dynamics, Dynamics::decrescendo);
+    EXPECT_EQ(placed.notes[2].number, 4);
+    EXPECT_EQ(placed.notes[2].string, 6);
+}
+
+TEST(PitchToString, KeepsTheContourOfUpToSixPitchesAndBandsMore) {
+    EXPECT_EQ(formats::strings_by_contour({67, 60, 62, 64, 65, 55}, 6),
+              (std::vector<int>{6, 2, 3, 4, 5, 1}));
+    EXPECT_EQ(formats::strings_by_contour({60, 72, 60}, 6), (std::vector<int>{1, 6, 1}));
+    const auto banded = formats::strings_by_contour({48, 50, 52, 53, 55, 57, 59, 60, 72}, 6);
+    EXPECT_EQ(banded.front(), 1);
+    EXPECT_EQ(banded.back(), 6);
+    EXPECT_TRUE(std::is_sorted(banded.begin(), banded.end()));
+}
+
+// --- AHAP ------------------------------------------------------------------------------------
+
+TEST(Ahap, ExportsOfEveryShippedScorePassTheSchemaFromApplesDocumentation) {
+    testing::TempDir dir;
+    std::vector<std::string> argv{
+        "/usr/bin/python3", testing::required_env("VIBSCORE_TEST_DATA") + "/check_json_schema.py",
+        testing::required_env("VIBSCORE_TEST_DATA") + "/ahap.schema.json"};
+    for (const auto& entry :
+         std::filesystem::directory_iterator(testing::required_env("VIBSCORE_CLEFS"))) {
+        const auto name = entry.path().filename().string();
+        if (name.ends_with(".score.xml")) {
+            const auto ahap =
+                formats::write_ahap(formats::sound_track(load_score_file(entry.path())));
+            argv.push_back(dir.write(name + ".ahap", ahap).string());
+        }
+    }
+    ASSERT_GT(argv.size(), 20u);
+    const auto result = testing::run_command(argv);
+    EXPECT_EQ(result.exit_code, 0) << result.out << result.err;
+    // The check itself fails on what Apple forbids.
+    const auto bad = dir.write("bad.ahap", R"({"Pattern": [{"Event": {"Time": 0,
+        "EventType": "HapticContinuous", "EventDuration": 31}}]})");
+    const auto refused = testing::run_command({argv[0], argv[1], argv[2], bad.string()});
+    EXPECT_EQ(refused.exit_code, 1);
+    EXPECT_THAT(refused.out, HasSubstr("31 is greater than the maximum of 30"));
+}
+
+TEST(Ahap, AHairpinIsAnIntensityCurveThatEndsBackAtNeutral) {
+    formats::SoundTrack track;
+    track.events.push_back({0.0, 0.4, 1.0, 0.0, 1.0, 0.4, 0.4, 0, 0});  // crescendo
+    track.events.push_back({0.5, 0.2, 0.5, 0.5, 0.5, 0.4, 0.4, 0, 0});
+    const auto json = nlohmann::json::parse(formats::write_ahap(track));
+    const auto& pattern = json.at("Pattern");
+    ASSERT_EQ(pattern.size(), 3u);
+    EXPECT_EQ(pattern[0].at("Event").at("EventParameters")[0].at("ParameterValue"), 1.0);
+    const auto& curve = pattern[1].at("ParameterCurve");
+    EXPECT_EQ(curve.at("ParameterID"), "HapticIntensityControl");
+    const auto& points = curve.at("ParameterCurveControlPoints");
+    ASSERT_EQ(points.size(), 3u);
+    EXPECT_EQ(points[0].at("ParameterValue"), 0.0);
+    EXPECT_EQ(points[1].at("Time"), 0.4);
+    EXPECT_EQ(points[1].at("ParameterValue"), 1.0);
+    EXPECT_EQ(points[2].at("Time"), 0.5);  // neutral again at the next onset
+    EXPECT_EQ(points[2].at("ParameterValue"), 1.0);
+}
+
+TEST(Ahap, ReadsTransientsContinuousEventsAndCurvesOfAnAppleStylePattern) {
+    const std::string text = R"({
+  "Version": 1.0,
+  "Metadata": {"Project": "Boing", "Created": "2019"},
+  "Pattern": [
+    {"Event": {"Time": 0.0, "EventType": "HapticTransient",
+               "EventParameters": [{"ParameterID": "HapticIntensity", "ParameterValue": 0.8},
+                                   {"ParameterID": "HapticSharpness", "ParameterValue": 0.4}]}},
+    {"Event": {"Time": 0.2, "EventType": "HapticContinuous", "EventDuration": 0.4,
+               "EventParameters": [{"ParameterID": "HapticIntensity", "ParameterValue": 1.0},
+                                   {"ParameterID": "HapticSharpness", "ParameterValue": 1.0}]}},
+    {"ParameterCurve": {"ParameterID": "HapticIntensityControl", "Time": 0.2,
+                        "ParameterCurveControlPoints": [{"Time": 0, "ParameterValue": 1.0},
+                                                        {"Time": 0.4, "ParameterValue": 0.0}]}},
+    {"Event": {"Time": 0.0, "EventType": "AudioCustom", "EventWaveformPath": "boing.wav"}}
+  ]
+})";
+    const auto imported = formats::read_ahap(text, "boing.ahap", lra_phone());
+    EXPECT_EQ(imported.score.title, "Boing");
+    const auto notes = notes_in(imported.score);
+    ASSERT_EQ(notes.size(), 2u);                        // the audio event has no place in a score
+    EXPECT_EQ(notes[0].string, 3);                      // sharpness 0.4 is staff position 2 of 0..5
+    EXPECT_EQ(notes[0].length, Length::thirty_second);  // a tap
+    EXPECT_EQ(notes[1].string, 6);
+    EXPECT_EQ(notes[1].number, 9);
+    EXPECT_EQ(notes[1].dynamics, Dynamics::decrescendo);
+    EXPECT_EQ(notes[1].length, Length::half);
+}
+
+TEST(Ahap, NamesTheLineAndColumnOfWhatIsWrong) {
+    const auto read = [](const std::string& text) {
+        return first_error([&] { formats::read_ahap(text, "p.ahap", lra_phone()); });
+    };
+    EXPECT_EQ(read("{\n  \"Pattern\": [\n    {\"Event\": {\"Time\": 0,}}\n  ]\n}"),
+              "p.ahap:3:26: not JSON: syntax error while parsing object key - unexpected '}'; "
+              "expected string literal");
+    EXPECT_EQ(read("{\"Pattern\": [],\n \"Tempo\": 3}"),
+              "p.ahap:2:2: unknown key \"Tempo\" in the AHAP file (expected Version, Metadata, "
+              "Pattern)");
+    EXPECT_EQ(read("{\"Pattern\": [\n {\"Event\": {\"Time\": 0, \"EventType\": \"HapticTransient\","
+                   "\n  \"EventParameters\": [{\"ParameterID\": \"HapticIntensity\", "
+                   "\"ParameterValue\": 1.5}]}}]}"),
+              "p.ahap:3:76: HapticIntensity 1.5 is out of range (0 to 1)");
+    EXPECT_EQ(
+        read("{\"Pattern\": [{\"Event\": {\"Time\": 0, \"EventType\": \"HapticContinuous\"}}]}"),
+        "p.ahap:1:24: a HapticContinuous event needs an EventDuration");
+    EXPECT_EQ(read("{\"Pattern\": [{\"Event\": {\"Time\": 0, \"EventType\": \"HapticContinuous\", "
+                   "\"EventDuration\": 40}}]}"),
+              "p.ahap:1:86: EventDuration 40 is out of range (0 to 30)");
+    EXPECT_EQ(read("[1, 2]"), "p.ahap:1:1: an AHAP file must be an object, not an array");
+    EXPECT_EQ(read("{\"Pattern\": [], \"Pattern\": []}"),
+              "p.ahap:1:17: key \"Pattern\" appears twice in one object");
+    EXPECT_EQ(read("{\"Pattern\": []}"), "p.ahap: holds no notes or rests to make a score of");
+}
+
+// --- Android ---------------------------------------------------------------------------------
+
+TEST(Android, TheWaveformStepsAddUpToThePieceAtEachNotesOwnStrength) {
+    formats::SoundTrack track;
+    track.duration = 1.0;
+    track.events.push_back({0.1, 0.2, 1.0, 0.0, 1.0, 0, 0, 0, 0});  // a crescendo: flat at 255
+    track.events.push_back({0.3, 0.1, 0.5, 0.5, 0.5, 0, 0, 0, 0});  // tied on
+    const auto json = nlohmann::json::parse(formats::write_android_json(track, {}));
+    EXPECT_EQ(json.at("timings"), (std::vector<int>{100, 200, 100, 600}));
+    EXPECT_EQ(json.at("amplitudes"), (std::vector<int>{0, 255, 128, 0}));
+    EXPECT_EQ(json.at("repeat"), -1);
+    const auto looped = nlohmann::json::parse(formats::write_android_json(track, {true}));
+    EXPECT_EQ(looped.at("repeat"), 0);
+    const auto xml = formats::write_android_xml(track, {true});
+    EXPECT_THAT(xml, HasSubstr("<vibration-effect>\n  <waveform-effect>\n    <repeating>\n"
+                               "      <waveform-entry durationMs=\"100\" amplitude=\"0\" />"));
+}
+
+TEST(Android, ReadsTimingsAloneAsOffOnAndTheDefaultAmplitudeAsFull) {
+    const auto off_on =
+        formats::read_android_json(R"({"timings": [0, 200, 200, 400]})", "v.json", lra_phone());
+    auto notes = notes_in(off_on.score);
+    ASSERT_EQ(notes.size(), 2u);
+    EXPECT_EQ(notes[0].length, Length::quarter);
+    EXPECT_EQ(notes[1].length, Length::half);
+    EXPECT_EQ(notes[1].number, 9);
+    const auto defaults = formats::read_android_json(
+        R"({"timings": [100, 100], "amplitudes": [-1, 0], "repeat": 0})", "v.json", lra_phone());
+    notes = notes_in(defaults.score);
+    ASSERT_EQ(notes.size(), 1u);
+    EXPECT_EQ(notes[0].number, 9);
+    EXPECT_EQ(notes[0].string, 1);  // a waveform has no pitch
+}
+
+TEST(Android, ReadsAnEnvelopesRampsAsHairpinsAndItsFrequenciesAsStrings) {
+    const std::string text = R"(<vibration-effect>
+  <waveform-envelope-effect initialFrequencyHz="155">
+    <control-point amplitude="1.0" frequencyHz="155" durationMs="200"/>
+    <control-point amplitude="1.0" frequencyHz="235" durationMs="200"/>
+    <control-point amplitude="0.0" frequencyHz="235" durationMs="400"/>
+  </waveform-envelope-effect>
+</vibration-effect>)";
+    const auto imported = formats::read_android_xml(text, "e.xml", lra_phone());
+    const auto notes = notes_in(imported.score);
+    ASSERT_EQ(notes.size(), 3u);
+    EXPECT_EQ(notes[0].dynamics, Dynamics::crescendo);
+    EXPECT_EQ(notes[0].string, 1);
+    EXPECT_NE(notes[1].portamento, 0);  // the frequency glides 155 -> 235 Hz
+    EXPECT_EQ(notes[1].portamento, notes[2].portamento);
+    EXPECT_EQ(notes[2].string, 6);
+    EXPECT_EQ(notes[2].dynamics, Dynamics::decrescendo);
+    EXPECT_EQ(notes[2].length, Length::half);
+}
+
+TEST(Android, AnEnvelopesReleaseAtThePiecesEndIsTheLastNotesEndNotARest) {
+    // At 140 bpm a quarter is 428.57 ms: the piece's end falls between two milliseconds.
+    const double quarter = 60.0 / 140.0;
+    formats::SoundTrack track;
+    track.duration = 3 * quarter;  // 1285.71 ms: written as 1286, and a release after it
+    track.events.push_back({0.0, quarter - 0.03, 1.0, 1.0, 1.0, 0.0, 0.0, 155, 155});
+    track.events.push_back({quarter, 2 * quarter, 1.0, 1.0, 1.0, 0.0, 0.0, 155, 155});
+    const auto xml = formats::write_android_envelope(track, {});
+    auto chosen = lra_phone();
+    chosen.clef.tempo = quarter;
+    const auto imported = formats::read_android_xml(xml, "e.xml", chosen);
+    EXPECT_FALSE(imported.clefs[0].retimed);
+    const auto notes = notes_in(imported.score);
+    ASSERT_EQ(notes.size(), 2u);
+    EXPECT_EQ(notes[1].length, Length::half);
+    ASSERT_EQ(imported.score.bars.size(), 1u);
+    EXPECT_EQ(imported.score.bars[0].symbols.size(), 2u);  // no rest after the last note
+}
+
+TEST(Android, TheEnvelopeFormNeedsSineClefs) {
+    formats::SoundTrack track;
+    track.events.push_back({0.0, 0.2, 1.0, 1.0, 1.0, 0, 0, 0, 0});  // a curve clef's note
+    EXPECT_THROW(formats::write_android_envelope(track, {}), std::invalid_argument);
+}
+
+TEST(Android, NamesTheLineAndColumnOfWhatIsWrong) {
+    const auto json = [](const std::string& text) {
+        return first_error([&] { formats::read_android_json(text, "v.json", lra_phone()); });
+    };
+    EXPECT_EQ(json("{\"timings\": [100, -5]}"),
+              "v.json:1:19: a timing -5 is out of range (0 to 3600000)");
+    EXPECT_EQ(json("{\"timings\": [100],\n \"amplitudes\": [1, 2]}"),
+              "v.json:2:16: amplitudes has 2 values for 1 timings");
+    EXPECT_EQ(json("{\"timings\": [1.5]}"),
+              "v.json:1:14: a timing must be a whole number, not 1.5");
+    EXPECT_EQ(json("{\"timings\": [100], \"amplitudes\": [300]}"),
+              "v.json:1:35: an amplitude 300 is out of range (-1 to 255)");
+    EXPECT_EQ(json("{\"timings\": [100] \"repeat\": 0}"),
+              "v.json:1:19: not JSON: syntax error while parsing object - unexpected string "
+              "literal; expected '}'");
+    const auto xml = [](const std::string& text) {
+        return first_error([&] { formats::read_android_xml(text, "v.xml", lra_phone()); });
+    };
+    EXPECT_EQ(xml("<vibration-effect>\n  <predefined-effect name=\"click\"/>\n</vibration-effect>"),
+              "v.xml:2:3: <predefined-effect> is a device's own effect with no timing to turn "
+              "into notes; vibscore reads waveforms and envelopes");
+    EXPECT_EQ(xml("<vibration-effect><waveform-effect>\n<waveform-entry durationMs=\"10\" "
+                  "amplitude=\"loud\"/></waveform-effect></vibration-effect>"),
+              "v.xml:2:1: amplitude \"loud\" is not a whole number");
+    EXPECT_EQ(xml("<vibration-effect><waveform-envelope-effect>\n"
+                  "<control-point amplitude=\"0.5\" frequencyHz=\"100\" durationMs=\"0\"/>"
+                  "</waveform-envelope-effect></vibration-effect>"),
+              "v.xml:2:1: durationMs \"0\" is out of range (1 to 3600000)");
+}
+
+// --- RTTTL -----------------------------------------------------------------------------------
+
+TEST(Rtttl, ReadsLengthsDotsPausesOctavesAndTheTempo) {
+    const auto imported =
+        formats::read_rtttl("Test:d=4,o=5,b=120:8c,8d,4e.,p,2c6,16g#4", "t.rtttl", lra_phone());
+    EXPECT_EQ(imported.score.title, "Test");
+    ASSERT_EQ(imported.clefs.size(), 1u);
+    EXPECT_EQ(imported.clefs[0].id, "lra-phone-120bpm");
+    EXPECT_EQ(imported.clefs[0].clef.tempo, 0.5);
+    const auto notes = notes_in(imported.score);
+    ASSERT_EQ(notes.size(), 5u);
+    EXPECT_EQ(notes[0].length, Length::eighth);
+    EXPECT_EQ(notes[2].length, Length::quarter_dot);
+    EXPECT_EQ(notes[3].length, Length::half);
+    EXPECT_EQ(notes[4].length, Length::sixteenth);
+    // Five distinct pitches, G#4 < C5 < D5 < E5 < C6, spread over the six strings.
+    EXPECT_EQ(notes[4].string, 1);
+    EXPECT_EQ(notes[0].string, 2);
+    EXPECT_EQ(notes[3].string, 6);
+    EXPECT_EQ(notes[0].number, 9);  // RTTTL has no volume: the clef's strongest number
+    const auto& first_bar = imported.score.bars[0].symbols;
+    ASSERT_GE(first_bar.size(), 4u);
+    EXPECT_TRUE(std::holds_alternative<Rest>(first_bar[3]));  // the pause
+}
+
+TEST(Rtttl, KeepsTheClefWhenTheBpmMatchesItsTempo) {
+    const auto imported = formats::read_rtttl("x:b=300:c,d", "x.rtttl", lra_phone());
+    ASSERT_EQ(imported.clefs.size(), 1u);
+    EXPECT_EQ(imported.clefs[0].id, "lra-phone");
+    EXPECT_FALSE(imported.clefs[0].retimed);
+}
+
+TEST(Rtttl, NamesTheLineAndColumnOfWhatIsWrong) {
+    const auto read = [](const std::string& text) {
+        return first_error([&] { formats::read_rtttl(text, "r.rtttl", lra_phone()); });
+    };
+    EXPECT_EQ(read("tune:d=4,o=5,b=120:c,x,e"),
+              "r.rtttl:1:22: note \"x\": the note letter is a to g, or p for a pause");
+    EXPECT_EQ(read("tune:d=4,o=5,b=120:\n  c, 3d"),
+              "r.rtttl:2:6: note \"3d\": the duration is 1, 2, 4, 8, 16 or 32");
+    EXPECT_EQ(read("tune:d=4,o=5,b=1200:c"),
+              "r.rtttl:1:14: \"b=1200\" is out of range (d: 1, 2, 4, 8, 16, 32; o: 0 to 9; b: 1 "
+              "to 900)");
+    EXPECT_EQ(read("tune:c,d"),
+              "r.rtttl:1:1: an RTTTL text is NAME:DEFAULTS:NOTES, e.g. tune:d=4,o=5,b=120:c,e,g");
+    EXPECT_EQ(read("t:d=4:32c."),
+              "r.rtttl:1:7: note \"32c.\": a dotted 32nd lasts 3/16 of a beat, finer than a "
+              "score's 32nd-note grid");
+    EXPECT_EQ(read("t:d=4:p#"), "r.rtttl:1:7: note \"p#\": a pause cannot be sharp");
+}
+
+}  // namespace
+}  // namespace vibscore

@@ -1,0 +1,179 @@
+// The player on its own thread: cues fall due while the bus thread is busy, every actuator call
+// happens on the playback thread, and what the player reports reaches the listener on the bus
+// thread, Started before Play's call returns and Finished before Stop's.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <condition_variable>
+#include <mutex>
+#include <thread>
+
+#include "daemon/playback_thread.hpp"
+
+namespace vibscore::daemon {
+namespace {
+
+using namespace std::chrono_literals;
+
+// Records drives from the playback thread; the test thread waits for them.
+class SharedActuator : public drivers::Actuator {
+  public:
+    std::string_view driver_name() const override { return "shared"; }
+    drivers::Capabilities capabilities() const override { return {}; }
+    void apply(const drivers::Drive& drive) override { record(drive.amplitude); }
+    void off() noexcept override { record(0.0); }
+
+    // Waits until the actuator has been driven `count` times in all; false after `limit`.
+    bool wait_for(std::size_t count, std::chrono::milliseconds limit) {
+        std::unique_lock lock(mutex_);
+        return changed_.wait_for(lock, limit, [&] { return amplitudes_.size() >= count; });
+    }
+    std::vector<double> amplitudes() {
+        const std::lock_guard lock(mutex_);
+        return amplitudes_;
+    }
+    std::vector<std::thread::id> threads() {
+        const std::lock_guard lock(mutex_);
+        return threads_;
+    }
+
+  private:
+    void record(double amplitude) noexcept {
+        const std::lock_guard lock(mutex_);
+        amplitudes_.push_back(amplitude);
+        threads_.push_back(std::this_thread::get_id());
+        changed_.notify_all();
+    }
+
+    std::mutex mutex_;
+    std::condition_variable changed_;
+    std::vector<double> amplitudes_;
+    std::vector<std::thread::id> threads_;
+};
+
+class BusListener : public PlayerListener {
+  public:
+    explicit BusListener(EventLoop& loop) : loop_(loop) {}
+    void playback_started(std::uint64_t id, const std::string& label) override {
+        heard("started " + std::to_string(id) + " " + label);
+    }
+    void playback_position(std::uint64_t id, std::size_t bar, std::size_t symbol) override {
+        heard("position " + std::to_string(id) + " " + std::to_string(bar) + "." +
+              std::to_string(symbol));
+    }
+    void playback_finished(std::uint64_t id, const std::string& reason) override {
+        heard("finished " + std::to_string(id) + " " + reason);
+        loop_.exit(0);
+    }
+    std::vector<std::string> events;
+    std::vector<std::thread::id> threads;
+
+  private:
+    void heard(std::string event) {
+        events.push_back(std::move(event));
+        threads.push_back(std::this_thread::get_id());
+    }
+    EventLoop& loop_;
+};
+
+render::Cue cue(double at, double amplitude, render::Cue::Kind kind = render::Cue::Kind::drive) {
+    render::Cue cue;
+    cue.at = at;
+    cue.amplitude = amplitude;
+    cue.kind = kind;
+    return cue;
+}
+
+// A 10 ms note, then its position marks.
+PlaybackRequest short_note(Usage usage = Usage::notification, int repeat = 0) {
+    PlaybackRequest request;
+    request.label = "tap";
+    request.cues = std::make_shared<render::CueList>(std::vector<render::Cue>{
+        cue(0, 0.5), cue(0, 0, render::Cue::Kind::position), cue(0.010, 0)});
+    request.duration_s = 0.010;
+    request.usage = usage;
+    request.repeat = repeat;
+    request.owner = 1000;
+    return request;
+}
+
+class PlaybackThreadTest : public ::testing::Test {
+  protected:
+    EventLoop bus_loop;
+    SharedActuator actuator;
+    BusListener listener{bus_loop};
+    PlaybackThread playback{bus_loop, actuator, {.first_id = 7, .rt_priority = 0}};
+
+    void SetUp() override { playback.set_listener(&listener); }
+    void TearDown() override { playback.set_listener(nullptr); }
+};
+
+TEST_F(PlaybackThreadTest, ANoteEndsOnTimeWhileTheBusThreadIsBusy) {
+    playback.call([](Player& player) { return player.play(short_note()); });
+    // This thread neither runs its loop nor calls in: as if it were parsing a large score.
+    // The note's end (off, after the constructor's off and the note) comes all the same.
+    ASSERT_TRUE(actuator.wait_for(3, 5000ms)) << "the note's end waited for the bus thread";
+    const auto amplitudes = actuator.amplitudes();
+    EXPECT_EQ(std::vector<double>(amplitudes.begin(), amplitudes.begin() + 3),
+              (std::vector<double>{0.0, 0.5, 0.0}));
+}
+
+TEST_F(PlaybackThreadTest, EveryActuatorCallHappensOnThePlaybackThread) {
+    playback.call([](Player& player) { return player.play(short_note()); });
+    bus_loop.run();
+    playback.call([](Player& player) { player.set_master_intensity(0.5); });
+    const auto threads = actuator.threads();
+    ASSERT_GE(threads.size(), 3u);
+    for (const auto& thread : threads) {
+        EXPECT_NE(thread, std::this_thread::get_id());
+        EXPECT_EQ(thread, threads.front());
+    }
+}
+
+TEST_F(PlaybackThreadTest, StartedIsHeardBeforePlayReturnsAndFinishedBeforeStopReturns) {
+    const auto id =
+        playback.call([](Player& player) { return player.play(short_note(Usage::ringtone, -1)); });
+    EXPECT_EQ(id, 7u);
+    ASSERT_FALSE(listener.events.empty());
+    EXPECT_EQ(listener.events.front(), "started 7 tap");
+    playback.call([](Player& player) { return player.stop(7, 1000, false); });
+    EXPECT_EQ(listener.events.back(), "finished 7 stopped");
+    for (const auto& thread : listener.threads) {
+        EXPECT_EQ(thread, std::this_thread::get_id());
+    }
+}
+
+TEST_F(PlaybackThreadTest, WhatThePlayerReportsLaterArrivesThroughTheBusLoop) {
+    playback.call([](Player& player) { return player.play(short_note()); });
+    bus_loop.run();  // until Finished
+    EXPECT_EQ(listener.events, (std::vector<std::string>{"started 7 tap", "position 7 0.0",
+                                                         "finished 7 completed"}));
+    for (const auto& thread : listener.threads) {
+        EXPECT_EQ(thread, std::this_thread::get_id());
+    }
+}
+
+TEST_F(PlaybackThreadTest, WhatThePlayerThrowsReachesTheCaller) {
+    playback.call([](Player& player) { return player.play(short_note(Usage::ringtone, -1)); });
+    EXPECT_THROW(
+        playback.call([](Player& player) { player.check_admission(Usage::notification, 0); }),
+        PlayerBusy);
+}
+
+TEST(PlaybackThread, EndingTheThreadSwitchesTheActuatorOff) {
+    EventLoop bus_loop;
+    SharedActuator actuator;
+    {
+        PlaybackThread playback{bus_loop, actuator};
+        playback.call([](Player& player) {
+            auto endless = short_note(Usage::ringtone, -1);
+            endless.cues = std::make_shared<render::CueList>(std::vector<render::Cue>{cue(0, 0.5)});
+            return player.play(std::move(endless));
+        });
+        EXPECT_EQ(actuator.amplitudes().back(), 0.5);
+    }
+    EXPECT_EQ(actuator.amplitudes().back(), 0.0);
+}
+
+}  // namespace
+}  // namespace vibscore::daemon
