@@ -9,6 +9,7 @@
 #include "daemon/play_request.hpp"
 #include "daemon/request_error.hpp"
 #include "dbus/haptics1_names.hpp"
+#include "dbus/name_owner_watch.hpp"
 #include "score/document_error.hpp"
 
 namespace vibscore::daemon {
@@ -94,17 +95,10 @@ HapticsService::HapticsService(sdbus::IConnection& connection, const DaemonConfi
       authorizer_(authorizer),
       announced_driver_(Driver()),
       announced_capabilities_(Capabilities()) {
-    vanish_watch_ = connection.addMatch(
-        "type='signal',sender='org.freedesktop.DBus',interface='org.freedesktop.DBus',"
-        "member='NameOwnerChanged'",
-        [this](sdbus::Message& message) {
-            std::string name, old_owner, new_owner;
-            message >> name >> old_owner >> new_owner;
-            if (new_owner.empty() && !name.empty() && name.front() == ':') {
-                playback_.call([&](Player& player) { player.sender_vanished(name); });
-                callers_.forget(name);
-            }
-        });
+    vanish_watch_ = dbus::watch_connections_leaving(connection, [this](const std::string& name) {
+        playback_.call([&](Player& player) { player.sender_vanished(name); });
+        callers_.forget(name);
+    });
     playback_.set_listener(this);
     // A switch happens on the playback thread; the bus hears of it on the bus thread.
     host_.on_change([this] { playback_.to_bus([this] { driver_switched(); }); });
