@@ -349,7 +349,9 @@ ScoreBundle Registry::inline_score(std::string_view document,
             inline_clefs.emplace(href, read_clef(text, "<inline clef " + in_quotes(href) + ">"));
         }
         auto parsed = read_score(document, file);
-        for (const auto& [href, clef] : inline_clefs) {
+        for (const auto& inline_clef : inline_clefs) {
+            // Not a structured binding: clang 14 cannot capture one in the lambda below.
+            const std::string& href = inline_clef.first;
             if (std::none_of(
                     parsed.score.clefs.begin(), parsed.score.clefs.end(),
                     [&](const ClefDeclaration& declared) { return declared.href == href; })) {
