@@ -23,6 +23,7 @@
 #include "score/bundle.hpp"
 #include "score/clef_xml.hpp"
 #include "score/registry_names.hpp"
+#include "score/score_xml.hpp"
 
 namespace vibscore::client {
 
@@ -313,6 +314,34 @@ int remove(const std::string& kind, const std::string& name, std::ostream& out, 
     return with_daemon(err, [&](Haptics& haptics) {
         haptics.Delete(kind, name);
         out << "deleted " << kind << " " << name << "\n";
+        return exit_ok;
+    });
+}
+
+int describe_registry_score(const std::string& name, std::ostream& out, std::ostream& err) {
+    return with_daemon(err, [&](Haptics& haptics) {
+        const std::string label = "score \"" + name + "\"";
+        LoadedScore loaded;
+        loaded.bundle =
+            bind_clefs(read_score(haptics.Get("score", name), label), label,
+                       [&](const ClefDeclaration& declaration, const SourceLocation& where) {
+                           const auto clef = clef_name_in_href(declaration.href);
+                           if (!clef) {
+                               throw DocumentError(where, "href \"" + declaration.href +
+                                                              "\" names no registry clef");
+                           }
+                           loaded.clef_origins[declaration.id] = kRegistryOrigin;
+                           return read_clef(haptics.Get("clef", *clef), "clef \"" + *clef + "\"");
+                       });
+        describe_score(loaded, out);
+        out << "on this device:\n";
+        const auto bars = haptics.BarClefs(name);
+        for (std::size_t b = 0; b < bars.size(); ++b) {
+            const auto& written = bars[b].get<0>();
+            const auto& device = bars[b].get<1>();
+            out << "  " << b + 1 << "  " << written
+                << (device == written ? " (as written)" : " -> " + device) << "\n";
+        }
         return exit_ok;
     });
 }

@@ -32,6 +32,9 @@ int get(const std::string& kind, const std::string& name, std::ostream& out, std
 int compose(const std::string& name, const std::string& file, const ClefSearch& clefs,
             std::ostream& out, std::ostream& err);
 int remove(const std::string& kind, const std::string& name, std::ostream& out, std::ostream& err);
+// vibscore info NAME: a registry score as the daemon holds it, and the clef each bar plays
+// through on this device (the daemon's [clefs] map).
+int describe_registry_score(const std::string& name, std::ostream& out, std::ostream& err);
 // The actuator backends the daemon offers, with the one in use marked.
 int list_drivers(std::ostream& out, std::ostream& err);
 // Without a name: the driver in use and its capabilities. With one: switch to it.

@@ -1,25 +1,21 @@
 #include "client/daemon_watch.hpp"
 
 #include "dbus/haptics1_names.hpp"
+#include "dbus/name_owner_watch.hpp"
 
 namespace vibscore::client {
 
 DaemonWatch::DaemonWatch(sdbus::IConnection& connection) : connection_(connection) {
-    match_ = connection_.addMatch(
-        std::string("type='signal',sender='org.freedesktop.DBus',interface='org.freedesktop.DBus',"
-                    "member='NameOwnerChanged',arg0='") +
-            haptics1::kBusName + "'",
-        [this](sdbus::Message& message) {
-            std::string name, old_owner, new_owner;
-            message >> name >> old_owner >> new_owner;
-            const std::lock_guard lock(mutex_);
-            if (!old_owner.empty()) {
-                left_.insert(old_owner);
-            }
-            if (!new_owner.empty() && left_.count(owner_) != 0) {
-                restarted_ = true;
-            }
-        });
+    match_ = dbus::watch_name_owner(connection_, haptics1::kBusName,
+                                    [this](const dbus::NameOwnerChange& change) {
+                                        const std::lock_guard lock(mutex_);
+                                        if (!change.old_owner.empty()) {
+                                            left_.insert(change.old_owner);
+                                        }
+                                        if (!change.new_owner.empty() && left_.count(owner_) != 0) {
+                                            restarted_ = true;
+                                        }
+                                    });
 }
 
 void DaemonWatch::follow() {

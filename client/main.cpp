@@ -7,6 +7,7 @@
 
 #include "client/bus_verbs.hpp"
 #include "client/convert_verb.hpp"
+#include "client/editor/documents.hpp"
 #include "client/editor/editor_app.hpp"
 #include "client/editor/verbs.hpp"
 #include "client/number_options.hpp"
@@ -132,8 +133,11 @@ int main(int argc, char** argv) {
 
     std::string info_file;
     auto* info = app.add_subcommand(
-        "info", "Show a score's title, duration, bars and clefs, or a clef's mapping.");
-    info->add_option("FILE", info_file, "VibScore or VibClef document")->required();
+        "info",
+        "Show a score's title, duration, bars and clefs, or a clef's mapping; for a registry "
+        "score, also the clef each bar plays through on this device (asks vibscored).");
+    info->add_option("FILE", info_file, "VibScore or VibClef document, or a registry score name")
+        ->required();
     add_clefs_option(info, clef_search);
 
     PlayRequest play_request;
@@ -271,6 +275,11 @@ int main(int argc, char** argv) {
     }
     if (edit_verb->parsed()) {
         return vibscore::editor::run_editor(edit_options, std::cerr);
+    }
+    // The same rule as play and show: a path, or else a registry name.
+    if (vibscore::editor::classify_source(info_file).kind ==
+        vibscore::editor::ScoreSource::Kind::registry) {
+        return describe_registry_score(info_file, std::cout, std::cerr);
     }
     return describe_document(info_file, clef_search, std::cout, std::cerr);
 }

@@ -45,6 +45,27 @@ void report(const DocumentError& error, std::ostream& err) {
     }
 }
 
+void describe_clef(const std::string& file, const Clef& clef, std::ostream& out) {
+    out << "clef:     " << file << "\n"
+        << "type:     " << to_string(clef.type) << "\n"
+        << "tempo:    " << number(clef.tempo) << " s per quarter note\n"
+        << "numbers: ";
+    for (std::size_t n = 0; n < clef.numbers.size(); ++n) {
+        out << " " << n + 1 << "=" << number(clef.numbers[n]);
+    }
+    out << "\nstrings:\n";
+    for (std::size_t s = clef.strings.size(); s-- > 0;) {
+        out << "  " << s + 1 << "  ";
+        if (clef.type == ClefType::sine) {
+            out << number(clef.strings[s].frequency) << " Hz\n";
+        } else {
+            out << clef.strings[s].points.size() << " points\n";
+        }
+    }
+}
+
+}  // namespace
+
 void describe_score(const LoadedScore& loaded, std::ostream& out) {
     const ScoreBundle& bundle = loaded.bundle;
     const render::Performance performance(bundle);
@@ -92,27 +113,6 @@ void describe_score(const LoadedScore& loaded, std::ostream& out) {
         start += seconds;
     }
 }
-
-void describe_clef(const std::string& file, const Clef& clef, std::ostream& out) {
-    out << "clef:     " << file << "\n"
-        << "type:     " << to_string(clef.type) << "\n"
-        << "tempo:    " << number(clef.tempo) << " s per quarter note\n"
-        << "numbers: ";
-    for (std::size_t n = 0; n < clef.numbers.size(); ++n) {
-        out << " " << n + 1 << "=" << number(clef.numbers[n]);
-    }
-    out << "\nstrings:\n";
-    for (std::size_t s = clef.strings.size(); s-- > 0;) {
-        out << "  " << s + 1 << "  ";
-        if (clef.type == ClefType::sine) {
-            out << number(clef.strings[s].frequency) << " Hz\n";
-        } else {
-            out << clef.strings[s].points.size() << " points\n";
-        }
-    }
-}
-
-}  // namespace
 
 int check_documents(const std::vector<std::string>& files, const ClefSearch& clefs,
                     std::ostream& out, std::ostream& err) {

@@ -29,6 +29,10 @@ struct RenderRequest {
 int render_document(const RenderRequest& request, const ClefSearch& clefs, std::ostream& out,
                     std::ostream& err);
 
+// What a score holds: title, duration, clefs (with where each came from) and bars (vibscore
+// info).
+void describe_score(const LoadedScore& loaded, std::ostream& out);
+
 // vibscore info FILE: what a score or clef holds.
 int describe_document(const std::string& file, const ClefSearch& clefs, std::ostream& out,
                       std::ostream& err);

@@ -6,6 +6,7 @@
 #include <sdbus-c++/Message.h>
 
 #include <algorithm>
+#include <utility>
 #include <vector>
 
 namespace vibscore::daemon {
@@ -38,8 +39,9 @@ bool user_in_group(uid_t uid, const char* group) {
     return std::find(groups.begin(), groups.end(), wanted) != groups.end();
 }
 
-CallerDirectory::CallerDirectory(double requests_per_second, double burst)
-    : rate_(requests_per_second), burst_(burst) {}
+CallerDirectory::CallerDirectory(double requests_per_second, double burst,
+                                 UidOfSender uid_of_sender)
+    : uid_of_sender_(std::move(uid_of_sender)), rate_(requests_per_second), burst_(burst) {}
 
 const Caller& CallerDirectory::identify(const sdbus::Message& message) {
     const std::string sender = message.getSender();
@@ -49,7 +51,7 @@ const Caller& CallerDirectory::identify(const sdbus::Message& message) {
     }
     Caller caller;
     caller.sender = sender;
-    caller.uid = message.getCredsUid();
+    caller.uid = uid_of_sender_ ? uid_of_sender_(sender) : message.getCredsUid();
     caller.privileged = user_in_group(caller.uid, "vibscore");
     return callers_.emplace(sender, std::move(caller)).first->second;
 }

@@ -3,6 +3,7 @@
 #include <sys/types.h>
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <unordered_map>
 
@@ -22,7 +23,11 @@ struct Caller {
 // cached per connection; and a token bucket per connection so one caller cannot flood the daemon.
 class CallerDirectory {
   public:
-    CallerDirectory(double requests_per_second, double burst);
+    // Where a sender's user id comes from: the bus driver in the daemon (BusCredentials);
+    // without one, sd-bus's sender credentials.
+    using UidOfSender = std::function<uid_t(const std::string& sender)>;
+
+    CallerDirectory(double requests_per_second, double burst, UidOfSender uid_of_sender = {});
 
     const Caller& identify(const sdbus::Message& message);
     // True if the sender may make another request now; spends one token.
@@ -36,6 +41,7 @@ class CallerDirectory {
         double tokens = 0.0;
         std::uint64_t updated_us = 0;
     };
+    UidOfSender uid_of_sender_;
     std::unordered_map<std::string, Caller> callers_;
     std::unordered_map<std::string, Bucket> buckets_;
     double rate_;

@@ -45,6 +45,23 @@ int priority(const std::string& value, const std::string& where, const std::stri
     return number;
 }
 
+// One line of [clefs]: both sides are registry clef names, the left one may be "*".
+void add_device_clef(DeviceClefs& clefs, const std::string& written, const std::string& device,
+                     const std::string& where) {
+    if (!is_valid_name(device)) {
+        throw ConfigError(where + ": [clefs] " + written + " = \"" + device +
+                          "\" is not a registry clef name (a-z 0-9 . _ -)");
+    }
+    if (written == "*") {
+        clefs.otherwise = device;
+    } else if (is_valid_name(written)) {
+        clefs.by_written[written] = device;
+    } else {
+        throw ConfigError(where + ": [clefs] \"" + written +
+                          "\" is neither a registry clef name nor \"*\"");
+    }
+}
+
 }  // namespace
 
 const std::map<std::string, std::string>& DaemonConfig::settings_of(const std::string& name) const {
@@ -113,6 +130,10 @@ DaemonConfig parse_config(const std::string& text, const std::string& file, Daem
         const auto value = trim(content.substr(equals + 1));
         if (section.empty()) {
             throw ConfigError(where + ": \"" + key + "\" is outside any [section]");
+        }
+        if (section == "clefs") {
+            add_device_clef(config.device_clefs, key, value, where);
+            continue;
         }
         if (section != "daemon") {
             config.driver_settings[section][key] = value;

@@ -1,6 +1,7 @@
 #pragma once
 
 #include "config.h"
+#include "daemon/device_clefs.hpp"
 
 #include <filesystem>
 #include <map>
@@ -13,6 +14,8 @@ namespace vibscore::daemon {
 // vibscored.conf: INI sections of "key = value" lines; '#' and ';' start comments.
 //   [daemon]  driver, drivers-dir, store, shipped, separation-ms, requests-per-second,
 //             request-burst, rt-priority
+//   [clefs]   WRITTEN = DEVICE: the clef bars written for WRITTEN play through on this device;
+//             "* = DEVICE" for any other clef
 //   [NAME]    the settings of driver NAME (e.g. [sim] model = erm), handed to that driver
 // docs/daemon.md documents every key.
 struct DaemonConfig {
@@ -25,6 +28,7 @@ struct DaemonConfig {
     double request_burst = 100.0;
     int rt_priority = 40;  // SCHED_FIFO of the playback thread; 0: normal scheduling
     std::map<std::string, std::map<std::string, std::string>> driver_settings;  // by driver
+    DeviceClefs device_clefs;
     // Where each [section] begins and each of its keys is set, as "file:line", for messages.
     std::map<std::string, std::string> section_lines;
     std::map<std::string, std::map<std::string, std::string>> setting_lines;
@@ -46,12 +50,12 @@ DaemonConfig parse_config(const std::string& text, const std::string& file,
 // Throws ConfigError naming the path and the reason when the file cannot be read.
 DaemonConfig load_config(const std::filesystem::path& path, DaemonConfig defaults = {});
 
-// A warning for each section of `config` that is neither [daemon] nor one of `known` (the
-// drivers), whose keys therefore apply nowhere: "file:line: unknown section [x] ... (did you mean
-// [y]?)".
 // Sections besides [daemon] and the backends' that configure parts of the service.
-inline constexpr const char* kServiceSections[] = {"virtual-vibra"};
+inline constexpr const char* kServiceSections[] = {"clefs", "virtual-vibra"};
 
+// A warning for each section of `config` that is neither [daemon], a service section nor one of
+// `known` (the drivers), whose keys therefore apply nowhere: "file:line: unknown section [x] ...
+// (did you mean [y]?)".
 std::vector<std::string> unknown_sections(const DaemonConfig& config,
                                           const std::vector<std::string>& known);
 

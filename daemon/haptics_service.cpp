@@ -9,6 +9,7 @@
 #include "daemon/play_request.hpp"
 #include "daemon/request_error.hpp"
 #include "dbus/haptics1_names.hpp"
+#include "dbus/name_owner_watch.hpp"
 #include "score/document_error.hpp"
 
 namespace vibscore::daemon {
@@ -83,26 +84,21 @@ DocumentKind kind_named(const std::string& kind) {
 
 HapticsService::HapticsService(sdbus::IConnection& connection, const DaemonConfig& config,
                                Registry& registry, PlaybackThread& playback,
-                               CallerDirectory& callers, ActuatorHost& host)
+                               CallerDirectory& callers, ActuatorHost& host,
+                               const Authorizer& authorizer)
     : AdaptorInterfaces(connection, haptics1::kObjectPath),
       config_(config),
       registry_(registry),
       playback_(playback),
       callers_(callers),
       host_(host),
+      authorizer_(authorizer),
       announced_driver_(Driver()),
       announced_capabilities_(Capabilities()) {
-    vanish_watch_ = connection.addMatch(
-        "type='signal',sender='org.freedesktop.DBus',interface='org.freedesktop.DBus',"
-        "member='NameOwnerChanged'",
-        [this](sdbus::Message& message) {
-            std::string name, old_owner, new_owner;
-            message >> name >> old_owner >> new_owner;
-            if (new_owner.empty() && !name.empty() && name.front() == ':') {
-                playback_.call([&](Player& player) { player.sender_vanished(name); });
-                callers_.forget(name);
-            }
-        });
+    vanish_watch_ = dbus::watch_connections_leaving(connection, [this](const std::string& name) {
+        playback_.call([&](Player& player) { player.sender_vanished(name); });
+        callers_.forget(name);
+    });
     playback_.set_listener(this);
     // A switch happens on the playback thread; the bus hears of it on the bus thread.
     host_.on_change([this] { playback_.to_bus([this] { driver_switched(); }); });
@@ -149,27 +145,22 @@ const Caller& HapticsService::admit_caller() {
     return caller;
 }
 
-void HapticsService::require_privileged(const Caller& caller, const char* action) const {
-    if (!caller.privileged) {
-        throw RequestError(RequestError::Code::permission_denied,
-                           std::string(action) +
-                               " needs root or membership of group vibscore (caller uid " +
-                               std::to_string(caller.uid) + ")");
-    }
-}
-
 std::uint64_t HapticsService::Play(const std::string& score,
                                    const std::map<std::string, sdbus::Variant>& options) {
     return guarded("Play", [&] {
         const Caller& caller = admit_caller();
         const PlayOptions play_options = parse_play_options(options);
+        if (needs_urgent_usage(play_options.usage)) {
+            authorizer_.require(caller, Action::urgent_usage,
+                                "Playing with usage " + std::string(to_string(play_options.usage)));
+        }
         // A request that would be refused is refused before its score is read or rendered.
         playback_.call([&](Player& player) {
             player.check_admission(play_options.usage, play_options.repeat);
         });
-        PlaybackRequest request =
-            make_playback_request(find_score_to_play(registry_, score, play_options), play_options,
-                                  config_.separation_ms / 1000.0);
+        PlaybackRequest request = make_playback_request(
+            find_score_to_play(registry_, score, play_options, config_.device_clefs), play_options,
+            config_.separation_ms / 1000.0);
         request.owner = caller.uid;
         request.sender = caller.sender;
         const auto label = request.label;
@@ -185,10 +176,17 @@ std::uint64_t HapticsService::Play(const std::string& score,
 void HapticsService::Stop(const std::uint64_t& playback_id) {
     guarded("Stop", [&] {
         const Caller& caller = admit_caller();
-        const auto stopped = playback_.call([&](Player& player) {
-            return player.stop(playback_id, caller.uid, caller.privileged);
-        });
-        switch (stopped) {
+        const auto stop_as = [&](bool privileged) {
+            return playback_.call(
+                [&](Player& player) { return player.stop(playback_id, caller.uid, privileged); });
+        };
+        auto result = stop_as(false);
+        // Only a stop that would be refused asks polkit: a caller's own playbacks need no action.
+        if (result == Player::StopResult::not_permitted &&
+            authorizer_.allowed(caller, Action::manage)) {
+            result = stop_as(true);
+        }
+        switch (result) {
             case Player::StopResult::stopped:
             case Player::StopResult::not_playing:
                 return;
@@ -198,7 +196,8 @@ void HapticsService::Stop(const std::uint64_t& playback_id) {
             case Player::StopResult::not_permitted:
                 throw RequestError(
                     RequestError::Code::permission_denied,
-                    "playback " + std::to_string(playback_id) + " belongs to another user");
+                    "playback " + std::to_string(playback_id) +
+                        " belongs to another user; stopping it needs org.vibscore.manage");
         }
     });
 }
@@ -206,7 +205,7 @@ void HapticsService::Stop(const std::uint64_t& playback_id) {
 void HapticsService::Compose(const std::string& name, const std::string& document) {
     guarded("Compose", [&] {
         const Caller& caller = admit_caller();
-        require_privileged(caller, "Compose");
+        authorizer_.require(caller, Action::compose, "Compose");
         const auto stored = registry_.compose(name, document);
         log::info("uid " + std::to_string(caller.uid) + " composed " +
                   std::string(to_string(stored)) + " \"" + name + "\"");
@@ -217,7 +216,7 @@ void HapticsService::Compose(const std::string& name, const std::string& documen
 void HapticsService::Delete(const std::string& kind, const std::string& name) {
     guarded("Delete", [&] {
         const Caller& caller = admit_caller();
-        require_privileged(caller, "Delete");
+        authorizer_.require(caller, Action::compose, "Delete");
         const auto which = kind_named(kind);
         registry_.remove(which, name);
         log::info("uid " + std::to_string(caller.uid) + " deleted " +
@@ -244,6 +243,19 @@ std::string HapticsService::Get(const std::string& kind, const std::string& name
     });
 }
 
+std::vector<sdbus::Struct<std::string, std::string>> HapticsService::BarClefs(
+    const std::string& score) {
+    return guarded("BarClefs", [&] {
+        admit_caller();
+        std::vector<sdbus::Struct<std::string, std::string>> bars;
+        for (auto& bar : bar_clefs(find_score_to_play(registry_, score, PlayOptions{}).bundle,
+                                   config_.device_clefs)) {
+            bars.emplace_back(std::move(bar.written), std::move(bar.device));
+        }
+        return bars;
+    });
+}
+
 std::vector<sdbus::Struct<std::string, std::string>> HapticsService::ListDrivers() {
     return guarded("ListDrivers", [&] {
         admit_caller();
@@ -258,7 +270,7 @@ std::vector<sdbus::Struct<std::string, std::string>> HapticsService::ListDrivers
 void HapticsService::SwitchDriver(const std::string& driver) {
     guarded("SwitchDriver", [&] {
         const Caller& caller = admit_caller();
-        require_privileged(caller, "Switching the driver");
+        authorizer_.require(caller, Action::manage, "Switching the driver");
         const auto known = host_.drivers();
         if (std::none_of(known.begin(), known.end(),
                          [&](const drivers::DriverInfo& info) { return info.name == driver; })) {
@@ -281,7 +293,7 @@ void HapticsService::SwitchDriver(const std::string& driver) {
 void HapticsService::Intensity(const double& value) {
     guarded("Intensity", [&] {
         const Caller& caller = admit_caller();
-        require_privileged(caller, "Setting Intensity");
+        authorizer_.require(caller, Action::manage, "Setting Intensity");
         if (!(value >= 0.0 && value <= 1.0)) {
             throw RequestError(RequestError::Code::invalid,
                                "Intensity " + number_text(value) + " is outside 0..1");

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "daemon/actuator_host.hpp"
+#include "daemon/authority.hpp"
 #include "daemon/callers.hpp"
 #include "daemon/config.hpp"
 #include "daemon/playback_thread.hpp"
@@ -25,7 +26,8 @@ class HapticsService final : public sdbus::AdaptorInterfaces<org::vibscore::Hapt
     // `config` is the running configuration (a reload replaces its contents). The service
     // listens to the player and the host, and watches callers leave the bus, until destroyed.
     HapticsService(sdbus::IConnection& connection, const DaemonConfig& config, Registry& registry,
-                   PlaybackThread& playback, CallerDirectory& callers, ActuatorHost& host);
+                   PlaybackThread& playback, CallerDirectory& callers, ActuatorHost& host,
+                   const Authorizer& authorizer);
     ~HapticsService() override;
 
     // PlayerListener: playback events become signals.
@@ -41,6 +43,8 @@ class HapticsService final : public sdbus::AdaptorInterfaces<org::vibscore::Hapt
     void Delete(const std::string& kind, const std::string& name) override;
     std::vector<sdbus::Struct<std::string, std::string>> List(const std::string& kind) override;
     std::string Get(const std::string& kind, const std::string& name) override;
+    std::vector<sdbus::Struct<std::string, std::string>> BarClefs(
+        const std::string& score) override;
     std::vector<sdbus::Struct<std::string, std::string>> ListDrivers() override;
     void SwitchDriver(const std::string& driver) override;
     std::string Driver() override;
@@ -51,7 +55,6 @@ class HapticsService final : public sdbus::AdaptorInterfaces<org::vibscore::Hapt
 
     // The caller of the method being handled; counts the request against its rate.
     const Caller& admit_caller();
-    void require_privileged(const Caller& caller, const char* action) const;
     // Driver and Capabilities changed with a switch: announced with PropertiesChanged.
     void driver_switched();
 
@@ -60,6 +63,7 @@ class HapticsService final : public sdbus::AdaptorInterfaces<org::vibscore::Hapt
     PlaybackThread& playback_;
     CallerDirectory& callers_;
     ActuatorHost& host_;
+    const Authorizer& authorizer_;
     std::string announced_driver_;
     std::vector<std::string> announced_capabilities_;
     sdbus::Slot vanish_watch_;  // NameOwnerChanged: a caller left the bus

@@ -9,6 +9,8 @@
 
 #include "config.h"
 #include "daemon/actuator_host.hpp"
+#include "daemon/authority.hpp"
+#include "daemon/bus_credentials.hpp"
 #include "daemon/callers.hpp"
 #include "daemon/command_line.hpp"
 #include "daemon/drivers/available.hpp"
@@ -17,6 +19,7 @@
 #include "daemon/log.hpp"
 #include "daemon/playback_ids.hpp"
 #include "daemon/playback_thread.hpp"
+#include "daemon/polkit_authority.hpp"
 #include "daemon/registry/registry.hpp"
 #include "daemon/reload.hpp"
 #include "daemon/virtual_vibra/virtual_vibra.hpp"
@@ -72,14 +75,21 @@ int serve(const CommandLine& command_line) {
               " scores, " + std::to_string(registry.list(DocumentKind::clef).size()) +
               " clefs (shipped " + config.shipped.string() + ", store " + config.store.string() +
               ")");
-    CallerDirectory callers(config.requests_per_second, config.request_burst);
+    if (!config.device_clefs.empty()) {
+        log::info("device clefs: " + describe(config.device_clefs));
+    }
     // From here on every actuator call happens on the playback thread.
     PlaybackThread playback(loop, host.actuator(),
                             {first_playback_id(config.store), config.rt_priority});
     playback.call([&](Player& player) { host.attach(player); });
 
     auto connection = sdbus::createSystemBusConnection();
-    HapticsService service(*connection, config, registry, playback, callers, host);
+    BusCredentials credentials(*connection);
+    CallerDirectory callers(config.requests_per_second, config.request_burst,
+                            [&](const std::string& sender) { return credentials.uid_of(sender); });
+    BusPolkitAuthority polkit(*connection);
+    const Authorizer authorizer(polkit);
+    HapticsService service(*connection, config, registry, playback, callers, host, authorizer);
     // The kernel's vibra for programs that only know force feedback (feedbackd, games, fftest).
     const auto vibra_settings = parse_virtual_vibra_settings(config.settings_of("virtual-vibra"));
     std::optional<VirtualVibra> vibra;

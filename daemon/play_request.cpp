@@ -71,7 +71,7 @@ PlayOptions parse_play_options(const std::map<std::string, sdbus::Variant>& opti
 }
 
 ScoreToPlay find_score_to_play(const Registry& registry, const std::string& score,
-                               const PlayOptions& options) {
+                               const PlayOptions& options, const DeviceClefs& device_clefs) {
     const std::string& clef_override = options.clef;
     ScoreToPlay found;
     if (is_inline_document(score)) {
@@ -90,6 +90,9 @@ ScoreToPlay find_score_to_play(const Registry& registry, const std::string& scor
         found.bundle =
             bind_clefs(ParsedScore{found.bundle.score, found.bundle.where}, found.bundle.file,
                        [&](const ClefDeclaration&, const SourceLocation&) { return clef; });
+    } else if (!device_clefs.empty()) {
+        found.bundle =
+            bind_device_clefs(registry, found.bundle, device_clefs, options.clef_documents);
     }
     return found;
 }

@@ -6,6 +6,7 @@
 #include <map>
 #include <string>
 
+#include "daemon/device_clefs.hpp"
 #include "daemon/player.hpp"
 #include "daemon/registry/registry.hpp"
 #include "daemon/usage.hpp"
@@ -39,11 +40,13 @@ struct ScoreToPlay {
 
 // `score` is a registry name or, when it starts with '<', a whole VibScore document, whose clefs
 // are the documents sent along with it (options.clef_documents) or the registry's. A clef
-// override (options.clef) replaces every clef the score declares. Throws RegistryError
-// (not_found, invalid_document, limit_exceeded) as the registry does, RequestError (invalid) for
-// clef documents sent with a registry name.
+// override (options.clef) replaces every clef the score declares; without one, each clef the
+// score names from the registry plays through its device clef (vibscored.conf [clefs]); clefs
+// sent along with the score play as sent: they are the caller's choice, as an override is.
+// Throws RegistryError (not_found, invalid_document, limit_exceeded) as the registry does,
+// RequestError (invalid) for clef documents sent with a registry name.
 ScoreToPlay find_score_to_play(const Registry& registry, const std::string& score,
-                               const PlayOptions& options);
+                               const PlayOptions& options, const DeviceClefs& device_clefs = {});
 
 // The player's request: the score performed from the start bar, whose cues the player reads as
 // it plays them, with the caller's usage, repeat and intensity (owner and sender are the

@@ -322,7 +322,9 @@ Player::StopResult Player::stop(std::uint64_t id, uid_t caller, bool privileged)
 }
 
 void Player::sender_vanished(const std::string& sender) {
-    if (current_ && current_->request.sender == sender) {
+    // A playback that ends by itself is the caller's fire-and-forget request (busctl, a script):
+    // it plays to its end. Only one that would repeat forever needs its caller to stop it.
+    if (current_ && current_->request.sender == sender && current_->request.repeat < 0) {
         finish("client-vanished");
     }
 }

@@ -80,7 +80,8 @@ class Player {
     // An id this player never gave out (another run's, say) is not_found.
     StopResult stop(std::uint64_t id, uid_t caller, bool privileged);
 
-    // The caller's bus connection went away.
+    // The caller's bus connection went away: a playback of its that repeats until stopped ends
+    // with "client-vanished"; one that ends by itself plays on.
     void sender_vanished(const std::string& sender);
 
     // Ends any playback with `reason` and switches the actuator off (shutdown, driver switch).

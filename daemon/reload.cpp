@@ -21,7 +21,11 @@ void reload_config(DaemonConfig& running, DaemonConfig fresh, ActuatorHost& host
         fresh.shipped = running.shipped;
     }
     callers.set_rate(fresh.requests_per_second, fresh.request_burst);
+    const bool clefs_changed = fresh.device_clefs != running.device_clefs;
     running = std::move(fresh);
+    if (clefs_changed) {
+        log::info("device clefs: " + describe(running.device_clefs));
+    }
     host.follow_config();
     log::info("configuration reloaded");
 }

@@ -6,6 +6,7 @@
 #include "common/monotonic_clock.hpp"
 #include "daemon/log.hpp"
 #include "dbus/haptics1_names.hpp"
+#include "dbus/name_owner_watch.hpp"
 
 namespace vibscore::feedback {
 
@@ -54,17 +55,10 @@ FeedbackService::FeedbackService(sdbus::IConnection& session_bus, sdbus::IConnec
       settings_(std::move(settings)),
       profile_(settings_.profile),
       expiry_(loop, [this] { expire(); }) {
-    vanish_watch_ = session_bus.addMatch(
-        "type='signal',sender='org.freedesktop.DBus',interface='org.freedesktop.DBus',"
-        "member='NameOwnerChanged'",
-        [this](sdbus::Message& message) {
-            std::string name, old_owner, new_owner;
-            message >> name >> old_owner >> new_owner;
-            if (new_owner.empty() && !name.empty() && name.front() == ':') {
-                end_where([&](const Event& event) { return event.sender == name; },
-                          end_reason::explicit_end);
-            }
-        });
+    vanish_watch_ = dbus::watch_connections_leaving(session_bus, [this](const std::string& name) {
+        end_where([&](const Event& event) { return event.sender == name; },
+                  end_reason::explicit_end);
+    });
     registerAdaptor();
 }
 

@@ -1,6 +1,7 @@
 #include "feedback/haptics_link.hpp"
 
 #include "dbus/haptics1_names.hpp"
+#include "dbus/name_owner_watch.hpp"
 #include "score/clef_xml.hpp"
 
 namespace vibscore::feedback {
@@ -8,18 +9,13 @@ namespace vibscore::feedback {
 HapticsLink::HapticsLink(sdbus::IConnection& system_bus, Callbacks callbacks)
     : ProxyInterfaces(system_bus, haptics1::kBusName, haptics1::kObjectPath),
       callbacks_(std::move(callbacks)) {
-    owner_watch_ = system_bus.addMatch(
-        std::string("type='signal',sender='org.freedesktop.DBus',interface='org.freedesktop.DBus',"
-                    "member='NameOwnerChanged',arg0='") +
-            haptics1::kBusName + "'",
-        [this](sdbus::Message& message) {
-            std::string name, old_owner, new_owner;
-            message >> name >> old_owner >> new_owner;
-            if (new_owner.empty()) {
-                pattern_clef_.reset();
-                callbacks_.service_gone();
-            }
-        });
+    owner_watch_ = dbus::watch_name_owner(system_bus, haptics1::kBusName,
+                                          [this](const dbus::NameOwnerChange& change) {
+                                              if (change.new_owner.empty()) {
+                                                  pattern_clef_.reset();
+                                                  callbacks_.service_gone();
+                                              }
+                                          });
     registerProxy();
 }
 

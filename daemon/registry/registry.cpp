@@ -64,26 +64,6 @@ std::string clef_title(const Clef& clef) {
            " s, " + std::to_string(strings) + (strings == 1 ? " string" : " strings");
 }
 
-// The registry name a score's <Clef href> refers to. Only a bare name is accepted: hrefs come
-// from clients, and resolving them as paths would let a document make the daemon read any file.
-std::string clef_name_of(const ClefDeclaration& declaration, const SourceLocation& declared_at) {
-    if (declaration.href.find('/') != std::string::npos) {
-        throw DocumentError(declared_at, "clef " + in_quotes(declaration.id) + ": href " +
-                                             in_quotes(declaration.href) +
-                                             " is a path; the registry finds clefs by name only "
-                                             "(NAME.clef.xml), unless Play sends the clef along");
-    }
-    auto name = clef_name_in_href(declaration.href);
-    if (!name) {
-        throw DocumentError(
-            declared_at, "clef " + in_quotes(declaration.id) + ": href " +
-                             in_quotes(declaration.href) +
-                             " does not name a registry clef (NAME.clef.xml, NAME.xml or NAME; " +
-                             std::string(name_rule) + ")");
-    }
-    return std::move(*name);
-}
-
 // One log line per diagnostic, so each gets the journald priority prefix.
 void warn_skipped(const std::filesystem::path& path, const std::exception& error) {
     log::warning("registry: skipping " + path.string() + ":");
@@ -164,6 +144,26 @@ const Record* find_in(const std::map<std::string, Record, std::less<>>& records,
 }
 
 }  // namespace
+
+// Only a bare name is accepted: hrefs come from clients, and resolving them as paths would let a
+// document make the daemon read any file.
+std::string clef_name_of(const ClefDeclaration& declaration, const SourceLocation& declared_at) {
+    if (declaration.href.find('/') != std::string::npos) {
+        throw DocumentError(declared_at, "clef " + in_quotes(declaration.id) + ": href " +
+                                             in_quotes(declaration.href) +
+                                             " is a path; the registry finds clefs by name only "
+                                             "(NAME.clef.xml), unless Play sends the clef along");
+    }
+    auto name = clef_name_in_href(declaration.href);
+    if (!name) {
+        throw DocumentError(
+            declared_at, "clef " + in_quotes(declaration.id) + ": href " +
+                             in_quotes(declaration.href) +
+                             " does not name a registry clef (NAME.clef.xml, NAME.xml or NAME; " +
+                             std::string(name_rule) + ")");
+    }
+    return std::move(*name);
+}
 
 std::string_view to_string(RegistryError::Code code) {
     switch (code) {
@@ -349,7 +349,9 @@ ScoreBundle Registry::inline_score(std::string_view document,
             inline_clefs.emplace(href, read_clef(text, "<inline clef " + in_quotes(href) + ">"));
         }
         auto parsed = read_score(document, file);
-        for (const auto& [href, clef] : inline_clefs) {
+        for (const auto& inline_clef : inline_clefs) {
+            // Not a structured binding: clang 14 cannot capture one in the lambda below.
+            const std::string& href = inline_clef.first;
             if (std::none_of(
                     parsed.score.clefs.begin(), parsed.score.clefs.end(),
                     [&](const ClefDeclaration& declared) { return declared.href == href; })) {

@@ -49,6 +49,10 @@ struct StoreLimits {
     std::size_t total_bytes = std::size_t{64} << 20;
 };
 
+// The registry clef a score's <Clef href> names ("lra-phone" for "lra-phone.clef.xml"). Throws
+// DocumentError at declared_at for a path or an invalid name.
+std::string clef_name_of(const ClefDeclaration& declaration, const SourceLocation& declared_at);
+
 // score/registry_names.hpp: the naming rule, shared with the offline tools.
 using vibscore::is_valid_name;
 

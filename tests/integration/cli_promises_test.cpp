@@ -274,9 +274,14 @@ TEST(Readme, EveryCommandItShowsWorksVerbatim) {
     const std::filesystem::path source = testing::required_env("VIBSCORE_SOURCE_ROOT");
     const std::filesystem::path build = testing::required_env("VIBSCORE_BUILD_ROOT");
     // Not run here, each for its reason: the test run is `./dev test` (or the by-hand build)
-    // itself; `./dev run` is the interactive demo; the editor is driven in tmux by editor_e2e.
+    // itself; `./dev run` is the interactive demo; the editor is driven in tmux by editor_e2e;
+    // the packages are built by suite package (tests/package/build-debs, as `./dev package`) and
+    // installed with apt under systemd by suite hil-systemd, in a Debian 12 guest, not here.
     const std::vector<std::string> run_elsewhere = {
-        "./dev run", "./dev test", "meson setup build && ninja -C build && meson test -C build"};
+        "./dev run", "./dev test", "meson setup build && ninja -C build && meson test -C build",
+        "./dev package                                   # build/debs: vibscored, vibscore, "
+        "vibscore-dev",
+        "sudo apt install ./build/debs/vibscored_*.deb ./build/debs/vibscore_*.deb"};
     // A daemon with the example driver module too, as installed.
     DaemonFixture daemon{"drivers-dir = " + testing::required_env("VIBSCORE_EXAMPLE_DRIVERS")};
     testing::TempDir work;

@@ -237,13 +237,21 @@ TEST_F(PlayerTest, StopZeroStopsWhatTheCallerHasPlaying) {
     EXPECT_EQ(player.stop(0, 1000, false), Player::StopResult::stopped);
 }
 
-TEST_F(PlayerTest, APlaybackEndsWhenItsCallerLeavesTheBus) {
+TEST_F(PlayerTest, AnEndlessPlaybackEndsWhenItsCallerLeavesTheBus) {
     player.play(request(Usage::ringtone, -1));
     player.sender_vanished(":1.99");
     EXPECT_TRUE(player.current_id());
     player.sender_vanished(":1.7");
     EXPECT_EQ(listener.events.back(), "finished 1 client-vanished");
     EXPECT_EQ(actuator.applied.back().drive.amplitude, 0.0);
+}
+
+TEST_F(PlayerTest, APlaybackThatEndsByItselfOutlivesItsCaller) {
+    player.play(request(Usage::notification, 1));
+    player.sender_vanished(":1.7");
+    EXPECT_TRUE(player.current_id());
+    loop.run();
+    EXPECT_EQ(listener.events.back(), "finished 1 completed");
 }
 
 TEST_F(PlayerTest, ADeviceErrorEndsThePlaybackWithItsReason) {

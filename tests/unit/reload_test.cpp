@@ -46,6 +46,18 @@ TEST_F(ReloadTest, TheSameConfigurationAgainChangesNothingAndPlaybackGoesOn) {
     EXPECT_TRUE(player->current_id().has_value());
 }
 
+TEST_F(ReloadTest, ANewClefMapIsTheRunningOneAtOnceAndPlaybackGoesOn) {
+    DaemonConfig fresh = running;
+    fresh.device_clefs.by_written["lra-phone"] = "erm-phone";
+    fresh.device_clefs.otherwise = "soft-shapes";
+    reload_config(running, fresh, *host, callers);
+    EXPECT_EQ(running.device_clefs.for_written("lra-phone"), "erm-phone");
+    EXPECT_EQ(running.device_clefs.for_written("shaker-sine-low"), "soft-shapes");
+    EXPECT_EQ(describe(running.device_clefs), "lra-phone -> erm-phone, * -> soft-shapes");
+    EXPECT_THAT(reasons.reasons, IsEmpty());
+    EXPECT_TRUE(player->current_id().has_value());
+}
+
 TEST_F(ReloadTest, ANewRequestRateAppliesAtOnceWithoutTouchingTheBackend) {
     DaemonConfig fresh = running;
     fresh.requests_per_second = 5.0;

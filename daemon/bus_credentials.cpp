@@ -1,0 +1,19 @@
+#include "daemon/bus_credentials.hpp"
+
+#include <cstdint>
+
+namespace vibscore::daemon {
+
+BusCredentials::BusCredentials(sdbus::IConnection& connection)
+    : proxy_(sdbus::createProxy(connection, "org.freedesktop.DBus", "/org/freedesktop/DBus")) {}
+
+uid_t BusCredentials::uid_of(const std::string& sender) {
+    std::uint32_t uid = 0;
+    proxy_->callMethod("GetConnectionUnixUser")
+        .onInterface("org.freedesktop.DBus")
+        .withArguments(sender)
+        .storeResultsTo(uid);
+    return static_cast<uid_t>(uid);
+}
+
+}  // namespace vibscore::daemon

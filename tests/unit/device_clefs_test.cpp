@@ -1,0 +1,158 @@
+// Device clefs (thesis §4.4): vibscored.conf's [clefs] maps the clefs a score was written for
+// onto this device's clefs; Play uses them unless the caller names a clef.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include "daemon/config.hpp"
+#include "daemon/device_clefs.hpp"
+#include "daemon/play_request.hpp"
+#include "daemon/render/cue_schedule.hpp"
+#include "tests/support/run_command.hpp"
+#include "tests/support/support.hpp"
+
+namespace vibscore::daemon {
+namespace {
+
+using Timing = std::tuple<double, int, double, double, std::size_t, std::size_t>;
+
+std::vector<Timing> timings(const std::vector<render::Cue>& cues) {
+    std::vector<Timing> result;
+    for (const auto& cue : cues) {
+        result.emplace_back(cue.at, static_cast<int>(cue.kind), cue.amplitude, cue.frequency_hz,
+                            cue.bar, cue.symbol);
+    }
+    return result;
+}
+
+// Play's options with a clef override, or none.
+PlayOptions with_clef(const std::string& clef = "") {
+    PlayOptions options;
+    options.clef = clef;
+    return options;
+}
+
+// One pass of a request's cues, as the player reads them.
+std::vector<Timing> cue_timings(const PlaybackRequest& request) {
+    return timings(render::collect(*request.cues->pass()));
+}
+
+DeviceClefs clef_map(const std::string& lines) {
+    return parse_config("[clefs]\n" + lines, "test.conf").device_clefs;
+}
+
+class DeviceClefsTest : public ::testing::Test {
+  protected:
+    std::filesystem::path shipped{vibscore::testing::required_env("VIBSCORE_CLEFS")};
+    vibscore::testing::TempDir store;
+    Registry registry{shipped, store.path()};
+
+    // The cues Play makes of `score` on a device with `map`.
+    std::vector<Timing> played(const std::string& score, const DeviceClefs& map) const {
+        return cue_timings(make_playback_request(
+            find_score_to_play(registry, score, with_clef(), map), {}, 0.030));
+    }
+    // The cues of the shipped score `name` rewritten with other clef hrefs, replaced in turn:
+    // what a composer writing for those clefs would have sent.
+    std::vector<Timing> rewritten(const std::string& name,
+                                  const std::vector<std::pair<std::string, std::string>>& hrefs) {
+        auto text = vibscore::testing::read_file(shipped / (name + ".score.xml"));
+        for (const auto& [from, to] : hrefs) {
+            const std::string old_href = "href=\"" + from + ".clef.xml\"";
+            for (auto at = text.find(old_href); at != std::string::npos; at = text.find(old_href)) {
+                text.replace(at, old_href.size(), "href=\"" + to + ".clef.xml\"");
+            }
+        }
+        return cue_timings(
+            make_playback_request(find_score_to_play(registry, text, with_clef()), {}, 0.030));
+    }
+};
+
+TEST_F(DeviceClefsTest, TheSameShippedScoreThroughTwoMapsGivesEachMapsCueSchedule) {
+    const auto erm = clef_map("lra-phone = erm-phone\n");
+    const auto shapes = clef_map("* = soft-shapes\n");
+    const auto on_erm = played("success", erm);
+    const auto on_shapes = played("success", shapes);
+    EXPECT_EQ(on_erm, rewritten("success", {{"lra-phone", "erm-phone"}}));
+    EXPECT_EQ(on_shapes, rewritten("success", {{"lra-phone", "soft-shapes"}}));
+    EXPECT_NE(on_erm, on_shapes);
+    EXPECT_NE(on_erm, played("success", {}));
+}
+
+TEST_F(DeviceClefsTest, AMapReplacesOnlyTheClefsItNamesUnlessItHasADefault) {
+    const auto high_only = clef_map("shaker-sine-high = shaker-sine-low\n");
+    EXPECT_EQ(played("delete-folder", high_only),
+              rewritten("delete-folder", {{"shaker-sine-high", "shaker-sine-low"}}));
+    const auto with_default = clef_map("shaker-sine-high = shaker-sine-low\n* = erm-phone\n");
+    EXPECT_EQ(played("delete-folder", with_default),
+              rewritten("delete-folder", {{"shaker-sine-low", "erm-phone"},
+                                          {"shaker-sine-high", "shaker-sine-low"}}));
+}
+
+TEST_F(DeviceClefsTest, ACallersClefWinsOverTheMap) {
+    const auto map = clef_map("* = erm-phone\n");
+    const auto chosen = find_score_to_play(registry, "success", with_clef("soft-shapes"), map);
+    EXPECT_EQ(chosen.bundle.clefs.at("lra").type, registry.clef("soft-shapes").type);
+}
+
+TEST_F(DeviceClefsTest, AClefSentAlongWithTheScorePlaysAsSentWhileItsRegistryClefsAreMapped) {
+    const auto mine = vibscore::testing::sine_clef(0.5, {60, 80, 100, 120, 140, 160},
+                                                   {0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9});
+    auto score = vibscore::testing::read_file(shipped / "delete-folder.score.xml");
+    const std::string high = "href=\"shaker-sine-high.clef.xml\"";
+    score.replace(score.find(high), high.size(), "href=\"clefs/mine.clef.xml\"");
+    PlayOptions options;
+    options.clef_documents["clefs/mine.clef.xml"] = mine;
+    const auto found = find_score_to_play(registry, score, options, clef_map("* = erm-phone\n"));
+    const auto bars = found.bundle.score.bars;
+    ASSERT_GE(bars.size(), 2u);
+    EXPECT_EQ(found.bundle.clef_of(bars[0]).tempo, 0.5);
+    EXPECT_EQ(found.bundle.clef_of(bars[1]).type, registry.clef("erm-phone").type);
+    EXPECT_EQ(found.bundle.clef_of(bars[1]).tempo, registry.clef("erm-phone").tempo);
+}
+
+TEST_F(DeviceClefsTest, EachBarShowsTheClefItNamesAndTheOneItPlaysThroughHere) {
+    const auto map = clef_map("shaker-sine-high = erm-phone\n");
+    const auto bars = bar_clefs(registry.score("delete-folder"), map);
+    ASSERT_GE(bars.size(), 2u);
+    EXPECT_EQ(bars[0], (BarClef{"shaker-sine-high", "erm-phone"}));
+    EXPECT_EQ(bars[1], (BarClef{"shaker-sine-low", "shaker-sine-low"}));
+    for (const auto& bar : bar_clefs(registry.score("success"), {})) {
+        EXPECT_EQ(bar, (BarClef{"lra-phone", "lra-phone"}));
+    }
+}
+
+TEST_F(DeviceClefsTest, ADeviceClefMissingFromTheRegistryIsNotFoundNamingTheMapping) {
+    try {
+        find_score_to_play(registry, "success", with_clef(),
+                           clef_map("lra-phone = my-board-erm\n"));
+        FAIL() << "no error";
+    } catch (const RegistryError& error) {
+        EXPECT_EQ(error.code(), RegistryError::Code::not_found);
+        EXPECT_EQ(std::string(error.what()),
+                  "no clef \"my-board-erm\" in the registry: vibscored.conf's [clefs] plays clef "
+                  "\"lra-phone\" through it");
+    }
+}
+
+TEST(DeviceClefsConfig, TheClefsSectionTakesRegistryNamesAndStarForAnyOther) {
+    const auto map = clef_map("lra-phone = my-board-erm\n* = my-board-default\n");
+    EXPECT_EQ(map.for_written("lra-phone"), "my-board-erm");
+    EXPECT_EQ(map.for_written("erm-phone"), "my-board-default");
+    EXPECT_EQ(DeviceClefs{}.for_written("erm-phone"), "erm-phone");
+    EXPECT_THROW(clef_map("lra-phone = ../etc/passwd\n"), ConfigError);
+    EXPECT_THROW(clef_map("Lra Phone = erm-phone\n"), ConfigError);
+    try {
+        clef_map("lra-phone = My-Clef\n");
+    } catch (const ConfigError& error) {
+        EXPECT_EQ(std::string(error.what()),
+                  "test.conf:2: [clefs] lra-phone = \"My-Clef\" is not a registry clef name "
+                  "(a-z 0-9 . _ -)");
+    }
+}
+
+}  // namespace
+}  // namespace vibscore::daemon
