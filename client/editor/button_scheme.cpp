@@ -23,6 +23,8 @@ Request ButtonScheme::press(Button button, EditorModel& model) {
     switch (mode_) {
         case Mode::browse:
             return browse(button, model);
+        case Mode::browse_choices:
+            return browse_choices(button, model);
         case Mode::entry:
             return entry(button, model);
         case Mode::menu:
@@ -59,8 +61,30 @@ Request ButtonScheme::browse(Button button, EditorModel& model) {
             begin_entry(model);
             break;
         case Button::back:
-            mode_ = Mode::menu;
+            mode_ = Mode::browse_choices;
             break;
+    }
+    return {};
+}
+
+// Going back to the start, to the end and playing are what a composer does between every few
+// symbols, so they are two presses from browsing rather than a walk through the menu.
+Request ButtonScheme::browse_choices(Button button, EditorModel& model) {
+    mode_ = Mode::browse;
+    switch (button) {
+        case Button::up:
+            return perform(Action::play_from_start, model);
+        case Button::down:
+            return perform(Action::play_or_stop, model);
+        case Button::left:
+            return perform(Action::to_first_bar, model);
+        case Button::right:
+            return perform(Action::to_last_bar, model);
+        case Button::select:
+            mode_ = Mode::menu;
+            return {};
+        case Button::back:
+            return {};
     }
     return {};
 }
@@ -382,8 +406,10 @@ std::string ButtonScheme::hint(const EditorModel& model) const {
     // Short enough to share a 40-column status line with what is being entered.
     switch (mode_) {
         case Mode::browse:
-            return is_empty_position(model.score(), model.cursor()) ? "Sel:new note  Back:menu"
-                                                                    : "Sel:change  Back:menu";
+            return is_empty_position(model.score(), model.cursor()) ? "S:new note B:play,go to,menu"
+                                                                    : "S:change B:play,go to,menu";
+        case Mode::browse_choices:
+            return "\u2191play all \u2193play bar \u2190first \u2192last S:menu";
         case Mode::entry:
             return steps_.hint(model);
         case Mode::menu:

@@ -28,7 +28,9 @@ struct Request {
 //   Up/Down       the active string          Left/Right  the cursor
 //   Select        on an empty position: enter notes from there, starting with the proposed
 //                 one; on a note or rest: change it, and go on from there
-//   Back          the menu
+//   Back          the other choices (browse_choices): Up plays from the start, Down from the
+//                 cursor's bar, Left goes to the first bar, Right to the end of the last one,
+//                 Select opens the menu, Back turns back. Each is two presses from browsing.
 // Entering (EntrySteps): each symbol in up to three steps, string, number and length; when one
 // is done the next position's proposal opens (in a new bar once the last bar is full).
 // Back, Back leaves.
@@ -43,6 +45,7 @@ class ButtonScheme {
   public:
     enum class Mode {
         browse,
+        browse_choices,  // Back from browsing: play, go to the first or last bar, the menu
         entry,
         menu,
         clef_menu,
@@ -91,6 +94,7 @@ class ButtonScheme {
 
   private:
     Request browse(Button button, EditorModel& model);
+    Request browse_choices(Button button, EditorModel& model);
     Request entry(Button button, EditorModel& model);
     Request main_menu_press(Button button, EditorModel& model);
     Request list_press(Button button, EditorModel& model);

@@ -104,8 +104,9 @@ std::string edit_command(const std::string& name) {
 // The presses that open the menu and bring `label` under the highlight, worked out on a copy
 // of the editor (which then is where the real one will be).
 std::vector<Button> menu_presses(editor::Editor& copy, const std::string& label) {
-    std::vector<Button> presses{Button::back};
+    std::vector<Button> presses{Button::back, Button::select};  // the other choices, the menu
     copy.press(Button::back);
+    copy.press(Button::select);
     for (int i = 0; i < 40; ++i) {
         const auto menu = copy.scheme.menu_view(copy.model);
         if (menu.lines[static_cast<std::size_t>(menu.highlighted)] == label) {
@@ -274,9 +275,8 @@ TEST_F(EditorEndToEnd, ATwoBarRingtoneFromTheShippedOneIsSavedAsANewNameAndTheSh
         go_to_menu("delete");
         ASSERT_LT(compose.size(), 200u) << "bars 3 and 4 do not go";
     }
-    while (copy.model.cursor() != editor::Position{0, 0}) {
-        go({Button::left});
-    }
+    go({Button::back, Button::left});  // to the first bar
+    ASSERT_EQ(copy.model.cursor(), (editor::Position{0, 0}));
     go({Button::select, Button::up});  // the first note a string higher, then leave entering
     // Its number and length kept; on the next note, Back Back leaves.
     for (int i = 0; i < 6 && copy.scheme.mode() != editor::ButtonScheme::Mode::browse; ++i) {
@@ -331,7 +331,7 @@ TEST_F(EditorEndToEnd, PlaysFromTheCursorsBarFollowsThePositionAndAnyButtonStops
     ASSERT_TRUE(pane.wait_for_text("[shaker 4]")) << pane.screen();
     // Into bar 3 (two bars of four quarters, their end positions, a step on), then play.
     send(pane, std::vector<Button>(11, Button::right));
-    pane.key("Space");
+    send(pane, {Button::back, Button::down});  // the other choices: play from this bar
     ASSERT_TRUE(client->wait_for([](const SeenSignal& seen) {
         return seen.name == "PlaybackPosition" && seen.text == "2.0";
     })) << pane.screen();

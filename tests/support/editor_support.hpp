@@ -90,8 +90,9 @@ inline std::string highlighted(const editor::Editor& editor) {
 
 // Opens the menu and moves down to `label`; returns the presses that took.
 inline std::vector<editor::Button> to_menu_entry(editor::Editor& editor, const std::string& label) {
-    std::vector<editor::Button> presses{editor::Button::back};
+    std::vector<editor::Button> presses{editor::Button::back, editor::Button::select};
     editor.press(editor::Button::back);
+    editor.press(editor::Button::select);
     for (int i = 0; i < 40 && highlighted(editor) != label; ++i) {
         editor.press(editor::Button::down);
         presses.push_back(editor::Button::down);

@@ -254,13 +254,13 @@ TEST(EditorButtons, AKeyboardCommandDropsTheOpenProposal) {
 
 TEST(EditorButtons, TheMenuActsOnTheSymbolJustEnteredAndRemembersTheChoice) {
     auto editor = fresh_editor();
-    press(editor, {S, S, B, B, B});
+    press(editor, {S, S, B, B, B, S});  // a note, leave; the other choices, the menu
     EXPECT_EQ(editor.scheme.mode(), ButtonScheme::Mode::menu);
     EXPECT_EQ(highlighted(editor), "decrescendo  >");
     press(editor, {D, S});
     EXPECT_EQ(std::get<Note>(editor.model.score().bars[0].symbols[0]).dynamics,
               Dynamics::crescendo);
-    press(editor, {B});
+    press(editor, {B, S});
     EXPECT_EQ(highlighted(editor), "crescendo  <");  // the last choice
     press(editor, {B});
     EXPECT_EQ(editor.scheme.mode(), ButtonScheme::Mode::browse);
@@ -268,7 +268,7 @@ TEST(EditorButtons, TheMenuActsOnTheSymbolJustEnteredAndRemembersTheChoice) {
 
 TEST(EditorButtons, LeftAndRightJumpBetweenMenuGroupsAndTheListWraps) {
     auto editor = fresh_editor();
-    press(editor, {B, R});
+    press(editor, {B, S, R});
     EXPECT_EQ(highlighted(editor), "legato with previous");
     press(editor, {R});
     EXPECT_EQ(highlighted(editor), "dotted / not dotted");
@@ -281,9 +281,9 @@ TEST(EditorButtons, LeftAndRightJumpBetweenMenuGroupsAndTheListWraps) {
 TEST(EditorButtons, TiesFromTheMenu) {
     auto editor = fresh_editor();
     press(editor, {S, S, B, S, U, S, B, B});  // two notes
-    press(editor, {B, R, S});                 // legato with previous
+    press(editor, {B, S, R, S});              // legato with previous
     press(editor, {S, S, B, B});              // the proposal continues the tie
-    press(editor, {B, D, S});                 // the menu reopens on legato: portamento is next
+    press(editor, {B, S, D, S});              // the menu reopens on legato: portamento is next
     const auto& symbols = editor.model.score().bars[0].symbols;
     EXPECT_EQ(std::get<Note>(symbols[0]).legato, 1);
     EXPECT_EQ(std::get<Note>(symbols[1]).legato, 1);
@@ -433,12 +433,44 @@ TEST(EditorButtons, TheMenuGoesToTheFirstAndLastBarAndPlaysFromTheStart) {
     to_menu_entry(editor, "to the last bar");
     press(editor, {S});
     EXPECT_EQ(editor.model.cursor(), (Position{2, 1}));
-    // The menu reopens on the last choice: the same place again is Back, Select.
+    // The menu reopens on the last choice: the same place again is Back, Select, Select.
     press(editor, {L, L});
-    press(editor, {B, S});
+    press(editor, {B, S, S});
     EXPECT_EQ(editor.model.cursor(), (Position{2, 1}));
     to_menu_entry(editor, "play from the start");
     EXPECT_EQ(editor.press(S), (Request{Request::Kind::play, {}, 0}));
+}
+
+TEST(EditorButtons, BackFromBrowsingPlaysAndGoesToTheFirstOrLastBarInTwoPresses) {
+    // A newcomer pressed Left 15 times to play from the start; each of these is Back and one
+    // press from anywhere while browsing.
+    auto editor = fresh_editor();
+    press(editor, {S, S, S, S, S, S, S, S, S, S, B, B});  // nine quarters: three bars
+    press(editor, {L, L, L, L, L});
+    const Position middle = editor.model.cursor();
+    ASSERT_EQ(middle.bar, 1u);
+    EXPECT_EQ(editor.press(B).kind, Request::Kind::none);
+    EXPECT_EQ(editor.scheme.mode(), ButtonScheme::Mode::browse_choices);
+    EXPECT_EQ(editor.scheme.hint(editor.model),
+              "\u2191play all \u2193play bar \u2190first \u2192last S:menu");
+    EXPECT_EQ(editor.press(U), (Request{Request::Kind::play, {}, 0}));  // play from the start
+    editor.scheme.set_playing(true);
+    editor.scheme.set_playing(false);
+    EXPECT_EQ(editor.model.cursor(), middle);
+    press(editor, {B});
+    EXPECT_EQ(editor.press(D), (Request{Request::Kind::play, {}, 1}));  // from the cursor's bar
+    editor.scheme.set_playing(false);
+    press(editor, {B, L});  // to the first bar
+    EXPECT_EQ(editor.model.cursor(), (Position{0, 0}));
+    EXPECT_EQ(editor.scheme.mode(), ButtonScheme::Mode::browse);
+    press(editor, {B, R});  // to the end of the last bar, where entering goes on
+    EXPECT_EQ(editor.model.cursor(), (Position{2, 1}));
+    press(editor, {B, B});  // Back turns back, changing nothing
+    EXPECT_EQ(editor.scheme.mode(), ButtonScheme::Mode::browse);
+    EXPECT_EQ(editor.model.cursor(), (Position{2, 1}));
+    press(editor, {B, S});  // Select: the menu
+    EXPECT_EQ(editor.scheme.mode(), ButtonScheme::Mode::menu);
+    EXPECT_EQ(editor.model.score().bars.size(), 3u);
 }
 
 TEST(PressPlanner, FindsAndVerifiesTheButtonsForFigure23) {

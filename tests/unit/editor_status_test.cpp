@@ -32,9 +32,12 @@ TEST(StatusLine, TheSymbolBeingEnteredGivesWayToTheHint) {
 }
 
 TEST(StatusLine, TheBarAndItsCountStandAtTheRightWhereRoomIsLeft) {
-    const auto line = status_line({false, "", "", "Sel:new note  Back:menu", 2, 3}, kSmallWidth);
+    const auto editor = fresh_editor();
+    const std::string browsing = editor.scheme.hint(editor.model);
+    EXPECT_EQ(browsing, "S:new note B:play,go to,menu");
+    const auto line = status_line({true, "", "", browsing, 2, 3}, kSmallWidth);
     EXPECT_EQ(columns_of(line), kSmallWidth);
-    EXPECT_TRUE(line.starts_with("Sel:new note  Back:menu"));
+    EXPECT_TRUE(line.starts_with("*" + browsing));
     EXPECT_TRUE(line.ends_with("bar 2/3"));
     EXPECT_EQ(status_line({false, "saved", "", "Sel:new note", 1, 1}, kSmallWidth), "saved");
 }
@@ -43,8 +46,8 @@ TEST(StatusLine, TheBarAndItsCountStandAtTheRightWhereRoomIsLeft) {
 // mark of unsaved changes in front.
 TEST(StatusLine, EveryHintFitsFortyColumns) {
     const std::vector<std::vector<Button>> to_steps{
-        {},        {S},          {S, B},          {S, S}, {S, S, B},
-        {S, S, S}, {S, S, S, B}, {S, S, S, B, D}, {B},    {S, B, B, B},
+        {},  {S},          {S, B}, {S, S}, {S, S, B}, {S, S, S}, {S, S, S, B}, {S, S, S, B, D},
+        {B}, {S, B, B, B}, {B, S},
     };
     for (int longer = 0; longer < 10; ++longer) {
         for (const auto& steps : to_steps) {
