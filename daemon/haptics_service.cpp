@@ -243,6 +243,13 @@ std::string HapticsService::Get(const std::string& kind, const std::string& name
     });
 }
 
+std::string HapticsService::Origin(const std::string& kind, const std::string& name) {
+    return guarded("Origin", [&] {
+        admit_caller();
+        return std::string(to_string(registry_.origin(kind_named(kind), name)));
+    });
+}
+
 std::vector<sdbus::Struct<std::string, std::string>> HapticsService::BarClefs(
     const std::string& score) {
     return guarded("BarClefs", [&] {

@@ -43,6 +43,7 @@ class HapticsService final : public sdbus::AdaptorInterfaces<org::vibscore::Hapt
     void Delete(const std::string& kind, const std::string& name) override;
     std::vector<sdbus::Struct<std::string, std::string>> List(const std::string& kind) override;
     std::string Get(const std::string& kind, const std::string& name) override;
+    std::string Origin(const std::string& kind, const std::string& name) override;
     std::vector<sdbus::Struct<std::string, std::string>> BarClefs(
         const std::string& score) override;
     std::vector<sdbus::Struct<std::string, std::string>> ListDrivers() override;

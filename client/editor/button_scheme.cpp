@@ -9,6 +9,29 @@ namespace {
 const char* kQuitChoices[] = {"save and quit", "quit without saving", "cancel"};
 constexpr int kReplaceChoices = 3;  // another name, replace it, cancel
 
+// Saving over a shipped score loses nothing (it stays, shadowed); over a stored score or a file
+// the old one is gone. The question says which.
+std::string replace_title(const TakenName& taken) {
+    return taken.name + (taken.what == TakenName::What::shipped ? " is shipped" : " exists");
+}
+
+std::string replace_choice(const TakenName& taken) {
+    return taken.what == TakenName::What::shipped ? "store yours over it" : "replace " + taken.name;
+}
+
+std::string replace_hint(const TakenName& taken) {
+    switch (taken.what) {
+        case TakenName::What::shipped:
+            return "\u2191\u2193choose Sel:ok (shipped file stays)";
+        case TakenName::What::file:
+            return "\u2191\u2193choose Sel:ok (old file is lost)";
+        case TakenName::What::stored:
+        case TakenName::What::stored_over_shipped:
+            break;
+    }
+    return "\u2191\u2193choose Sel:ok (old one is lost)";
+}
+
 }  // namespace
 
 void ButtonScheme::set_playing(bool playing) {
@@ -254,9 +277,10 @@ Request ButtonScheme::perform(Action action, EditorModel& model) {
 }
 
 Request ButtonScheme::save_under(const std::string& name, bool then_quit) {
-    const bool taken = std::find(taken_->begin(), taken_->end(), name) != taken_->end();
-    if (taken && !(name == destination_ && destination_ours_)) {
-        replacing_ = name;
+    const auto taken = std::find_if(taken_->begin(), taken_->end(),
+                                    [&](const TakenName& taken) { return taken.name == name; });
+    if (taken != taken_->end() && !(name == destination_ && destination_ours_)) {
+        replacing_ = *taken;
         then_quit_ = then_quit;
         list_.set(0, kReplaceChoices);
         mode_ = Mode::replace_menu;
@@ -270,7 +294,11 @@ Request ButtonScheme::save_under(const std::string& name, bool then_quit) {
 }
 
 void ButtonScheme::begin_name_entry(bool then_quit) {
-    name_.start(free_name(destination_, *taken_));
+    std::vector<std::string> names;
+    for (const auto& taken : *taken_) {
+        names.push_back(taken.name);
+    }
+    name_.start(free_name(destination_, names));
     then_quit_ = then_quit;
     mode_ = Mode::name_entry;
 }
@@ -312,7 +340,7 @@ Request ButtonScheme::replace_press(Button button) {
             return {};
         case 1: {
             mode_ = Mode::browse;
-            const std::string name = replacing_;
+            const std::string name = replacing_.name;
             if (name == destination_) {
                 destination_ours_ = true;  // asked once; the next saves go there quietly
                 return {then_quit_ ? Request::Kind::save_and_quit : Request::Kind::save};
@@ -392,8 +420,8 @@ ButtonScheme::MenuView ButtonScheme::menu_view(const EditorModel& model) const {
             }
             break;
         case Mode::replace_menu:
-            view.title = replacing_ + " exists";
-            view.lines = {"save as another name", "replace " + replacing_, "cancel"};
+            view.title = replace_title(replacing_);
+            view.lines = {"save as another name", replace_choice(replacing_), "cancel"};
             view.highlighted = list_.index();
             break;
         default:
@@ -421,7 +449,7 @@ std::string ButtonScheme::hint(const EditorModel& model) const {
         case Mode::name_entry:
             return name_.hint();
         case Mode::replace_menu:
-            return "\u2191\u2193choose Sel:ok (shipped files stay)";
+            return replace_hint(replacing_);
         case Mode::playing:
             return "playing: any button stops";
     }

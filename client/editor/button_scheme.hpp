@@ -24,6 +24,19 @@ struct Request {
     bool operator==(const Request&) const = default;
 };
 
+// A name that saving under would replace something: what it is decides how the editor asks.
+struct TakenName {
+    enum class What {
+        file,                 // a score file beside the one edited: replaced
+        shipped,              // a shipped registry score: the stored one shadows it
+        stored,               // a stored registry score: replaced for good
+        stored_over_shipped,  // a stored score shadowing a shipped one: replaced for good
+    };
+    std::string name;
+    What what = What::stored;
+    bool operator==(const TakenName&) const = default;
+};
+
 // The six-button scheme (docs/editor.md has its table). With nothing open:
 //   Up/Down       the active string          Left/Right  the cursor
 //   Select        on an empty position: enter notes from there, starting with the proposed
@@ -70,8 +83,8 @@ class ButtonScheme {
     }
     // The names a score is saved under already (the registry's, or the score files beside a
     // file): saving under one asks first.
-    void set_taken(std::vector<std::string> names) {
-        taken_ = std::make_shared<const std::vector<std::string>>(std::move(names));
+    void set_taken(std::vector<TakenName> names) {
+        taken_ = std::make_shared<const std::vector<TakenName>>(std::move(names));
     }
     // Where "save" stores the score; `ours` when this session made it or already replaced it
     // (saving there again asks nothing).
@@ -117,12 +130,12 @@ class ButtonScheme {
     int last_open_ = 0;
     std::shared_ptr<const std::vector<std::string>> openable_ =
         std::make_shared<const std::vector<std::string>>();
-    std::shared_ptr<const std::vector<std::string>> taken_ =
-        std::make_shared<const std::vector<std::string>>();
+    std::shared_ptr<const std::vector<TakenName>> taken_ =
+        std::make_shared<const std::vector<TakenName>>();
     std::string destination_;
     bool destination_ours_ = true;
     NameEntry name_;
-    std::string replacing_;   // the taken name the replace menu asks about
+    TakenName replacing_;     // the taken name the replace menu asks about
     bool then_quit_ = false;  // quit once the pending save is done
 };
 

@@ -126,6 +126,10 @@ std::string DaemonLink::get(const std::string& kind, const std::string& name) {
     return guarded([&] { return proxy_->Get(kind, name); });
 }
 
+std::string DaemonLink::origin(const std::string& kind, const std::string& name) {
+    return guarded([&] { return proxy_->Origin(kind, name); });
+}
+
 std::vector<std::string> DaemonLink::list(const std::string& kind) {
     return guarded([&] {
         std::vector<std::string> names;

@@ -44,6 +44,8 @@ class DaemonLink {
     void compose(const std::string& name, const std::string& document);
     std::string get(const std::string& kind, const std::string& name);
     std::vector<std::string> list(const std::string& kind);
+    // "shipped", "stored" or "stored-over-shipped" (Origin).
+    std::string origin(const std::string& kind, const std::string& name);
 
     // For poll(): the bus descriptor, the events to wait for, and how long at most (ms, -1
     // for no limit).

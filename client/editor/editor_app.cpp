@@ -151,21 +151,36 @@ class Session {
         }
     }
 
-    // The names save-as asks about before saving under them: the registry's scores, or the
-    // score files beside a file.
-    std::vector<std::string> taken_names(const ScoreSource& source) const {
+    // The names save-as asks about before saving under them, with what each is: the registry's
+    // scores (the daemon says which are shipped), or the score files beside a file.
+    std::vector<TakenName> taken_names(const ScoreSource& source) const {
+        std::vector<TakenName> names;
         if (source.kind == ScoreSource::Kind::registry) {
-            return registry_scores_;
+            for (const auto& name : registry_scores_) {
+                names.push_back({name, registry_origin(name)});
+            }
+            return names;
         }
-        std::vector<std::string> names;
         const auto folder = std::filesystem::absolute(source.name).parent_path();
         std::error_code error;
         for (const auto& entry : std::filesystem::directory_iterator(folder, error)) {
             if (entry.path().filename().string().ends_with(".score.xml")) {
-                names.push_back(stem(entry.path().string()));
+                names.push_back({stem(entry.path().string()), TakenName::What::file});
             }
         }
         return names;
+    }
+
+    // A daemon that cannot say counts the name as stored: the question then warns of the worse.
+    TakenName::What registry_origin(const std::string& name) const {
+        try {
+            const std::string origin = daemon_ ? daemon_->origin("score", name) : "stored";
+            return origin == "shipped"               ? TakenName::What::shipped
+                   : origin == "stored-over-shipped" ? TakenName::What::stored_over_shipped
+                                                     : TakenName::What::stored;
+        } catch (const DaemonError&) {
+            return TakenName::What::stored;
+        }
     }
 
     // What save-as calls the score: its registry name, or its file name without .score.xml.

@@ -258,10 +258,28 @@ bool Registry::contains(DocumentKind kind, std::string_view name) const {
     return kind == DocumentKind::clef ? find_clef(name) != nullptr : find_score(name) != nullptr;
 }
 
-bool Registry::is_shipped(DocumentKind kind, std::string_view name) const {
-    return kind == DocumentKind::clef
-               ? !stored_clefs_.contains(name) && shipped_clefs_.contains(name)
-               : !stored_scores_.contains(name) && shipped_scores_.contains(name);
+std::string_view to_string(Origin origin) {
+    switch (origin) {
+        case Origin::shipped:
+            return "shipped";
+        case Origin::stored:
+            return "stored";
+        case Origin::stored_over_shipped:
+            return "stored-over-shipped";
+    }
+    return "stored";
+}
+
+Origin Registry::origin(DocumentKind kind, std::string_view name) const {
+    check_name(name);
+    const bool stored =
+        kind == DocumentKind::clef ? stored_clefs_.contains(name) : stored_scores_.contains(name);
+    const bool shipped =
+        kind == DocumentKind::clef ? shipped_clefs_.contains(name) : shipped_scores_.contains(name);
+    if (!stored && !shipped) {
+        throw RegistryError(Code::not_found, "no " + label(kind, name));
+    }
+    return !stored ? Origin::shipped : shipped ? Origin::stored_over_shipped : Origin::stored;
 }
 
 std::vector<RegistryEntry> Registry::list(DocumentKind kind) const {

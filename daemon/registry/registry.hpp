@@ -35,6 +35,14 @@ class RegistryError : public std::runtime_error {
 // "invalid-document", "not-found", ...: a stable spelling for error names and logs.
 std::string_view to_string(RegistryError::Code code);
 
+// Where a visible registry document comes from. A stored document shadows a shipped one of
+// its name: composing over a shipped name keeps the shipped file, composing over a stored one
+// replaces it for good, which is why a client asks.
+enum class Origin { shipped, stored, stored_over_shipped };
+
+// "shipped", "stored", "stored-over-shipped": the spelling on the bus (Origin).
+std::string_view to_string(Origin origin);
+
 struct RegistryEntry {
     std::string name;
     std::string title;  // a score's <Title>; for a clef e.g. "sine, tempo 0.2 s, 6 strings"
@@ -103,7 +111,8 @@ class Registry {
     Clef clef(std::string_view name) const;
 
     bool contains(DocumentKind kind, std::string_view name) const;
-    bool is_shipped(DocumentKind kind, std::string_view name) const;
+    // Throws not_found.
+    Origin origin(DocumentKind kind, std::string_view name) const;
 
     std::size_t stored_documents() const { return stored_clefs_.size() + stored_scores_.size(); }
     std::size_t stored_bytes() const { return stored_bytes_; }

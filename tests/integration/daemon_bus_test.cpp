@@ -78,6 +78,20 @@ TEST_F(DaemonBus, BusctlComposesAndDeletesWithRegistryChangedSignals) {
               std::string::npos);
 }
 
+TEST_F(DaemonBus, OriginTellsAShippedScoreFromAStoredOneAndOneShadowingIt) {
+    EXPECT_EQ(daemon.call({"Origin", "ss", "score", "ringtone"}).out, "s \"shipped\"\n");
+    ASSERT_EQ(daemon.call({"Compose", "ss", "my-buzz", kShortScore}).exit_code, 0);
+    EXPECT_EQ(daemon.call({"Origin", "ss", "score", "my-buzz"}).out, "s \"stored\"\n");
+    ASSERT_EQ(daemon.call({"Compose", "ss", "ringtone", kShortScore}).exit_code, 0);
+    EXPECT_EQ(daemon.call({"Origin", "ss", "score", "ringtone"}).out,
+              "s \"stored-over-shipped\"\n");
+    EXPECT_EQ(daemon.call({"Origin", "ss", "clef", "lra-phone"}).out, "s \"shipped\"\n");
+    const auto missing = daemon.call({"Origin", "ss", "score", "no-such-score"});
+    EXPECT_NE(missing.exit_code, 0);
+    EXPECT_NE(missing.err.find("no score \"no-such-score\""), std::string::npos) << missing.err;
+    EXPECT_NE(daemon.call({"Origin", "ss", "tune", "x"}).err.find("tune"), std::string::npos);
+}
+
 TEST_F(DaemonBus, PlaysAScoreWithSignalsInOrderAndTheActuatorEndsOff) {
     auto client = daemon.client();
     const auto id = client->Play(kShortScore, options());

@@ -246,7 +246,13 @@ TEST_F(EditorEndToEnd, ATwoBarRingtoneFromTheShippedOneIsSavedAsANewNameAndTheSh
     editor::Editor copy{editor::EditorModel(shipped, editor::registry_clefs(clef_names)), {}};
     copy.model.learn_from(editor::learned_from_others(registry, {"ringtone", shipped}));
     copy.scheme.set_openable(score_names);
-    copy.scheme.set_taken(score_names);
+    std::vector<editor::TakenName> taken;
+    for (const auto& name : score_names) {
+        taken.push_back({name, client->Origin("score", name) == "shipped"
+                                   ? editor::TakenName::What::shipped
+                                   : editor::TakenName::What::stored});
+    }
+    copy.scheme.set_taken(taken);
     copy.scheme.set_destination("ringtone", false);
 
     // Two bars of it, composed with the six buttons: bars 3 and 4 marked as a block and
@@ -298,9 +304,9 @@ TEST_F(EditorEndToEnd, ATwoBarRingtoneFromTheShippedOneIsSavedAsANewNameAndTheSh
 
     // "save" over the shipped name asks first; Back leaves it unsaved.
     send(pane, menu_presses(copy, "save"));
-    ASSERT_TRUE(pane.wait_for_text("ringtone exists")) << pane.screen();
-    EXPECT_NE(pane.screen().find("replace ringtone"), std::string::npos) << pane.screen();
-    EXPECT_NE(pane.screen().find("shipped files stay"), std::string::npos) << pane.screen();
+    ASSERT_TRUE(pane.wait_for_text("ringtone is shipped")) << pane.screen();
+    EXPECT_NE(pane.screen().find("store yours over it"), std::string::npos) << pane.screen();
+    EXPECT_NE(pane.screen().find("shipped file stays"), std::string::npos) << pane.screen();
     send(pane, {Button::back});
     copy.press(Button::back);
 
@@ -364,7 +370,7 @@ TEST_F(EditorEndToEnd, AFileOpenedSavesWithoutAskingAndSaveAsWritesANewFileBesid
     std::filesystem::copy_file(shipped_file, file);
     editor::Editor copy{editor::EditorModel(read_score(testing::read_file(file), "buzz").score, {}),
                         {}};
-    copy.scheme.set_taken({"buzz"});
+    copy.scheme.set_taken({{"buzz", editor::TakenName::What::file}});
     copy.scheme.set_destination("buzz", true);
 
     TmuxPane pane(edit_command(file.string()), 40, 12);

@@ -97,11 +97,14 @@ TEST(EditorNameEntry, TheLastCharacterIsNotDeletedAndNamesStopAt64) {
     EXPECT_FALSE(editor::is_registry_name("-a"));
 }
 
+constexpr auto Shipped = editor::TakenName::What::shipped;
+constexpr auto Stored = editor::TakenName::What::stored;
+
 // An editor on the shipped "ringtone", as `vibscore edit ringtone` opens it.
 editor::Editor opened_ringtone() {
     auto editor = fresh_editor();
     editor.scheme.set_openable({"alarm", "ringtone"});
-    editor.scheme.set_taken({"alarm", "ringtone"});
+    editor.scheme.set_taken({{"alarm", Shipped}, {"ringtone", Shipped}});
     editor.scheme.set_destination("ringtone", false);
     return editor;
 }
@@ -134,10 +137,10 @@ TEST(EditorSaveAs, SavingOverTheOpenedShippedScoreAsksFirst) {
     EXPECT_EQ(editor.press(S).kind, Request::Kind::none);
     EXPECT_EQ(editor.scheme.mode(), ButtonScheme::Mode::replace_menu);
     const auto view = editor.scheme.menu_view(editor.model);
-    EXPECT_EQ(view.title, "ringtone exists");
+    EXPECT_EQ(view.title, "ringtone is shipped");
     EXPECT_EQ(view.lines,
-              (std::vector<std::string>{"save as another name", "replace ringtone", "cancel"}));
-    EXPECT_EQ(editor.scheme.hint(editor.model), "\u2191\u2193choose Sel:ok (shipped files stay)");
+              (std::vector<std::string>{"save as another name", "store yours over it", "cancel"}));
+    EXPECT_EQ(editor.scheme.hint(editor.model), "\u2191\u2193choose Sel:ok (shipped file stays)");
     // The first choice, one Select, is the free name, one Select more to save.
     press(editor, {S});
     EXPECT_EQ(editor.scheme.mode(), ButtonScheme::Mode::name_entry);
@@ -162,11 +165,15 @@ TEST(EditorSaveAs, ReplacingIsAskedOnceAndCancelSavesNothing) {
 TEST(EditorSaveAs, ATypedTakenNameAsksAndSaveAndQuitAsksToo) {
     auto editor = opened_ringtone();
     to_menu_entry(editor, "save as...");
-    editor.scheme.set_taken({"alarm", "ringtone", "ringtone-3"});
+    editor.scheme.set_taken({{"alarm", Shipped}, {"ringtone", Shipped}, {"ringtone-3", Stored}});
     press(editor, {S, U});  // ringtone-3, stored before
     press(editor, {S});
     EXPECT_EQ(editor.scheme.mode(), ButtonScheme::Mode::replace_menu);
-    EXPECT_EQ(editor.scheme.menu_view(editor.model).title, "ringtone-3 exists");
+    // A stored score is replaced for good, and the question says so.
+    const auto view = editor.scheme.menu_view(editor.model);
+    EXPECT_EQ(view.title, "ringtone-3 exists");
+    EXPECT_EQ(view.lines[1], "replace ringtone-3");
+    EXPECT_EQ(editor.scheme.hint(editor.model), "\u2191\u2193choose Sel:ok (old one is lost)");
     press(editor, {D});
     EXPECT_EQ(editor.press(S), (Request{Request::Kind::save_as, "ringtone-3"}));
 
@@ -182,9 +189,33 @@ TEST(EditorSaveAs, ATypedTakenNameAsksAndSaveAndQuitAsksToo) {
     EXPECT_EQ(quitting.press(S), (Request{Request::Kind::save_as, "ringtone-2", 0, true}));
 }
 
+// What replacing loses decides the words: a shipped score stays (shadowed), a stored score
+// shadowing it and a file beside the one edited are gone.
+TEST(EditorSaveAs, TheQuestionSaysWhetherTheTakenNameIsShippedStoredOrAFile) {
+    const auto asked = [](editor::TakenName taken) {
+        auto editor = fresh_editor();
+        editor.scheme.set_taken({taken});
+        editor.scheme.set_destination(taken.name, false);
+        to_menu_entry(editor, "save");
+        press(editor, {S});
+        EXPECT_EQ(editor.scheme.mode(), ButtonScheme::Mode::replace_menu);
+        const auto view = editor.scheme.menu_view(editor.model);
+        return view.title + " | " + view.lines[1] + " | " + editor.scheme.hint(editor.model);
+    };
+    EXPECT_EQ(asked({"ringtone", Shipped}),
+              "ringtone is shipped | store yours over it | \u2191\u2193choose Sel:ok (shipped file "
+              "stays)");
+    EXPECT_EQ(asked({"ringtone", editor::TakenName::What::stored_over_shipped}),
+              "ringtone exists | replace ringtone | \u2191\u2193choose Sel:ok (old one is lost)");
+    EXPECT_EQ(asked({"buzz", Stored}),
+              "buzz exists | replace buzz | \u2191\u2193choose Sel:ok (old one is lost)");
+    EXPECT_EQ(asked({"buzz", editor::TakenName::What::file}),
+              "buzz exists | replace buzz | \u2191\u2193choose Sel:ok (old file is lost)");
+}
+
 TEST(EditorSaveAs, ANewScoreSavesWithoutAsking) {
     auto editor = fresh_editor();
-    editor.scheme.set_taken({"alarm"});
+    editor.scheme.set_taken({{"alarm", Shipped}});
     editor.scheme.set_destination("tacton-1", true);
     to_menu_entry(editor, "save");
     EXPECT_EQ(editor.press(S).kind, Request::Kind::save);

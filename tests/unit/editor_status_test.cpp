@@ -65,7 +65,7 @@ TEST(StatusLine, EveryHintFitsFortyColumns) {
 
 TEST(StatusLine, SaveAsHintsFitFortyColumnsAndHideTheLastAction) {
     auto editor = fresh_editor();
-    editor.scheme.set_taken({"ringtone"});
+    editor.scheme.set_taken({{"ringtone", editor::TakenName::What::shipped}});
     editor.scheme.set_destination("ringtone", false);
     testing::to_menu_entry(editor, "save as...");
     press(editor, {S});  // the name entry
@@ -80,10 +80,10 @@ TEST(StatusLine, SaveAsHintsFitFortyColumnsAndHideTheLastAction) {
     }
     press(editor, {B});  // cancelled
     testing::to_menu_entry(editor, "save");
-    press(editor, {S});  // ringtone exists: another name, replace, cancel
+    press(editor, {S});  // ringtone is shipped: another name, store yours over it, cancel
     const auto parts = status_of(editor.model, editor.scheme, "undone");
     EXPECT_EQ(parts.message, "");
-    EXPECT_NE(status_line(parts, kSmallWidth).find("(shipped files stay)"), std::string::npos);
+    EXPECT_NE(status_line(parts, kSmallWidth).find("(shipped file stays)"), std::string::npos);
 }
 
 TEST(StatusLine, AListShowsItsHintNotWhatWasDoneBeforeIt) {

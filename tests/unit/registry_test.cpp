@@ -170,7 +170,7 @@ TEST_F(RegistryTest, AStoredClefShadowsTheShippedOneUntilDeleted) {
     const auto slower = sine_clef(0.4, {110, 160, 210}, {0.5, 1.0});
     registry.compose("base", slower);
     EXPECT_EQ(registry.get(DocumentKind::clef, "base"), slower);
-    EXPECT_FALSE(registry.is_shipped(DocumentKind::clef, "base"));
+    EXPECT_EQ(registry.origin(DocumentKind::clef, "base"), Origin::stored_over_shipped);
     EXPECT_THAT(registry.list(DocumentKind::clef),
                 ElementsAre(RegistryEntry{"base", "sine, tempo 0.4 s, 3 strings", false}));
     // The shipped score now plays with the stored clef.
@@ -178,9 +178,29 @@ TEST_F(RegistryTest, AStoredClefShadowsTheShippedOneUntilDeleted) {
 
     registry.remove(DocumentKind::clef, "base");
     EXPECT_EQ(registry.get(DocumentKind::clef, "base"), kBaseClef);
-    EXPECT_TRUE(registry.is_shipped(DocumentKind::clef, "base"));
+    EXPECT_EQ(registry.origin(DocumentKind::clef, "base"), Origin::shipped);
     EXPECT_EQ(registry.score("tune").clefs.at("c").tempo, 0.2);
     EXPECT_TRUE(file_names(store_dir()).empty());
+}
+
+TEST_F(RegistryTest, OriginTellsShippedStoredAndStoredOverShipped) {
+    auto registry = open();
+    EXPECT_EQ(registry.origin(DocumentKind::score, "tune"), Origin::shipped);
+    registry.compose("mine", score_using("base", 1, "Mine"));
+    EXPECT_EQ(registry.origin(DocumentKind::score, "mine"), Origin::stored);
+    registry.compose("tune", score_using("base", 1, "My tune"));
+    EXPECT_EQ(registry.origin(DocumentKind::score, "tune"), Origin::stored_over_shipped);
+    EXPECT_EQ(to_string(Origin::stored_over_shipped), "stored-over-shipped");
+    registry.remove(DocumentKind::score, "tune");
+    EXPECT_EQ(registry.origin(DocumentKind::score, "tune"), Origin::shipped);
+    try {
+        (void)registry.origin(DocumentKind::score, "nothing");
+        FAIL() << "no error";
+    } catch (const RegistryError& error) {
+        EXPECT_EQ(error.code(), RegistryError::Code::not_found);
+        EXPECT_STREQ(error.what(), "no score \"nothing\"");
+    }
+    EXPECT_THROW((void)registry.origin(DocumentKind::score, "../x"), RegistryError);
 }
 
 TEST_F(RegistryTest, AStoredScoreShadowsTheShippedOneUntilDeleted) {
