@@ -334,6 +334,13 @@ int describe_registry_score(const std::string& name, std::ostream& out, std::ost
                            return read_clef(haptics.Get("clef", *clef), "clef \"" + *clef + "\"");
                        });
         describe_score(loaded, out);
+        const std::string origin = haptics.Origin("score", name);
+        out << "registry: "
+            << (origin == "shipped" ? "shipped"
+                : origin == "stored"
+                    ? "stored"
+                    : "stored, shadowing a shipped one (deleting it brings that back)")
+            << "\n";
         out << "on this device:\n";
         const auto bars = haptics.BarClefs(name);
         for (std::size_t b = 0; b < bars.size(); ++b) {

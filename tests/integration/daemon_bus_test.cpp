@@ -90,6 +90,12 @@ TEST_F(DaemonBus, OriginTellsAShippedScoreFromAStoredOneAndOneShadowingIt) {
     EXPECT_NE(missing.exit_code, 0);
     EXPECT_NE(missing.err.find("no score \"no-such-score\""), std::string::npos) << missing.err;
     EXPECT_NE(daemon.call({"Origin", "ss", "tune", "x"}).err.find("tune"), std::string::npos);
+    const auto info = vibscore::testing::run_command(
+        {vibscore::testing::required_env("VIBSCORE"), "info", "ringtone"});
+    EXPECT_NE(
+        info.out.find("registry: stored, shadowing a shipped one (deleting it brings that back)\n"),
+        std::string::npos)
+        << info.out << info.err;
 }
 
 TEST_F(DaemonBus, PlaysAScoreWithSignalsInOrderAndTheActuatorEndsOff) {
@@ -520,7 +526,8 @@ TEST_F(DaemonDeviceClefs, EachBarPlaysThroughTheMappedClefAsBarClefsAndInfoShow)
     const auto info = vibscore::testing::run_command(
         {vibscore::testing::required_env("VIBSCORE"), "info", "success"});
     ASSERT_EQ(info.exit_code, 0) << info.err;
-    EXPECT_NE(info.out.find("on this device:\n  1  lra-phone -> erm-phone\n"), std::string::npos)
+    EXPECT_NE(info.out.find("registry: shipped\non this device:\n  1  lra-phone -> erm-phone\n"),
+              std::string::npos)
         << info.out;
 
     // lra-phone plays the click at 235 Hz; erm-phone is a line clef: drive levels, no frequency.
