@@ -266,6 +266,12 @@ TEST(DaemonSysfs, TimedOutputWritesTheOnTimeAtEachSwitchOnAndZeroAtEachSwitchOff
     const auto expected = expected_switches(kFullThenHalf);
     play_to_the_end(daemon, kFullThenHalf);
     EXPECT_EQ(daemon.stop_daemon(), 0) << daemon.daemon_log();
+    // The watcher's thread reads the last switch-off on its own time, maybe after the daemon
+    // has gone (as DaemonEvdev's device read its last stop after PlaybackFinished).
+    EXPECT_TRUE(eventually([&] {
+        const auto written = enable.writes();
+        return written.size() > opened && written.back().value == "0";
+    }));
 
     const auto writes = enable.writes();
     std::vector<std::pair<Clock::time_point, bool>> seen;
