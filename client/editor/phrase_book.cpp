@@ -23,23 +23,42 @@ std::uint64_t alike_key(const Symbol& symbol) {
     return (std::uint64_t{2} << 40) | length;
 }
 
+// The last note of `symbols` before `end`, over rests; nullptr when there is none.
+template <typename Symbols, typename Get>
+const Note* last_note_before(const Symbols& symbols, std::size_t end, Get symbol_of) {
+    for (std::size_t i = end; i-- > 0;) {
+        if (const auto* note = std::get_if<Note>(&symbol_of(symbols[i]))) {
+            return note;
+        }
+    }
+    return nullptr;
+}
+
 // A learned note as it would follow the last symbol of the score being entered: tied to it as it
-// was tied to the note before it where it was learned, untied after a rest.
-Symbol as_follower(const Score& score, const Symbol& learned, const Symbol* learned_before,
-                   const Symbol* last) {
+// was tied to the note before it where it was learned, untied after a rest. Its hairpin goes on
+// as it went on there: where the learned note kept the hairpin of the note before it (over rests
+// too), it keeps the hairpin of the score's last note; a hairpin that changed there comes as it
+// was learned. (Phrases match by string, number and length, marks aside, so a pulse learned
+// with a fade proposes a plain pulse after plain ones.)
+Symbol as_follower(const Score& score, const Symbol& learned, const Note* learned_note_before,
+                   const Symbol* learned_before, const Note* last_note, const Symbol* last) {
     const auto* note = std::get_if<Note>(&learned);
     if (note == nullptr) {
         return learned;
     }
+    Note follower = *note;
+    if (learned_note_before != nullptr && last_note != nullptr &&
+        follower.dynamics == learned_note_before->dynamics) {
+        follower.dynamics = last_note->dynamics;
+    }
     const auto* earlier = learned_before ? std::get_if<Note>(learned_before) : nullptr;
     const auto* now = last ? std::get_if<Note>(last) : nullptr;
     if (earlier == nullptr || now == nullptr) {
-        Note untied = *note;
-        untied.legato = 0;
-        untied.portamento = 0;
-        return untied;
+        follower.legato = 0;
+        follower.portamento = 0;
+        return follower;
     }
-    return tied_as_before(score, *note, *earlier, *now);
+    return tied_as_before(score, follower, *earlier, *now);
 }
 
 }  // namespace
@@ -84,6 +103,8 @@ std::optional<PhraseBook::Prediction> PhraseBook::next_after(const Score& score,
         places = &found->second;
     }
     const Symbol* last = context.empty() ? nullptr : context.back().symbol;
+    const Note* last_note = last_note_before(
+        context, context.size(), [](const Placed& p) -> const Symbol& { return *p.symbol; });
     std::vector<Prediction> candidates;
     for (const Place& place : *places) {
         const auto& phrase = phrases_[place.phrase];
@@ -98,9 +119,11 @@ std::optional<PhraseBook::Prediction> PhraseBook::next_after(const Score& score,
                                 static_cast<std::size_t>(matched) == context.size();
         const int length = matched + (both_start ? 1 : 0);
         const Learned& follower = phrase[place.index];
-        const Symbol next =
-            as_follower(score, follower.symbol,
-                        place.index > 0 ? &phrase[place.index - 1].symbol : nullptr, last);
+        const Symbol next = as_follower(
+            score, follower.symbol,
+            last_note_before(phrase, place.index,
+                             [](const Learned& l) -> const Symbol& { return l.symbol; }),
+            place.index > 0 ? &phrase[place.index - 1].symbol : nullptr, last_note, last);
         const bool same_beat = follower.beat == beat;
         const auto known = std::find_if(candidates.begin(), candidates.end(),
                                         [&](const Prediction& c) { return c.next == next; });

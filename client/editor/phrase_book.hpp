@@ -21,8 +21,9 @@ namespace vibscore::editor {
 // by length) ending just before the position asked about; the start of a score counts as one
 // symbol, so the first notes of a new score are predicted from how scores start. The longest
 // phrase found wins; among continuations of equally long phrases, the most frequent, then one
-// at the same beat of its bar, then the one learned first. A note comes whole, with its
-// hairpin, tied to the note before as it was tied there.
+// at the same beat of its bar, then the one learned first. A note comes whole, tied to the note
+// before as it was tied there; its hairpin goes on as it went on there (the hairpin of the
+// score's last note where it kept the one of the note before it, its own where it changed).
 class PhraseBook {
   public:
     struct Prediction {

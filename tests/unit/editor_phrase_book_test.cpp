@@ -69,6 +69,33 @@ TEST(PhraseBook, TheLongestPhraseWinsOverTheMoreFrequentOne) {
     EXPECT_EQ(after_lone->occurrences, 2);
 }
 
+TEST(PhraseBook, AHairpinGoesOnAsItWentOnWhereItWasLearned) {
+    // Pulses learned with a fade each, pulses learned plain after a swell.
+    PhraseBook book;
+    book.learn(score_of(
+        "<Bar clef=\"lra\"><Note length=\"8th\" number=\"7\" string=\"5\" "
+        "dynamics=\"decrescendo\"/><Rest length=\"8th\"/><Note length=\"8th\" number=\"7\" "
+        "string=\"5\" dynamics=\"decrescendo\"/></Bar>"));
+    book.learn(
+        score_of("<Bar clef=\"lra\"><Note length=\"half\" number=\"9\" string=\"6\" "
+                 "dynamics=\"crescendo\"/><Rest length=\"quarter\"/><Note length=\"quarter\" "
+                 "number=\"7\" string=\"5\"/></Bar>"));
+    // Plain pulses: the learned pulse kept the hairpin of the one before, so it comes plain.
+    const auto plain = score_of(
+        "<Bar clef=\"lra\"><Note length=\"8th\" number=\"7\" string=\"5\"/><Rest "
+        "length=\"8th\"/></Bar>");
+    const auto pulse = book.next_after(plain, end_of(plain));
+    ASSERT_TRUE(pulse);
+    EXPECT_EQ(pulse->next, (Symbol{Note{Length::eighth, 7, 5}}));
+    // A hairpin that changed where it was learned comes as learned: plain after a fade here.
+    const auto faded = score_of(
+        "<Bar clef=\"lra\"><Note length=\"half\" number=\"9\" string=\"6\" "
+        "dynamics=\"decrescendo\"/><Rest length=\"quarter\"/></Bar>");
+    const auto after_fade = book.next_after(faded, end_of(faded));
+    ASSERT_TRUE(after_fade);
+    EXPECT_EQ(after_fade->next, (Symbol{Note{Length::quarter, 7, 5}}));
+}
+
 TEST(PhraseBook, NothingIsPredictedAfterASymbolNoLearnedScorePlays) {
     PhraseBook book;
     book.learn(score_of(kLearned));
