@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/report.hpp"
 #include "client/editor/editor.hpp"
 #include "client/editor/phrase_book.hpp"
 #include "client/editor/press_planner.hpp"
@@ -352,8 +353,12 @@ int main(int argc, char** argv) {
         }
     }
     bool mismatch = false;
+    std::string json;  // one object per set, its bounds in order
     for (const auto& [set_name, targets] : sets) {
         std::printf("\n%s\n", set_name.c_str());
+        json += std::string(json.empty() ? "" : ",") + "{\"set\":\"" +
+                bench::json_escape(set_name) + "\",\"bounds\":[";
+        bool first_bound = true;
         std::vector<Row> rows;
         for (const auto& target : targets) {
             Row row;
@@ -477,6 +482,14 @@ int main(int argc, char** argv) {
             }
             std::printf("  %-28s %8d %8d %14zu %14.2f\n", label, n, s, presses,
                         static_cast<double>(presses) / notes);
+            char entry[256];
+            std::snprintf(entry, sizeof entry,
+                          "%s{\"predicted_by\":\"%s\",\"notes\":%d,\"symbols\":%d,"
+                          "\"presses\":%zu,\"per_note\":%.3f}",
+                          first_bound ? "" : ",", bench::json_escape(label).c_str(), n, s, presses,
+                          static_cast<double>(presses) / notes);
+            json += entry;
+            first_bound = false;
         };
         line("(none: best of both plans)", [](const Row&, std::size_t) { return false; });
         line("one press now, without",
@@ -509,6 +522,11 @@ int main(int argc, char** argv) {
             return r.exact_rank[i] != 0 || cheap_now(r, i, r.alone) || cheap_now(r, i, r.learning);
         });
         line("every symbol", [](const Row&, std::size_t) { return true; });
+        json += "]}";
     }
+    std::printf(
+        "{\"benchmark\":\"editor_presses_oracle\",\"registry_scores\":%zu,\"sets\":[%s],"
+        "\"ranking_matches_phrase_book\":%s}\n",
+        registry.size(), json.c_str(), mismatch ? "false" : "true");
     return mismatch ? 1 : 0;
 }
