@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/press_targets.hpp"
 #include "bench/report.hpp"
 #include "client/editor/editor.hpp"
 #include "client/editor/phrase_book.hpp"
@@ -35,45 +36,13 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr const char* kFigure23 =
-    "<VibScore><Title>Fig. 2.3 first measure</Title>"
-    "<Clef id=\"c\" href=\"fig23-sine.clef.xml\"/><Bar clef=\"c\">"
-    "<Note length=\"8th\" number=\"1\" string=\"2\" legato=\"1\"/>"
-    "<Note length=\"quarter\" number=\"2\" string=\"3\" legato=\"1\"/>"
-    "<Rest length=\"8th\"/><Note length=\"half\" number=\"2\" string=\"1\"/>"
-    "</Bar></VibScore>";
-
-const std::vector<std::string> kNotifications{
-    "alarm",    "failure", "notification-calendar", "notification-mail", "notification-message",
-    "ringtone", "success", "touch-click",           "touch-tick"};
-const std::vector<std::string> kThesisTactons{"create",      "delete",
-                                              "file",        "folder",
-                                              "create-file", "create-folder",
-                                              "delete-file", "delete-folder",
-                                              "call",        "call-high-priority",
-                                              "message",     "message-high-priority"};
+using bench::kFigure23;
+using bench::kNotifications;
+using bench::kThesisTactons;
+using bench::read_registry;
 
 NamedScore read_named(const fs::path& path) {
-    return {path.filename().string(), read_score(read_document_file(path), path.string()).score};
-}
-
-std::vector<NamedScore> read_registry(const fs::path& folder) {
-    std::vector<fs::path> files;
-    for (const auto& entry : fs::directory_iterator(folder)) {
-        if (entry.path().filename().string().ends_with(".score.xml")) {
-            files.push_back(entry.path());
-        }
-    }
-    std::sort(files.begin(), files.end());
-    std::vector<NamedScore> registry;
-    for (const auto& file : files) {
-        try {
-            registry.push_back(read_named(file));
-        } catch (const std::exception& error) {
-            std::cerr << "left out: " << error.what() << "\n";
-        }
-    }
-    return registry;
+    return bench::read_tacton(path).file;
 }
 
 // The planner's progress (press_planner.cpp): symbols and bars entered, the open proposal aside.
