@@ -1,6 +1,6 @@
 // An oracle bound for registry proposals (analysis, not part of the product): for each symbol of
 // each target, is the symbol to enter among the phrase book's candidates (top 1, 2, 3, all, as
-// PhraseBook::next_after ranks them), or anywhere in the leave-one-out registry? And what would
+// PhraseBook::candidates ranks them), or anywhere in the leave-one-out registry? And what would
 // the bench's per-note figure be if every such predicted symbol cost one press (Select on the
 // proposal), the others what they cost now (the cheaper of the planner's plans without and with
 // the registry)? Per-symbol costs come from replaying the planner's presses on the real editor.
@@ -43,25 +43,6 @@ using bench::read_registry;
 
 NamedScore read_named(const fs::path& path) {
     return bench::read_tacton(path).file;
-}
-
-// The planner's progress (press_planner.cpp): symbols and bars entered, the open proposal aside.
-int progress(const Editor& editor, const Score& target) {
-    if (editor.scheme.mode() != ButtonScheme::Mode::entry) {
-        return entered_prefix(editor.model.score(), target);
-    }
-    Score without_open = editor.model.score();
-    const Position open = editor.model.cursor();
-    auto& symbols = without_open.bars.at(open.bar).symbols;
-    if (open.symbol < symbols.size()) {
-        symbols.erase(symbols.begin() + static_cast<std::ptrdiff_t>(open.symbol));
-    }
-    const int entered = entered_prefix(without_open, target);
-    if (entered >= 0 || !symbols.empty() || open.bar + 1 != without_open.bars.size()) {
-        return entered;
-    }
-    without_open.bars.pop_back();
-    return entered_prefix(without_open, target);
 }
 
 // A target's symbols (notes and rests) in order, with their positions and token indices.
@@ -132,17 +113,11 @@ Costs costs_of(const Score& target, std::shared_ptr<const PhraseBook> phrases) {
     return costs;
 }
 
-// The phrase book's candidates, ranked as PhraseBook::next_after ranks them (phrase_book.cpp,
-// re-done here on the same learned scores so that all of them can be seen, not only the best).
+// The leave-one-out registry's symbols in order, for what no context decides: how often each
+// occurs, and whether it occurs at all.
 struct Learned {
     Symbol symbol;
     double beat = 0.0;
-};
-struct Candidate {
-    Symbol next;
-    int context = 0;
-    int occurrences = 0;
-    bool same_beat = false;
 };
 
 std::vector<std::vector<Learned>> phrases_of(const std::vector<NamedScore>& registry,
@@ -168,100 +143,6 @@ std::vector<std::vector<Learned>> phrases_of(const std::vector<NamedScore>& regi
         }
     }
     return phrases;
-}
-
-// As phrase_book.cpp: ties as they were tied, the hairpin going on as it went on there.
-const Note* last_note_of(const std::vector<const Symbol*>& symbols) {
-    for (std::size_t i = symbols.size(); i-- > 0;) {
-        if (const auto* note = std::get_if<Note>(symbols[i])) {
-            return note;
-        }
-    }
-    return nullptr;
-}
-
-bool g_old_hairpin = false;  // --old-hairpin: the rule before (the learned note's own hairpin)
-
-Symbol as_follower(const Score& score, const Symbol& learned, const Note* learned_note_before,
-                   const Symbol* learned_before, const Note* last_note, const Symbol* last) {
-    const auto* note = std::get_if<Note>(&learned);
-    if (note == nullptr) {
-        return learned;
-    }
-    Note follower = *note;
-    if (!g_old_hairpin && learned_note_before != nullptr && last_note != nullptr &&
-        follower.dynamics == learned_note_before->dynamics) {
-        follower.dynamics = last_note->dynamics;
-    }
-    const auto* earlier = learned_before ? std::get_if<Note>(learned_before) : nullptr;
-    const auto* now = last ? std::get_if<Note>(last) : nullptr;
-    if (earlier == nullptr || now == nullptr) {
-        follower.legato = 0;
-        follower.portamento = 0;
-        return follower;
-    }
-    return tied_as_before(score, follower, *earlier, *now);
-}
-
-std::vector<Candidate> candidates(const std::vector<std::vector<Learned>>& phrases,
-                                  const Score& score, Position at) {
-    constexpr int kLongestPhrase = 8;
-    const auto context = placed_before(score, at);
-    const double beat = beat_at(score, at);
-    const Symbol* last = context.empty() ? nullptr : context.back().symbol;
-    std::vector<const Symbol*> context_symbols;
-    for (const auto& placed : context) {
-        context_symbols.push_back(placed.symbol);
-    }
-    const Note* last_note = last_note_of(context_symbols);
-    std::vector<Candidate> found;
-    for (const auto& phrase : phrases) {
-        for (std::uint32_t index = 0; index < phrase.size(); ++index) {
-            if (context.empty() ? index != 0
-                                : (index == 0 || !alike(phrase[index - 1].symbol, *last))) {
-                continue;
-            }
-            int matched = context.empty() ? 0 : 1;
-            while (matched < kLongestPhrase && static_cast<std::size_t>(matched) < context.size() &&
-                   static_cast<std::uint32_t>(matched) < index &&
-                   alike(phrase[index - 1 - static_cast<std::uint32_t>(matched)].symbol,
-                         *context[context.size() - 1 - static_cast<std::size_t>(matched)].symbol)) {
-                ++matched;
-            }
-            const bool both_start = static_cast<std::uint32_t>(matched) == index &&
-                                    static_cast<std::size_t>(matched) == context.size();
-            const int length = matched + (both_start ? 1 : 0);
-            std::vector<const Symbol*> learned_before;
-            for (std::uint32_t i = 0; i < index; ++i) {
-                learned_before.push_back(&phrase[i].symbol);
-            }
-            const Symbol next =
-                as_follower(score, phrase[index].symbol, last_note_of(learned_before),
-                            index > 0 ? &phrase[index - 1].symbol : nullptr, last_note, last);
-            const bool same_beat = phrase[index].beat == beat;
-            const auto known = std::find_if(found.begin(), found.end(),
-                                            [&](const Candidate& c) { return c.next == next; });
-            if (known == found.end()) {
-                found.push_back({next, length, 1, same_beat});
-            } else if (length > known->context) {
-                *known = {next, length, 1, same_beat};
-            } else if (length == known->context) {
-                ++known->occurrences;
-                known->same_beat = known->same_beat || same_beat;
-            }
-        }
-    }
-    // next_after keeps the first of equals (learned first): a stable sort does too.
-    std::stable_sort(found.begin(), found.end(), [](const Candidate& a, const Candidate& b) {
-        if (a.context != b.context) {
-            return a.context > b.context;
-        }
-        if (a.occurrences != b.occurrences) {
-            return a.occurrences > b.occurrences;
-        }
-        return a.same_beat && !b.same_beat;
-    });
-    return found;
 }
 
 Score prefix_of(const Score& target, Position at) {
@@ -302,9 +183,6 @@ int main(int argc, char** argv) {
     app.add_option("--registry", registry_dir, "registry folder (default: --clefs)");
     app.add_flag("--thesis", thesis, "also the thesis' 12 tactons");
     app.add_flag("--verbose", verbose, "a line per symbol");
-    app.add_flag("--old-hairpin", g_old_hairpin,
-                 "rank candidates as before the hairpin rule (the learned note's own hairpin); "
-                 "not checked against the linked PhraseBook");
     CLI11_PARSE(app, argc, argv);
     const auto registry = read_registry(registry_dir.empty() ? clefs : registry_dir);
     std::printf("registry: %zu scores\n", registry.size());
@@ -321,7 +199,6 @@ int main(int argc, char** argv) {
             sets.back().second.push_back(read_named(fs::path(clefs) / (name + ".score.xml")));
         }
     }
-    bool mismatch = false;
     std::string json;  // one object per set, its bounds in order
     for (const auto& [set_name, targets] : sets) {
         std::printf("\n%s\n", set_name.c_str());
@@ -341,18 +218,7 @@ int main(int argc, char** argv) {
             for (const auto& slot : slots) {
                 const Symbol& want = *symbol_at(score, slot.at);
                 const Score prefix = prefix_of(score, slot.at);
-                const auto found = candidates(phrases, prefix, slot.at);
-                // Check the re-done ranking against the real phrase book's best.
-                const auto best = book->next_after(prefix, slot.at);
-                if (g_old_hairpin) {
-                    // The linked PhraseBook ranks by the current rule: nothing to compare with.
-                } else if (best.has_value() != !found.empty() ||
-                           (best && !(best->next == found.front().next &&
-                                      best->context == found.front().context))) {
-                    mismatch = true;
-                    std::printf("  ranking differs from PhraseBook at %s %zu:%zu\n",
-                                row.name.c_str(), slot.at.bar, slot.at.symbol);
-                }
+                const auto found = book->candidates(prefix, slot.at);
                 int exact_rank = 0, alike_rank = 0;
                 for (std::size_t k = 0; k < found.size(); ++k) {
                     if (exact_rank == 0 && exact(score, slot.at, found[k].next)) {
@@ -493,9 +359,7 @@ int main(int argc, char** argv) {
         line("every symbol", [](const Row&, std::size_t) { return true; });
         json += "]}";
     }
-    std::printf(
-        "{\"benchmark\":\"editor_presses_oracle\",\"registry_scores\":%zu,\"sets\":[%s],"
-        "\"ranking_matches_phrase_book\":%s}\n",
-        registry.size(), json.c_str(), mismatch ? "false" : "true");
-    return mismatch ? 1 : 0;
+    std::printf("{\"benchmark\":\"editor_presses_oracle\",\"registry_scores\":%zu,\"sets\":[%s]}\n",
+                registry.size(), json.c_str());
+    return 0;
 }

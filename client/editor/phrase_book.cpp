@@ -85,8 +85,7 @@ void PhraseBook::learn(const Score& score) {
     phrases_.push_back(std::move(phrase));
 }
 
-std::optional<PhraseBook::Prediction> PhraseBook::next_after(const Score& score,
-                                                             Position at) const {
+std::vector<PhraseBook::Prediction> PhraseBook::candidates(const Score& score, Position at) const {
     const auto context = placed_before(score, at);
     const double beat = beat_at(score, at);
     std::vector<Place> starts;
@@ -98,7 +97,7 @@ std::optional<PhraseBook::Prediction> PhraseBook::next_after(const Score& score,
     } else {
         const auto found = followers_.find(alike_key(*context.back().symbol));
         if (found == followers_.end()) {
-            return std::nullopt;
+            return {};
         }
         places = &found->second;
     }
@@ -136,25 +135,26 @@ std::optional<PhraseBook::Prediction> PhraseBook::next_after(const Score& score,
             known->same_beat = known->same_beat || same_beat;
         }
     }
-    const auto better = [](const Prediction& a, const Prediction& b) {
-        if (a.context != b.context) {
-            return a.context > b.context;
-        }
-        if (a.occurrences != b.occurrences) {
-            return a.occurrences > b.occurrences;
-        }
-        return a.same_beat && !b.same_beat;
-    };
-    const Prediction* best = nullptr;
-    for (const auto& candidate : candidates) {
-        if (candidate.context > 0 && (best == nullptr || better(candidate, *best))) {
-            best = &candidate;
-        }
-    }
-    if (best == nullptr) {
+    std::stable_sort(candidates.begin(), candidates.end(),
+                     [](const Prediction& a, const Prediction& b) {
+                         if (a.context != b.context) {
+                             return a.context > b.context;
+                         }
+                         if (a.occurrences != b.occurrences) {
+                             return a.occurrences > b.occurrences;
+                         }
+                         return a.same_beat && !b.same_beat;
+                     });
+    return candidates;
+}
+
+std::optional<PhraseBook::Prediction> PhraseBook::next_after(const Score& score,
+                                                             Position at) const {
+    auto ranked = candidates(score, at);
+    if (ranked.empty() || ranked.front().context == 0) {
         return std::nullopt;
     }
-    return *best;
+    return std::move(ranked.front());
 }
 
 std::shared_ptr<const PhraseBook> learned_from_others(const std::vector<NamedScore>& registry,

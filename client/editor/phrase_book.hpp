@@ -37,6 +37,9 @@ class PhraseBook {
     bool empty() const { return phrases_.empty(); }
     std::size_t scores() const { return phrases_.size(); }
 
+    // Every continuation the phrase book knows at `at`, best first (the order next_after
+    // picks by; equals in the order learned).
+    std::vector<Prediction> candidates(const Score& score, Position at) const;
     std::optional<Prediction> next_after(const Score& score, Position at) const;
 
   private:

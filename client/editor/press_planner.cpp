@@ -75,29 +75,6 @@ int entered_prefix(const Score& score, const Score& target) {
 
 namespace {
 
-// Progress: the bars and symbols entered as the target has them, or -1 when the score holds
-// something off the target's path. A symbol still being chosen does not count, so a search
-// step is the fewest presses for one whole symbol (or bar). Nor does a bar that holds only
-// that symbol, when the target has another bar there: entering ran on into it as the bar
-// before filled, and a new bar chosen there replaces it.
-int progress(const Editor& editor, const Score& target) {
-    if (editor.scheme.mode() != ButtonScheme::Mode::entry) {
-        return entered_prefix(editor.model.score(), target);
-    }
-    Score without_open = editor.model.score();
-    const Position open = editor.model.cursor();
-    auto& symbols = without_open.bars.at(open.bar).symbols;
-    if (open.symbol < symbols.size()) {
-        symbols.erase(symbols.begin() + static_cast<std::ptrdiff_t>(open.symbol));
-    }
-    const int entered = entered_prefix(without_open, target);
-    if (entered >= 0 || !symbols.empty() || open.bar + 1 != without_open.bars.size()) {
-        return entered;
-    }
-    without_open.bars.pop_back();
-    return entered_prefix(without_open, target);
-}
-
 // Finer progress, for symbols too far from their proposal for a whole-symbol search: eight
 // per symbol entered, and one for each thing the symbol being chosen already has right.
 constexpr int kUnits = 8;
@@ -173,6 +150,24 @@ std::optional<Node> next_step(const Editor& from, const Score& target, Measure m
 }
 
 }  // namespace
+
+int progress(const Editor& editor, const Score& target) {
+    if (editor.scheme.mode() != ButtonScheme::Mode::entry) {
+        return entered_prefix(editor.model.score(), target);
+    }
+    Score without_open = editor.model.score();
+    const Position open = editor.model.cursor();
+    auto& symbols = without_open.bars.at(open.bar).symbols;
+    if (open.symbol < symbols.size()) {
+        symbols.erase(symbols.begin() + static_cast<std::ptrdiff_t>(open.symbol));
+    }
+    const int entered = entered_prefix(without_open, target);
+    if (entered >= 0 || !symbols.empty() || open.bar + 1 != without_open.bars.size()) {
+        return entered;
+    }
+    without_open.bars.pop_back();
+    return entered_prefix(without_open, target);
+}
 
 PressPlan plan_presses(const Editor& start, const Score& target, std::size_t state_limit) {
     PressPlan plan;

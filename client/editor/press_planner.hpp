@@ -27,4 +27,9 @@ PressPlan plan_presses(const Editor& start, const Score& target,
 // the target does not have at that point.
 int entered_prefix(const Score& score, const Score& target);
 
+// The planner's progress: the bars and symbols entered as the target has them, or -1 when the
+// score holds something off the target's path. A symbol still being chosen does not count, nor
+// a bar holding only that symbol where the target has another bar (entering ran on into it).
+int progress(const Editor& editor, const Score& target);
+
 }  // namespace vibscore::editor
