@@ -8,6 +8,7 @@
 #include "client/formats/grid_fit.hpp"
 #include "client/formats/json_reading.hpp"
 #include "score/limits.hpp"
+#include "score/xml_support.hpp"
 
 namespace vibscore::formats {
 
@@ -40,29 +41,35 @@ struct Curve {
         if (t <= points.front().first) {
             return points.front().second;
         }
-        for (std::size_t i = 1; i < points.size(); ++i) {
-            const auto& [t1, v1] = points[i];
-            if (t <= t1) {
-                const auto& [t0, v0] = points[i - 1];
-                return t1 > t0 ? v0 + (v1 - v0) * (t - t0) / (t1 - t0) : v1;
-            }
+        // The first point at or after t; the points' times never go back.
+        const auto after =
+            std::lower_bound(points.begin(), points.end(), t,
+                             [](const auto& point, double at) { return point.first < at; });
+        if (after == points.end()) {
+            return points.back().second;
         }
-        return points.back().second;
+        const auto& [t1, v1] = *after;
+        const auto& [t0, v0] = *std::prev(after);
+        return t1 > t0 ? v0 + (v1 - v0) * (t - t0) / (t1 - t0) : v1;
     }
 };
 
 // The control a parameter has at time t: that of the latest curve begun by then (`at_start`:
-// a curve beginning exactly at t counts), or `neutral` before any.
+// a curve beginning exactly at t counts; of curves beginning together the last in the file), or
+// `neutral` before any. `curves` is in order of start, stably (sort_curves), so each look-up
+// is a binary search: a file of many events and many curves costs n log n, not n squared.
 double control_at(const std::vector<Curve>& curves, double t, bool at_start, double neutral) {
-    const Curve* active = nullptr;
-    for (const auto& curve : curves) {
-        if (at_start ? curve.start <= t : curve.start < t) {
-            if (active == nullptr || curve.start >= active->start) {
-                active = &curve;
-            }
-        }
-    }
-    return active == nullptr ? neutral : active->value_at(t);
+    const auto by_start = [](double at, const Curve& curve) { return at < curve.start; };
+    const auto begun =
+        at_start ? std::upper_bound(curves.begin(), curves.end(), t, by_start)
+                 : std::lower_bound(curves.begin(), curves.end(), t,
+                                    [](const Curve& curve, double at) { return curve.start < at; });
+    return begun == curves.begin() ? neutral : std::prev(begun)->value_at(t);
+}
+
+void sort_curves(std::vector<Curve>& curves) {
+    std::stable_sort(curves.begin(), curves.end(),
+                     [](const Curve& a, const Curve& b) { return a.start < b.start; });
 }
 
 struct HapticEvent {
@@ -164,7 +171,20 @@ class AhapReader {
             }
         }
         if (haptic) {
+            within_limits(event, read);
             events.push_back(read);
+        }
+    }
+
+    // A score's length, checked event by event so that a pattern past it is refused where it
+    // passes it. (Its symbols need no check here: the shortest event takes some 50 bytes, so a
+    // 1 MiB file holds about 20,000.)
+    void within_limits(const JsonValue& event, const HapticEvent& read) {
+        if (past_the_hour(read.time + read.duration)) {
+            json_.report(event, "too long for a score: the event ends at " +
+                                    xml::format_number(read.time + read.duration) +
+                                    " s; a score lasts at most " +
+                                    xml::format_number(limits::max_score_seconds) + " s");
         }
     }
 
@@ -344,11 +364,14 @@ std::string write_ahap(const SoundTrack& track) {
 }
 
 ImportedScore read_ahap(std::string_view text, const std::string& file, const ChosenClef& chosen) {
+    check_document_size(text, file);
     const JsonDocument document(text, file);
     DiagnosticSink sink;
     AhapReader reader(document, sink);
     reader.read();
     sink.throw_if_any();
+    sort_curves(reader.intensity_curves);
+    sort_curves(reader.sharpness_curves);
 
     std::vector<SoundEvent> events;
     for (const auto& haptic : reader.events) {

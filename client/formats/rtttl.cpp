@@ -5,7 +5,9 @@
 #include <optional>
 
 #include "client/formats/grid_fit.hpp"
+#include "score/limits.hpp"
 #include "score/line_index.hpp"
+#include "score/xml_support.hpp"
 
 namespace vibscore::formats {
 
@@ -139,7 +141,9 @@ class RtttlParser {
 
     void read_notes(std::size_t begin, Parsed& parsed) {
         for_each_item(begin, text_.size(), [&](std::size_t offset, std::string_view item) {
-            read_note(offset, item, parsed);
+            if (!past_limits_) {
+                read_note(offset, item, parsed);
+            }
         });
         if (parsed.tones.empty()) {
             report(begin, "no notes after the second colon");
@@ -214,6 +218,9 @@ class RtttlParser {
             }
             ticks += ticks / 2;
         }
+        if (!within_limits(offset, ticks, parsed)) {
+            return;
+        }
         Parsed::Tone tone{ticks, std::nullopt, static_cast<std::ptrdiff_t>(offset)};
         if (semitone) {
             tone.pitch = 12.0 * (octave + 1) + *semitone;
@@ -221,16 +228,46 @@ class RtttlParser {
         parsed.tones.push_back(tone);
     }
 
+    // A score's limits, checked note by note so that a long text is refused where it passes
+    // them, with no more work than reading up to there.
+    bool within_limits(std::size_t offset, std::int64_t ticks, const Parsed& parsed) {
+        ticks_ += ticks;
+        const double seconds = static_cast<double>(ticks_) * 60.0 / parsed.bpm / ticks_per_quarter;
+        std::string broken;
+        if (parsed.tones.size() == limits::symbols) {
+            broken = "more than " + std::to_string(limits::symbols) +
+                     " notes and pauses; a score holds at most " + std::to_string(limits::symbols) +
+                     " symbols";
+        } else if (ticks_ > max_import_ticks) {
+            broken = "the tune passes " + std::to_string(max_import_ticks / ticks_per_quarter) +
+                     " beats here; a score holds at most " + std::to_string(limits::bars) +
+                     " bars of four beats";
+        } else if (past_the_hour(seconds)) {
+            broken = "the tune passes " + xml::format_number(limits::max_score_seconds) +
+                     " s here; a score lasts at most " +
+                     xml::format_number(limits::max_score_seconds) + " s";
+        }
+        if (broken.empty()) {
+            return true;
+        }
+        report(offset, "too long for a score: " + broken);
+        past_limits_ = true;
+        return false;
+    }
+
     std::string_view text_;
     const LineIndex& lines_;
     DiagnosticSink& sink_;
     int duration_ = 4;
     int octave_ = 6;
+    std::int64_t ticks_ = 0;
+    bool past_limits_ = false;
 };
 
 }  // namespace
 
 ImportedScore read_rtttl(std::string_view text, const std::string& file, const ChosenClef& chosen) {
+    check_document_size(text, file);
     const LineIndex lines(text, file);
     DiagnosticSink sink;
     RtttlParser parser(text, lines, sink);

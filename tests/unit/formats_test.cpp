@@ -10,6 +10,7 @@
 #include "client/formats/score_builder.hpp"
 #include "client/formats/sound_events.hpp"
 #include "score/clef_xml.hpp"
+#include "score/limits.hpp"
 #include "tests/support/run_command.hpp"
 #include "tests/support/support.hpp"
 
@@ -21,6 +22,7 @@ using testing::notes_in;
 using formats::ChosenClef;
 using formats::GridNote;
 using ::testing::HasSubstr;
+using ::testing::Not;
 
 ChosenClef lra_phone() {
     const auto path =
@@ -80,15 +82,83 @@ TEST(ScoreBuilder, ATempoChangeStartsABarOnAClefOfThatTempo) {
     EXPECT_EQ(imported.clefs[1].clef.tempo, 0.5);
 }
 
-TEST(ScoreBuilder, RefusesAPieceBeyondTheLimits) {
-    std::vector<GridNote> notes;
-    for (std::int64_t i = 0; i < 120'000; ++i) {
-        notes.push_back({i, 1, 1, 1});
-    }
-    EXPECT_THAT(first_error([&] {
-                    formats::build_score(notes, {{0, 0.001}}, 120'000, lra_phone(), "", "big");
-                }),
-                HasSubstr("big: too long for a score"));
+// Each limit of a score at its edge: the last value allowed and the first refused, with the
+// limit named in the message.
+TEST(ScoreBuilder, TakesTenThousandBarsAndRefusesOneMoreNamingTheBarLimit) {
+    const auto whole_notes = [](std::int64_t count, std::int64_t ticks) {
+        std::vector<GridNote> notes;
+        for (std::int64_t i = 0; i < count; ++i) {
+            notes.push_back({i * ticks, ticks, 1, 1});
+        }
+        return notes;
+    };
+    const auto build = [](const std::vector<GridNote>& notes) {
+        const auto end = notes.back().start + notes.back().length;
+        return formats::build_score(notes, {{0, 0.001}}, end, lra_phone(), "", "big");
+    };
+    EXPECT_EQ(build(whole_notes(10'000, 32)).score.bars.size(), 10'000u);
+    // Refused for its length before any of it is laid out...
+    EXPECT_EQ(first_error([&] { build(whole_notes(10'001, 32)); }),
+              "big: too long for a score: it lasts 40004 beats, more than fit in 10000 bars of "
+              "four; a score holds at most 10000 bars");
+    // ... or, when bars close early, for the bars it was laid out in.
+    EXPECT_EQ(build(whole_notes(10'000, 24)).score.bars.size(), 10'000u);
+    EXPECT_EQ(first_error([&] { build(whole_notes(10'001, 24)); }),
+              "big: too long for a score: 10001 bars; a score holds at most 10000 bars");
+}
+
+TEST(ScoreBuilder, TakesAHundredThousandSymbolsAndRefusesOneMore) {
+    // `notes` 32nds, one every `step` 32nds, and the piece `total` 32nds long.
+    const auto build = [](std::int64_t notes, std::int64_t step, std::int64_t total) {
+        std::vector<GridNote> grid;
+        for (std::int64_t i = 0; i < notes; ++i) {
+            grid.push_back({i * step, 1, 1, 1});
+        }
+        return formats::build_score(grid, {{0, 0.001}}, total, lra_phone(), "", "big");
+    };
+    const auto symbols = [](const formats::ImportedScore& imported) {
+        std::size_t count = 0;
+        for (const auto& bar : imported.score.bars) {
+            count += bar.symbols.size();
+        }
+        return count;
+    };
+    // Touching 32nds, one symbol each: refused for their count before the layout.
+    EXPECT_EQ(symbols(build(100'000, 1, 100'000)), 100'000u);
+    EXPECT_EQ(first_error([&] { build(100'001, 1, 100'001); }),
+              "big: too long for a score: 100001 notes; a score holds at most 100000 symbols");
+    // A 32nd rest after each 32nd note: the rests take the laid-out score past the limit.
+    EXPECT_EQ(symbols(build(50'000, 2, 100'000)), 100'000u);
+    EXPECT_EQ(first_error([&] { build(50'001, 2, 100'001); }),
+              "big: too long for a score: 100001 symbols (notes, tied parts and rests); a score "
+              "holds at most 100000 symbols");
+}
+
+TEST(ScoreBuilder, TakesAnHourAndRefusesA32ndMore) {
+    const auto build = [](std::int64_t ticks) {
+        return formats::build_score({{0, ticks, 1, 1}}, {{0, 0.5}}, ticks, lra_phone(), "", "long");
+    };
+    // At 0.5 s a quarter an hour is 7200 quarters: 57600 32nds.
+    EXPECT_EQ(build(57'600).score.bars.size(), 1800u);
+    EXPECT_EQ(first_error([&] { build(57'601); }),
+              "long: too long for a score: it lasts 3600.062 s; a score lasts at most 3600 s");
+}
+
+TEST(ScoreBuilder, TakesThirtyTwoTemposAndRefusesTheThirtyThirdNamingTheClefLimit) {
+    // A ritardando: a quarter note per bar, each bar slower.
+    const auto ritardando = [](int bars) {
+        std::vector<GridNote> notes;
+        std::vector<formats::TempoChange> tempi;
+        for (int i = 0; i < bars; ++i) {
+            notes.push_back({i * 8, 8, 1, 1});
+            tempi.push_back({i * 8, 0.5 + 0.01 * i});
+        }
+        return formats::build_score(notes, tempi, bars * 8, lra_phone(), "", "rit.mid");
+    };
+    EXPECT_EQ(ritardando(32).clefs.size(), 32u);
+    EXPECT_EQ(first_error([&] { ritardando(33); }),
+              "rit.mid: too many tempos for a score: 33, each on a clef of its own; a score "
+              "declares at most 32 clefs");
 }
 
 TEST(GridFit, KeepsTheClefsTempoWhenTheTimesSitOnItsGrid) {
@@ -253,7 +323,81 @@ TEST(Ahap, NamesTheLineAndColumnOfWhatIsWrong) {
     EXPECT_EQ(read("{\"Pattern\": []}"), "p.ahap: holds no notes or rests to make a score of");
 }
 
+TEST(Ahap, AnEventEndingOnTheHourIsReadAndOneEndingLaterIsRefusedWhereItIs) {
+    const auto pattern = [](const std::string& time) {
+        return "{\"Pattern\": [\n {\"Event\": {\"Time\": " + time +
+               ", \"EventType\": \"HapticContinuous\", \"EventDuration\": 30}}]}";
+    };
+    EXPECT_EQ(notes_in(formats::read_ahap(pattern("3570"), "p.ahap", lra_phone()).score).size(),
+              38u);  // 30 s as tied whole notes of 0.8 s: 37 and a half
+    EXPECT_EQ(first_error([&] { formats::read_ahap(pattern("3570.5"), "p.ahap", lra_phone()); }),
+              "p.ahap:2:12: too long for a score: the event ends at 3600.5 s; a score lasts at "
+              "most 3600 s");
+}
+
+TEST(Formats, EveryReaderRefusesATextLargerThanAScoreDocument) {
+    // At the limit the text is read (and found wanting for what it holds); a byte more and it
+    // is refused for its size.
+    const std::string at_limit(limits::document_bytes, ' ');
+    const std::string over(limits::document_bytes + 1, ' ');
+    const auto readers = std::vector<std::function<void(const std::string&)>>{
+        [](const std::string& t) { formats::read_ahap(t, "f", lra_phone()); },
+        [](const std::string& t) { formats::read_android_json(t, "f", lra_phone()); },
+        [](const std::string& t) { formats::read_android_xml(t, "f", lra_phone()); },
+        [](const std::string& t) { formats::read_rtttl(t, "f", lra_phone()); },
+    };
+    for (const auto& read : readers) {
+        EXPECT_THAT(first_error([&] { read(at_limit); }), Not(HasSubstr("larger than")));
+        EXPECT_EQ(first_error([&] { read(over); }),
+                  "f: larger than the 1048576-byte limit for a document");
+    }
+}
+
 // --- Android ---------------------------------------------------------------------------------
+
+TEST(Android, AWaveformOfAnHourIsReadAndAMillisecondMoreIsRefusedAtItsStep) {
+    EXPECT_FALSE(
+        notes_in(
+            formats::read_android_json(R"({"timings": [0, 3600000]})", "v.json", lra_phone()).score)
+            .empty());
+    EXPECT_EQ(first_error([&] {
+                  formats::read_android_json(R"({"timings": [0, 3600000, 1]})", "v.json",
+                                             lra_phone());
+              }),
+              "v.json:1:26: too long for a score: the pattern reaches 3600001 ms at this step; a "
+              "score lasts at most 3600000 ms (3600 s)");
+    const auto entries = [](const std::string& last) {
+        return "<vibration-effect><waveform-effect>\n"
+               "<waveform-entry durationMs=\"3600000\" amplitude=\"255\"/>\n" +
+               last + "</waveform-effect></vibration-effect>";
+    };
+    EXPECT_FALSE(
+        notes_in(formats::read_android_xml(entries(""), "v.xml", lra_phone()).score).empty());
+    EXPECT_EQ(first_error([&] {
+                  formats::read_android_xml(
+                      entries("<waveform-entry durationMs=\"1\" amplitude=\"0\"/>"), "v.xml",
+                      lra_phone());
+              }),
+              "v.xml:3:1: too long for a score: the pattern reaches 3600001 ms at this step; a "
+              "score lasts at most 3600000 ms (3600 s)");
+}
+
+TEST(Android, AHundredThousandStepsAreReadAndOneMoreIsRefusedAtItsStep) {
+    const auto steps = [](int count) {
+        std::string text = "{\"timings\": [";
+        for (int i = 0; i < count; ++i) {
+            text += i == 0 ? "25" : ",25";
+        }
+        return text + "]}";
+    };
+    EXPECT_EQ(
+        notes_in(formats::read_android_json(steps(100'000), "v.json", lra_phone()).score).size(),
+        50'000u);
+    EXPECT_EQ(
+        first_error([&] { formats::read_android_json(steps(100'001), "v.json", lra_phone()); }),
+        "v.json:1:300014: too long for a score: more than 100000 steps; a score holds at "
+        "most 100000 symbols");
+}
 
 TEST(Android, TheWaveformStepsAddUpToThePieceAtEachNotesOwnStrength) {
     formats::SoundTrack track;
@@ -392,6 +536,45 @@ TEST(Rtttl, KeepsTheClefWhenTheBpmMatchesItsTempo) {
     ASSERT_EQ(imported.clefs.size(), 1u);
     EXPECT_EQ(imported.clefs[0].id, "lra-phone");
     EXPECT_FALSE(imported.clefs[0].retimed);
+}
+
+TEST(Rtttl, ATuneOfAnHourIsReadAndANoteMoreIsRefusedWhereItIs) {
+    // At 1 bpm a whole note lasts 240 s: fifteen of them are an hour.
+    const auto wholes = [](int count, int bpm) {
+        std::string text = "t:d=1,o=5,b=" + std::to_string(bpm) + ":c";
+        for (int i = 1; i < count; ++i) {
+            text += ",c";
+        }
+        return text;
+    };
+    EXPECT_EQ(notes_in(formats::read_rtttl(wholes(15, 1), "r.rtttl", lra_phone()).score).size(),
+              15u);
+    EXPECT_EQ(first_error([&] { formats::read_rtttl(wholes(16, 1), "r.rtttl", lra_phone()); }),
+              "r.rtttl:1:45: too long for a score: the tune passes 3600 s here; a score lasts at "
+              "most 3600 s");
+    // At 900 bpm ten thousand bars of whole notes take 2667 s: the bars bind first.
+    EXPECT_EQ(
+        notes_in(formats::read_rtttl(wholes(10'000, 900), "r.rtttl", lra_phone()).score).size(),
+        10'000u);
+    EXPECT_EQ(
+        first_error([&] { formats::read_rtttl(wholes(10'001, 900), "r.rtttl", lra_phone()); }),
+        "r.rtttl:1:20017: too long for a score: the tune passes 40000 beats here; a score holds "
+        "at most 10000 bars of four beats");
+}
+
+TEST(Rtttl, AHundredThousandNotesAreReadAndOneMoreIsRefusedWhereItIs) {
+    const auto notes = [](int count) {
+        std::string text = "t:d=32,o=5,b=900:c";
+        for (int i = 1; i < count; ++i) {
+            text += ",c";
+        }
+        return text;
+    };
+    EXPECT_EQ(notes_in(formats::read_rtttl(notes(100'000), "r.rtttl", lra_phone()).score).size(),
+              100'000u);
+    EXPECT_EQ(first_error([&] { formats::read_rtttl(notes(100'001), "r.rtttl", lra_phone()); }),
+              "r.rtttl:1:200018: too long for a score: more than 100000 notes and pauses; a "
+              "score holds at most 100000 symbols");
 }
 
 TEST(Rtttl, NamesTheLineAndColumnOfWhatIsWrong) {
