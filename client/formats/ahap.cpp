@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "client/formats/grid_fit.hpp"
 #include "client/formats/json_reading.hpp"
@@ -96,6 +97,13 @@ class AhapReader {
             if (const auto* project = metadata->find("Project")) {
                 title = json_.string(*project, "Metadata Project").value_or("");
             }
+            // vibscore's exports record their tempo; Metadata is free-form, so anything else
+            // under that key is left alone.
+            if (const auto* tempo = metadata->find("Tempo");
+                tempo != nullptr && tempo->kind == JsonValue::Kind::number &&
+                tempo->number >= limits::min_tempo_s && tempo->number <= limits::max_tempo_s) {
+                this->tempo = tempo->number;
+            }
         }
         const auto* pattern = json_.member(root, "Pattern", "the AHAP file");
         if (pattern == nullptr || !json_.expect(*pattern, JsonValue::Kind::array, "Pattern")) {
@@ -107,8 +115,12 @@ class AhapReader {
     }
 
     std::string title;
+    std::optional<double> tempo;
     std::vector<HapticEvent> events;
     std::vector<Curve> intensity_curves, sharpness_curves;
+    // Where the last parameter or curve begins: Core Haptics counts a pattern's length to the
+    // end of its last event or the start of its last parameter, whichever is later.
+    double last_parameter = 0.0;
 
   private:
     void read_entry(const JsonValue& entry) {
@@ -251,6 +263,7 @@ class AhapReader {
         auto* target = curves_for(*id_value, *id, min);
         Curve curve;
         curve.start = json_.number(*time, "Time", 0.0, limits::max_score_seconds).value_or(0.0);
+        last_parameter = std::max(last_parameter, curve.start);
         for (const auto& point : points->items) {
             if (!json_.expect(point, JsonValue::Kind::object, "a control point")) {
                 continue;
@@ -292,6 +305,9 @@ class AhapReader {
         auto* target = curves_for(*id_value, *id, min);
         const auto t = json_.number(*time, "Time", 0.0, limits::max_score_seconds);
         const auto v = json_.number(*value, *id + " value", min, 1.0);
+        if (t) {
+            last_parameter = std::max(last_parameter, *t);
+        }
         if (target != nullptr && t && v) {
             target->push_back({*t, {{*t, *v}}});
         }
@@ -355,11 +371,20 @@ std::string write_ahap(const SoundTrack& track) {
         }
         control_left_on = (ramps || glides) && next_touches;
     }
-    Json document{{"Version", 1.0},
-                  {"Metadata",
-                   {{"Project", track.title},
-                    {"Description", "exported by vibscore from a vibrotactile score"}}},
-                  {"Pattern", std::move(pattern)}};
+    // The rest at the end: Core Haptics counts a pattern's length to the end of its last event
+    // or the start of its last parameter, so a curve that holds the intensity control at
+    // neutral, beginning where the piece ends, keeps the period of a pattern played in a loop.
+    const double last_end = events.empty() ? 0.0 : events.back().end();
+    if (track.duration > last_end + 1e-9) {
+        pattern.push_back(curve("HapticIntensityControl", track.duration, {{0.0, 1.0}}));
+    }
+    Json metadata{{"Project", track.title},
+                  {"Description", "exported by vibscore from a vibrotactile score"}};
+    if (track.tempo > 0.0) {
+        metadata["Tempo"] = track.tempo;  // seconds per quarter note, for importing it back
+    }
+    Json document{
+        {"Version", 1.0}, {"Metadata", std::move(metadata)}, {"Pattern", std::move(pattern)}};
     return document.dump(2) + "\n";
 }
 
@@ -391,10 +416,15 @@ ImportedScore read_ahap(std::string_view text, const std::string& file, const Ch
                                   : std::make_pair(event.strength_start, event.pitch_start);
         events.push_back(event);
     }
+    double total = reader.last_parameter;
+    for (const auto& event : events) {
+        total = std::max(total, event.end());
+    }
     const int strings = static_cast<int>(chosen.clef.strings.size());
-    const auto placed = place_on_grid(events, 0.0, chosen.clef, [&](const SoundEvent& event) {
-        return string_at(event.pitch_start, strings);
-    });
+    const auto placed = place_on_grid(
+        events, total, chosen.clef,
+        [&](const SoundEvent& event) { return string_at(event.pitch_start, strings); },
+        reader.tempo);
     return build_score(placed.notes, {{0, placed.tempo}}, placed.total_ticks, chosen, reader.title,
                        file);
 }

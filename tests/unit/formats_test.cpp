@@ -9,6 +9,7 @@
 #include "client/formats/rtttl.hpp"
 #include "client/formats/score_builder.hpp"
 #include "client/formats/sound_events.hpp"
+#include "daemon/render/performance.hpp"
 #include "score/clef_xml.hpp"
 #include "score/limits.hpp"
 #include "tests/support/run_command.hpp"
@@ -323,6 +324,54 @@ TEST(Ahap, NamesTheLineAndColumnOfWhatIsWrong) {
     EXPECT_EQ(read("{\"Pattern\": []}"), "p.ahap: holds no notes or rests to make a score of");
 }
 
+// The length of an imported score in seconds, as its clefs play it.
+double seconds_of(const formats::ImportedScore& imported) {
+    double seconds = 0.0;
+    for (const auto& bar : imported.score.bars) {
+        for (const auto& clef : imported.clefs) {
+            if (clef.id == bar.clef) {
+                seconds += Score::beat_count(bar) * clef.clef.tempo;
+            }
+        }
+    }
+    return seconds;
+}
+
+// Issue 25: a looping ringtone exported to AHAP lost its closing rest (3.2 s became 2.8 s).
+// Core Haptics counts a pattern's length to its last event's end or its last parameter's start,
+// so a neutral intensity curve where the piece ends keeps the period.
+TEST(Ahap, APatternEndsWithANeutralCurveWhereThePieceEndsSoALoopKeepsItsPeriod) {
+    formats::SoundTrack track;
+    track.duration = 3.2;
+    track.tempo = 0.2;
+    track.events.push_back({0.0, 0.4, 1.0, 1.0, 1.0, 0.2, 0.2, 0, 0});
+    track.events.push_back({2.4, 0.4, 1.0, 1.0, 1.0, 0.2, 0.2, 0, 0});
+    const auto text = formats::write_ahap(track);
+    const auto json = nlohmann::json::parse(text);
+    EXPECT_EQ(json.at("Metadata").at("Tempo"), 0.2);
+    const auto& last = json.at("Pattern").back().at("ParameterCurve");
+    EXPECT_EQ(last.at("ParameterID"), "HapticIntensityControl");
+    EXPECT_EQ(last.at("Time"), 3.2);
+    EXPECT_EQ(last.at("ParameterCurveControlPoints"),
+              nlohmann::json::parse(R"([{"Time": 0.0, "ParameterValue": 1.0}])"));
+    EXPECT_DOUBLE_EQ(seconds_of(formats::read_ahap(text, "r.ahap", lra_phone())), 3.2);
+    // A piece that ends with its last note needs no such curve.
+    track.duration = 2.8;
+    EXPECT_TRUE(
+        nlohmann::json::parse(formats::write_ahap(track)).at("Pattern").back().contains("Event"));
+}
+
+TEST(Ahap, APatternLastsToItsLastEventsEndOrItsLastParametersStartWhicheverIsLater) {
+    const auto pattern = [](const std::string& parameter_time) {
+        return R"({"Pattern": [
+  {"Event": {"Time": 0, "EventType": "HapticContinuous", "EventDuration": 0.4}},
+  {"Parameter": {"ParameterID": "HapticIntensityControl", "Time": )" +
+               parameter_time + R"(, "ParameterValue": 1.0}}]})";
+    };
+    EXPECT_DOUBLE_EQ(seconds_of(formats::read_ahap(pattern("1.6"), "p.ahap", lra_phone())), 1.6);
+    EXPECT_DOUBLE_EQ(seconds_of(formats::read_ahap(pattern("0.2"), "p.ahap", lra_phone())), 0.4);
+}
+
 TEST(Ahap, AnEventEndingOnTheHourIsReadAndOneEndingLaterIsRefusedWhereItIs) {
     const auto pattern = [](const std::string& time) {
         return "{\"Pattern\": [\n {\"Event\": {\"Time\": " + time +
@@ -354,6 +403,63 @@ TEST(Formats, EveryReaderRefusesATextLargerThanAScoreDocument) {
 }
 
 // --- Android ---------------------------------------------------------------------------------
+
+// Each note's onset and length in seconds, as the score's clefs play it; the tied parts of a
+// note too long for one symbol (which touch) as one.
+std::vector<std::pair<double, double>> played_notes(const formats::ImportedScore& imported) {
+    ParsedScore parsed{imported.score, {}};
+    parsed.where.clefs.resize(imported.score.clefs.size());
+    for (const auto& bar : imported.score.bars) {
+        parsed.where.bars.emplace_back();
+        parsed.where.symbols.emplace_back(bar.symbols.size());
+    }
+    const auto bundle = bind_clefs(
+        std::move(parsed), "imported", [&](const ClefDeclaration& declaration, const auto&) {
+            for (const auto& clef : imported.clefs) {
+                if (clef.id == declaration.id) {
+                    return clef.clef;
+                }
+            }
+            throw DocumentError({"imported"}, "no clef " + declaration.id);
+        });
+    std::vector<std::pair<double, double>> notes;
+    const render::Performance performance(bundle);
+    for (const auto& timing : performance.timeline()) {
+        if (!timing.is_note) {
+            continue;
+        }
+        if (!notes.empty() &&
+            std::abs(notes.back().first + notes.back().second - timing.onset) < 1e-9) {
+            notes.back().second += timing.length;
+        } else {
+            notes.emplace_back(timing.onset, timing.length);
+        }
+    }
+    return notes;
+}
+
+// Issue 27: Android waveforms' 10-12 ms steps came back as 25-33 ms notes. Lengths are kept to
+// the millisecond: on the coarsest grid that holds them, here 1 ms.
+TEST(Android, StepsOfTenToTwelveMillisecondsKeepTheirLengths) {
+    const auto imported = formats::read_android_json(
+        R"({"timings": [0, 12, 188, 10, 190, 11, 189, 10, 190]})", "v.json", lra_phone());
+    const auto notes = played_notes(imported);
+    constexpr double kOnsets[] = {0.0, 0.2, 0.4, 0.6};
+    constexpr double kLengths[] = {0.012, 0.010, 0.011, 0.010};
+    ASSERT_EQ(notes.size(), 4u);
+    for (std::size_t i = 0; i < notes.size(); ++i) {
+        EXPECT_NEAR(notes[i].first, kOnsets[i], 1e-9) << "note " << i + 1;
+        EXPECT_NEAR(notes[i].second, kLengths[i], 1e-9) << "note " << i + 1;
+    }
+    EXPECT_NEAR(seconds_of(imported), 0.8, 1e-9);
+    // 10 ms steps alone sit on a 10 ms grid: a 32nd note at 80 ms a quarter.
+    const auto tens =
+        formats::read_android_json(R"({"timings": [0, 10, 190, 10, 190]})", "v.json", lra_phone());
+    EXPECT_DOUBLE_EQ(tens.clefs.at(0).clef.tempo, 0.08);
+    const auto ten_notes = notes_in(tens.score);
+    ASSERT_EQ(ten_notes.size(), 2u);
+    EXPECT_EQ(ten_notes[0].length, Length::thirty_second);
+}
 
 TEST(Android, AWaveformOfAnHourIsReadAndAMillisecondMoreIsRefusedAtItsStep) {
     EXPECT_FALSE(
