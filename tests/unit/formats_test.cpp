@@ -644,6 +644,66 @@ TEST(Rtttl, KeepsTheClefWhenTheBpmMatchesItsTempo) {
     EXPECT_FALSE(imported.clefs[0].retimed);
 }
 
+// What real collections hold besides plain RTTTL (issue 27): RTX's s= (style) and l= (loops),
+// control pairs with no "=" ("B715", "SS"), "_" for a flat, and the dot on either side of the
+// octave.
+TEST(Rtttl, ReadsFlatsAndTheDotOnEitherSideOfTheOctave) {
+    const auto imported =
+        formats::read_rtttl("t:d=4,o=5,b=120:a_5,a,8a#5,8a_.5,8a_5.", "t.rtttl", lra_phone());
+    const auto notes = notes_in(imported.score);
+    ASSERT_EQ(notes.size(), 5u);
+    // A flat 5 < A5 < A sharp 5: three pitches spread over the staff.
+    EXPECT_EQ(notes[0].string, 1);
+    EXPECT_EQ(notes[1].string, 4);
+    EXPECT_EQ(notes[2].string, 6);
+    EXPECT_EQ(notes[3].string, 1);
+    EXPECT_EQ(notes[3].length, Length::eighth_dot);
+    EXPECT_EQ(notes[4].length, Length::eighth_dot);
+    EXPECT_EQ(first_error([&] { formats::read_rtttl("t:d=4:p_", "r.rtttl", lra_phone()); }),
+              "r.rtttl:1:7: note \"p_\": a pause cannot be flat");
+}
+
+TEST(Rtttl, ReadsRtxStylesAsTiesOrStaccatoAndAcceptsLoopsUpToFifteen) {
+    // Continuous: notes that touch are tied by legato; a pause ends the tie.
+    const auto continuous =
+        formats::read_rtttl("t:d=8,o=5,b=120,s=C:c,d,p,e", "t.rtttl", lra_phone());
+    auto notes = notes_in(continuous.score);
+    ASSERT_EQ(notes.size(), 3u);
+    EXPECT_NE(notes[0].legato, 0);
+    EXPECT_EQ(notes[0].legato, notes[1].legato);
+    EXPECT_EQ(notes[2].legato, 0);
+    // Staccato from "SS" on, among the notes: each note half its length, a rest the other half;
+    // a 32nd, the grid's finest, stays one.
+    const auto staccato = formats::read_rtttl("t:d=4,o=5,b=120:c,SS,d,32e", "t.rtttl", lra_phone());
+    const auto& symbols = staccato.score.bars.at(0).symbols;
+    ASSERT_EQ(symbols.size(), 4u);
+    EXPECT_EQ(std::get<Note>(symbols[0]).length, Length::quarter);
+    EXPECT_EQ(std::get<Note>(symbols[1]).length, Length::eighth);
+    EXPECT_EQ(std::get<Rest>(symbols[2]).length, Length::eighth);
+    EXPECT_EQ(std::get<Note>(symbols[3]).length, Length::thirty_second);
+    // A loop count is how the tune is played, not part of it: one pass is the score.
+    EXPECT_EQ(notes_in(formats::read_rtttl("t:l=15:c", "t.rtttl", lra_phone()).score).size(), 1u);
+    EXPECT_EQ(first_error([&] { formats::read_rtttl("t:l=16:c", "r.rtttl", lra_phone()); }),
+              "r.rtttl:1:3: \"l=16\" is out of range (d: 1, 2, 4, 8, 16, 32; o: 0 to 9; b: 1 to "
+              "900; l: 0 to 15)");
+    EXPECT_EQ(first_error([&] { formats::read_rtttl("t:s=X:c", "r.rtttl", lra_phone()); }),
+              "r.rtttl:1:3: \"s=X\": the style is N (natural), C (continuous) or S (staccato)");
+}
+
+TEST(Rtttl, ReadsControlPairsWithoutEqualsAndTempoChangesAmongTheNotes) {
+    // "B715": RTX's "=" is optional. An unknown control name is ignored, as RTX asks.
+    const auto alert = formats::read_rtttl("Alert:B715,x=3:32C,32P", "a.rtttl", lra_phone());
+    ASSERT_EQ(alert.clefs.size(), 1u);
+    EXPECT_DOUBLE_EQ(alert.clefs[0].clef.tempo, 60.0 / 715);
+    // b= among the notes: the bar from there on is on a clef of that tempo.
+    const auto slower = formats::read_rtttl("t:d=4,o=5,b=120:c,b=60,d", "t.rtttl", lra_phone());
+    ASSERT_EQ(slower.score.bars.size(), 2u);
+    EXPECT_EQ(slower.score.bars[0].clef, "lra-phone-120bpm");
+    EXPECT_EQ(slower.score.bars[1].clef, "lra-phone-60bpm");
+    EXPECT_EQ(first_error([&] { formats::read_rtttl("t:d=4:c,d=8,e", "r.rtttl", lra_phone()); }),
+              "r.rtttl:1:9: \"d=8\": among the notes only o=, b= and s= may change");
+}
+
 TEST(Rtttl, ATuneOfAnHourIsReadAndANoteMoreIsRefusedWhereItIs) {
     // At 1 bpm a whole note lasts 240 s: fifteen of them are an hour.
     const auto wholes = [](int count, int bpm) {
@@ -693,7 +753,7 @@ TEST(Rtttl, NamesTheLineAndColumnOfWhatIsWrong) {
               "r.rtttl:2:6: note \"3d\": the duration is 1, 2, 4, 8, 16 or 32");
     EXPECT_EQ(read("tune:d=4,o=5,b=1200:c"),
               "r.rtttl:1:14: \"b=1200\" is out of range (d: 1, 2, 4, 8, 16, 32; o: 0 to 9; b: 1 "
-              "to 900)");
+              "to 900; l: 0 to 15)");
     EXPECT_EQ(read("tune:c,d"),
               "r.rtttl:1:1: an RTTTL text is NAME:DEFAULTS:NOTES, e.g. tune:d=4,o=5,b=120:c,e,g");
     EXPECT_EQ(read("t:d=4:32c."),
