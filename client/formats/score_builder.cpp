@@ -138,14 +138,11 @@ std::string seconds_limit() {
     return "a score lasts at most " + seconds_text(limits::max_score_seconds);
 }
 
-// The limits the piece's length and note count alone decide, checked before anything is laid
+// The limits the piece's length alone decides, checked before anything is laid
 // out: past them the layout would cost time and memory in proportion to the length a file
 // claims, which a few bytes of MIDI can make years.
 void check_length(const std::vector<GridNote>& notes, const std::vector<TempoChange>& tempi,
                   std::int64_t total_ticks, const std::string& file) {
-    if (notes.size() > limits::symbols) {
-        too_long(file, std::to_string(notes.size()) + " notes; " + symbols_limit());
-    }
     std::int64_t end = std::max<std::int64_t>(total_ticks, 0);
     for (const auto& note : notes) {
         end = std::max(end, note.start + std::max<std::int64_t>(note.length, 1));
@@ -290,6 +287,10 @@ ImportedScore build_score(std::vector<GridNote> notes, std::vector<TempoChange> 
             voice.back().length = note.start - voice.back().start;
         }
         voice.push_back(note);
+    }
+    // Each note of the one voice is a symbol at least (of a chord, one note is).
+    if (voice.size() > limits::symbols) {
+        too_long(file, std::to_string(voice.size()) + " notes; " + symbols_limit());
     }
     for (std::size_t i = 0; i < voice.size(); ++i) {
         voice[i].length = std::max<std::int64_t>(voice[i].length, 1);

@@ -128,6 +128,14 @@ TEST(ScoreBuilder, TakesAHundredThousandSymbolsAndRefusesOneMore) {
     EXPECT_EQ(symbols(build(100'000, 1, 100'000)), 100'000u);
     EXPECT_EQ(first_error([&] { build(100'001, 1, 100'001); }),
               "big: too long for a score: 100001 notes; a score holds at most 100000 symbols");
+    // Notes are counted in the one voice: a chord's notes are one.
+    std::vector<GridNote> chords;
+    for (std::int64_t i = 0; i < 100'000; ++i) {
+        chords.push_back({i, 1, 1, 1});
+        chords.push_back({i, 1, 2, 1});
+    }
+    EXPECT_EQ(symbols(formats::build_score(chords, {{0, 0.001}}, 100'000, lra_phone(), "", "c")),
+              100'000u);
     // A 32nd rest after each 32nd note: the rests take the laid-out score past the limit.
     EXPECT_EQ(symbols(build(50'000, 2, 100'000)), 100'000u);
     EXPECT_EQ(first_error([&] { build(50'001, 2, 100'001); }),
