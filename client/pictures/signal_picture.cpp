@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <vector>
 
+#include "client/pictures/axis_ticks.hpp"
 #include "client/pictures/picture_text.hpp"
 #include "daemon/render/sampler.hpp"
 
@@ -17,24 +18,6 @@ constexpr double kLeft = 58.0, kRight = 16.0, kTop = 48.0, kBottom = 42.0;
 constexpr double kBarLabelBaseline = kTop - 4;
 constexpr double kLegendWidth = 230.0;
 constexpr int kSamplesPerPixel = 8;
-
-std::string seconds_label(double t, double step) {
-    char text[32];
-    std::snprintf(text, sizeof text, step < 0.1 ? "%.2f" : step < 1 ? "%.1f" : "%.0f", t);
-    return text;
-}
-
-// A round step for about `count` ticks over `span`: 1, 2 or 5 times a power of ten.
-double tick_step(double span, int count) {
-    const double rough = span / count;
-    const double power = std::pow(10.0, std::floor(std::log10(rough)));
-    for (const double factor : {1.0, 2.0, 5.0, 10.0}) {
-        if (factor * power >= rough) {
-            return factor * power;
-        }
-    }
-    return 10 * power;
-}
 
 }  // namespace
 
@@ -124,7 +107,7 @@ void SignalPicture::draw_axes(cairo_t* cairo, Layers layers) const {
             cairo_stroke(cairo);
         }
         if (layers & axis_labels) {
-            const auto label = seconds_label(t, step);
+            const auto label = tick_label(t, step);
             show_text_at(cairo, x - text_width(cairo, label) / 2, bottom + 17, label);
         }
     }

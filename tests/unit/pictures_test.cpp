@@ -8,12 +8,17 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <memory>
+#include <optional>
 #include <set>
+#include <sstream>
 #include <utility>
 
 #include "client/formats/rtttl.hpp"
+#include "client/pictures/clef_picture.hpp"
 #include "client/pictures/signal_picture.hpp"
 #include "client/pictures/staff_picture.hpp"
+#include "daemon/render/waveform.hpp"
 #include "score/bundle.hpp"
 #include "tests/support/run_command.hpp"
 #include "tests/support/support.hpp"
@@ -311,27 +316,93 @@ TEST(StaffPicture, Figure23aFirstMeasureShowsWhatTheGoldenImageShows) {
               "");
 }
 
-// The README shows these two; the commands beside them must still draw them.
-TEST(Pictures, TheReadmePicturesAreWhatTheirCommandsDraw) {
+// A documented picture command, as README.md and docs/*.md write it:
+// "build/client/vibscore show clefs/x.score.xml --png docs/pictures/x.png".
+struct PictureCommand {
+    std::string line;
+    std::vector<std::string> words;  // after "vibscore"
+    std::string document, picture;   // the document drawn, and the picture written
+};
+
+std::vector<PictureCommand> documented_picture_commands(const std::filesystem::path& root) {
+    std::vector<PictureCommand> commands;
+    for (const char* file : {"README.md", "docs/formats.md"}) {
+        std::istringstream text(testing::read_file(root / file));
+        for (std::string line; std::getline(text, line);) {
+            const auto at = line.find("build/client/vibscore ");
+            if (at == std::string::npos || line.find("--png docs/pictures/") == std::string::npos) {
+                continue;
+            }
+            PictureCommand command{line, {}, {}, {}};
+            std::istringstream words(
+                line.substr(at + std::string("build/client/vibscore ").size()));
+            for (std::string word; words >> word && word != "#";) {
+                command.words.push_back(word);
+            }
+            for (std::size_t w = 1; w < command.words.size(); ++w) {
+                if (command.words[w] == "--png" && w + 1 < command.words.size()) {
+                    command.picture = command.words[++w];
+                } else if (command.words[w].starts_with("--")) {
+                    ++w;  // an option's value
+                } else if (command.document.empty()) {
+                    command.document = command.words[w];
+                }
+            }
+            commands.push_back(command);
+        }
+    }
+    return commands;
+}
+
+// The picture a command draws, drawn in-process, for the golden check's text layers.
+struct InProcess {
+    std::optional<Score> score;
+    std::optional<Clef> clef;
+    std::optional<ScoreBundle> bundle;
+    std::optional<render::Performance> performance;
+    std::unique_ptr<pictures::Drawing> picture;
+};
+
+std::unique_ptr<InProcess> draw_in_process(const std::string& verb,
+                                           const std::filesystem::path& document) {
+    auto drawn = std::make_unique<InProcess>();
+    const auto text = read_document_file(document);
+    if (verb == "render") {
+        drawn->bundle = load_score_file(document);
+        drawn->performance.emplace(*drawn->bundle);
+        drawn->picture =
+            std::make_unique<SignalPicture>(*drawn->performance, drawn->bundle->score.title);
+    } else if (document_kind(text, document.string()) == DocumentKind::clef) {
+        drawn->clef = read_clef(text, document.string());
+        drawn->picture =
+            std::make_unique<pictures::ClefPicture>(*drawn->clef, document.filename().string());
+    } else {
+        drawn->score = read_score(text, document.string()).score;
+        drawn->picture = std::make_unique<StaffPicture>(*drawn->score);
+    }
+    return drawn;
+}
+
+// The README and docs show pictures; the commands beside them must still draw them.
+TEST(Pictures, EveryPictureInTheDocsIsWhatItsCommandDraws) {
     TempDir dir;
-    const auto pictures = shipped("..") / "docs" / "pictures";
-    const auto score = shipped_score("ode-to-joy.score.xml");
-    const auto bundle = load_score_file(shipped("ode-to-joy.score.xml"));
-    const render::Performance performance(bundle);
-    const StaffPicture staff(score);
-    const SignalPicture signal(performance, score.title);
-    for (const char* verb : {"show", "render"}) {
-        SCOPED_TRACE(verb);
-        const bool show = verb == std::string("show");
-        const auto name = std::string("ode-to-joy-") + (show ? "staff" : "signal") + ".png";
-        const auto drawn = dir.path() / name;
-        const auto result = testing::run_command({testing::required_env("VIBSCORE"), verb,
-                                                  shipped("ode-to-joy.score.xml").string(), "--png",
-                                                  drawn.string()});
+    const auto root = shipped("..");
+    const auto commands = documented_picture_commands(root);
+    ASSERT_GE(commands.size(), 3u);  // the README's staff and signal, the docs' clef
+    for (const auto& command : commands) {
+        SCOPED_TRACE(command.line);
+        std::vector<std::string> argv{testing::required_env("VIBSCORE")};
+        for (const auto& word : command.words) {
+            // Paths are the checkout's; the picture is drawn afresh, not over the committed one.
+            argv.push_back(word == command.picture ? (dir.path() / "drawn.png").string()
+                           : std::filesystem::exists(root / word) ? (root / word).string()
+                                                                  : word);
+        }
+        const auto result = testing::run_command(argv);
         ASSERT_EQ(result.exit_code, 0) << result.err;
-        EXPECT_EQ(differences(pictures / name, Image::read_png(drawn),
-                              testing::GoldenCheck(
-                                  show ? static_cast<const pictures::Drawing&>(staff) : signal)),
+        const auto in_process = draw_in_process(command.words.at(0), root / command.document);
+        EXPECT_EQ(differences(root / command.picture, Image::read_png(dir.path() / "drawn.png"),
+                              testing::GoldenCheck(*in_process->picture)),
                   "");
     }
 }
@@ -683,6 +754,174 @@ TEST(SignalPicture, NumbersEachBarWithinItsOwnWidth) {
     for (std::size_t bar = 14; bar < 74; ++bar) {
         EXPECT_FALSE(labelled(bar)) << "bar " << bar + 1;  // 4 pixels wide
     }
+}
+
+// --- Clef ----------------------------------------------------------------------------------
+
+using pictures::ClefPicture;
+
+Clef shipped_clef(const std::string& name) {
+    return load_clef_file(shipped(name + ".clef.xml"));
+}
+
+// Whether a layer holds ink within a pixel or two of (x, y).
+bool inked_near(const Image& ink, double x, double y, int reach = 1) {
+    for (int dy = -reach; dy <= reach; ++dy) {
+        for (int dx = -reach; dx <= reach; ++dx) {
+            if (ink.at(static_cast<int>(x) + dx, static_cast<int>(y) + dy).a >= 64) {
+                return true;
+            }
+        }
+    }
+    return false;
+}
+
+TEST(ClefPicture, DrawsEachSineStringAtItsFrequencyAndEachNumberAtItsAmplitude) {
+    const auto clef = shipped_clef("lra-phone");
+    const ClefPicture picture(clef, "lra-phone");
+    ASSERT_EQ(picture.plots().size(), 1u);
+    const auto& plot = picture.plots().front();
+    const auto strings = Image::ink_of(picture, ClefPicture::strings);
+    const auto numbers = Image::ink_of(picture, ClefPicture::numbers);
+    const auto notes = Image::ink_of(picture, ClefPicture::notes);
+    const double middle = plot.top + plot.height / 2;
+    for (std::size_t s = 0; s < clef.strings.size(); ++s) {
+        const double x = plot.x_of(clef.strings[s].frequency);
+        EXPECT_TRUE(inked_near(strings, x, middle, 0)) << "string " << s + 1;
+        // Nothing between two strings.
+        if (s + 1 < clef.strings.size()) {
+            const double between =
+                plot.x_of((clef.strings[s].frequency + clef.strings[s + 1].frequency) / 2);
+            EXPECT_FALSE(inked_near(strings, between, middle, 3)) << "after string " << s + 1;
+        }
+        for (std::size_t n = 0; n < clef.numbers.size(); ++n) {
+            // A note on every string at every number.
+            EXPECT_TRUE(inked_near(notes, x, plot.y_of(clef.numbers[n]), 0))
+                << "string " << s + 1 << ", number " << n + 1;
+        }
+    }
+    for (std::size_t n = 0; n < clef.numbers.size(); ++n) {
+        const double y = plot.y_of(clef.numbers[n]);
+        // Dashed: ink along the line, in at least a third of its pixels.
+        int inked = 0;
+        for (int x = static_cast<int>(plot.left) + 2; x < plot.left + plot.width - 2; ++x) {
+            inked += numbers.at(x, static_cast<int>(std::round(y))).a >= 64 ? 1 : 0;
+        }
+        EXPECT_GT(inked, plot.width / 3) << "number " << n + 1;
+        EXPECT_FALSE(inked_near(numbers, plot.left + plot.width / 2, y + 6, 1))
+            << "below number " << n + 1;
+    }
+    // Number 9 (1.0) is higher than number 1 (0.2), string 6 (235 Hz) right of string 1.
+    EXPECT_LT(plot.y_of(clef.numbers[8]), plot.y_of(clef.numbers[0]));
+    EXPECT_GT(plot.x_of(clef.strings[5].frequency), plot.x_of(clef.strings[0].frequency));
+}
+
+TEST(ClefPicture, DrawsEachShapeStringsWaveformThroughItsControlPoints) {
+    for (const char* name : {"soft-shapes", "erm-rough"}) {
+        SCOPED_TRACE(name);
+        const auto clef = shipped_clef(name);
+        const ClefPicture picture(clef, name);
+        ASSERT_EQ(picture.plots().size(), clef.strings.size());
+        // String 6 on top, as on the staff.
+        EXPECT_LT(picture.plots().back().top, picture.plots().front().top);
+        const auto waveforms = Image::ink_of(picture, ClefPicture::strings);
+        const auto points = Image::ink_of(picture, ClefPicture::points);
+        for (std::size_t s = 0; s < clef.strings.size(); ++s) {
+            const auto& plot = picture.plots()[s];
+            for (const auto& point : clef.strings[s].points) {
+                const double x = plot.x_of(point.time * clef.tempo), y = plot.y_of(point.level);
+                EXPECT_TRUE(inked_near(points, x, y)) << "string " << s + 1 << " " << point.time;
+                EXPECT_TRUE(inked_near(waveforms, x, y)) << "string " << s + 1 << " " << point.time;
+            }
+            // Between the points too, the waveform is where the renderer's is.
+            const render::Waveform waveform(clef.type, clef.strings[s].points);
+            for (double tau = 0.013; tau < 1.0; tau += 0.05) {
+                EXPECT_TRUE(inked_near(waveforms, plot.x_of(tau * clef.tempo),
+                                       plot.y_of(waveform.level(tau)), 2))
+                    << "string " << s + 1 << " at " << tau;
+            }
+        }
+    }
+    // Where soft-shapes' string 5 has died away (level 0 from tau 0.25), nothing is drawn high.
+    const auto clef = shipped_clef("soft-shapes");
+    const ClefPicture picture(clef, "soft-shapes");
+    const auto waveforms = Image::ink_of(picture, ClefPicture::strings);
+    const auto& plot = picture.plots()[4];
+    EXPECT_FALSE(inked_near(waveforms, plot.x_of(0.6 * clef.tempo), plot.y_of(0.5), 3));
+    EXPECT_TRUE(inked_near(waveforms, plot.x_of(0.6 * clef.tempo), plot.y_of(0.0), 1));
+}
+
+const std::vector<NamedLayer> kClefLayers{
+    {ClefPicture::title, "the title"},     {ClefPicture::frames, "the frames"},
+    {ClefPicture::axis_labels, "labels"},  {ClefPicture::strings, "the strings"},
+    {ClefPicture::numbers, "the numbers"}, {ClefPicture::notes, "the notes"},
+    {ClefPicture::points, "the points"},   {ClefPicture::table, "the table"},
+};
+
+// Lines cross lines and end on frames; notes sit where strings and numbers cross; control
+// points sit on their waveform, some on a frame's edge.
+const std::set<std::pair<Layers, Layers>> kClefMayMeet{
+    {ClefPicture::frames, ClefPicture::strings}, {ClefPicture::frames, ClefPicture::numbers},
+    {ClefPicture::frames, ClefPicture::points},  {ClefPicture::strings, ClefPicture::numbers},
+    {ClefPicture::strings, ClefPicture::notes},  {ClefPicture::numbers, ClefPicture::notes},
+    {ClefPicture::strings, ClefPicture::points},
+};
+
+TEST(ClefPicture, KeepsEveryMarkApart) {
+    Layers inked = 0;
+    for (const char* name : {"lra-phone", "shaker-sine-low", "soft-shapes", "erm-rough",
+                             "pattern-ms", "shaker-sine-linear"}) {
+        SCOPED_TRACE(name);
+        const auto clef = shipped_clef(name);
+        inked |= expect_apart(ClefPicture(clef, name), kClefLayers, kClefMayMeet);
+    }
+    // Strings a hertz apart and numbers a thousandth apart: their labels make room.
+    const auto crowded = read_clef(testing::sine_clef(1, {100, 101, 102, 150, 151, 300},
+                                                      {0.001, 0.002, 0.003, 0.5, 0.501, 1.0}),
+                                   "crowded");
+    inked |= expect_apart(ClefPicture(crowded, "crowded"), kClefLayers, kClefMayMeet);
+    expect_every_layer_checked(inked, kClefLayers);
+}
+
+TEST(ClefPicture, ShowDrawsAClefByFileOrByName) {
+    TempDir dir;
+    const auto vibscore = testing::required_env("VIBSCORE");
+    // No vibscored to ask: a name that is no registry score is looked up as a clef.
+    const std::vector<std::string> no_bus{"/usr/bin/env",
+                                          "DBUS_SYSTEM_BUS_ADDRESS=unix:path=/nonexistent"};
+    const auto png = (dir.path() / "clef.png").string(), svg = (dir.path() / "clef.svg").string();
+    auto result = testing::run_command(
+        {vibscore, "show", shipped("lra-phone.clef.xml").string(), "--png", png, "--svg", svg});
+    ASSERT_EQ(result.exit_code, 0) << result.err;
+    const auto clef = shipped_clef("lra-phone");
+    const ClefPicture picture(clef, "lra-phone.clef.xml");
+    EXPECT_EQ(testing::GoldenCheck(picture).differences(Image::of(picture), Image::read_png(png)),
+              "");
+    pugi::xml_document document;
+    EXPECT_TRUE(document.load_file(svg.c_str()));
+
+    auto by_name = no_bus;
+    for (const auto& word :
+         {vibscore, std::string("show"), std::string("erm-rough"), std::string("--clefs"),
+          shipped("").string(), std::string("--png"), png}) {
+        by_name.push_back(word);
+    }
+    result = testing::run_command(by_name);
+    ASSERT_EQ(result.exit_code, 0) << result.err;
+    EXPECT_EQ(Image::read_png(png).height(),
+              static_cast<int>(ClefPicture(shipped_clef("erm-rough"), "erm-rough").height()));
+
+    auto unknown = no_bus;
+    for (const auto& word :
+         {vibscore, std::string("show"), std::string("no-such-thing"), std::string("--clefs"),
+          shipped("").string(), std::string("--png"), png}) {
+        unknown.push_back(word);
+    }
+    result = testing::run_command(unknown);
+    EXPECT_EQ(result.exit_code, 1);
+    EXPECT_NE(result.err.find("no clef \"no-such-thing\" in " + shipped("").string()),
+              std::string::npos)
+        << result.err;
 }
 
 TEST(Pictures, TheFileFormatComesFromTheExtension) {
