@@ -162,9 +162,15 @@ int main(int argc, char** argv) {
                         "stay until it ends, showing each bar; Ctrl-C stops it");
 
     std::uint64_t stop_id = 0;
+    bool stop_everyone = false;
     auto* stop_verb = app.add_subcommand("stop", "Stop a playback (default: all of yours).");
-    stop_verb->add_option("ID", stop_id, "playback id printed by play")
-        ->check(number_between(1, std::numeric_limits<double>::infinity(), NumberKind::whole));
+    auto* stop_id_option =
+        stop_verb->add_option("ID", stop_id, "playback id printed by play")
+            ->check(number_between(1, std::numeric_limits<double>::infinity(), NumberKind::whole));
+    stop_verb
+        ->add_flag("--all", stop_everyone,
+                   "every playback, whoever started it (polkit: org.vibscore.manage)")
+        ->excludes(stop_id_option);
 
     std::string kind = "score";
     std::string name;
@@ -254,7 +260,7 @@ int main(int argc, char** argv) {
         return play(play_request, clef_search, std::cout, std::cerr);
     }
     if (stop_verb->parsed()) {
-        return stop(stop_id, std::cout, std::cerr);
+        return stop_everyone ? stop_all(std::cout, std::cerr) : stop(stop_id, std::cout, std::cerr);
     }
     if (list_verb->parsed()) {
         return list(kind, std::cout, std::cerr);

@@ -80,6 +80,7 @@ _vibscore() {
             check|info) options+=" --clefs" ;;
             render) options+=" --rate --out --plot --width --svg --png --clefs" ;;
             play) options+=" --usage --repeat --clef --intensity --wait --clefs" ;;
+            stop) options+=" --all" ;;
             compose) options+=" --clefs" ;;
             show) options+=" --width --colour --color --svg --png --clefs" ;;
             convert) options+=" --from --to --clef --track --loop" ;;
