@@ -110,7 +110,9 @@ FoundChip find_chip(const std::string& chip, const std::filesystem::path& dev,
     const bool name = !number && !path && chip.find('/') == std::string::npos;
     std::filesystem::path direct;
     if (number) {
-        direct = dev / ("gpiochip" + chip);
+        // As libgpiod 1.x read it (strtoul): 07 is gpiochip7.
+        const auto digits = chip.find_first_not_of('0');
+        direct = dev / ("gpiochip" + (digits == std::string::npos ? "0" : chip.substr(digits)));
     } else if (path) {
         direct = chip;
     } else if (name) {

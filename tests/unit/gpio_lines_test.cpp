@@ -63,6 +63,16 @@ TEST_F(GpioLinesTest, ANumberOpensThatGpiochipEntry) {
     EXPECT_EQ(chips_.calls().front(), "open " + dev("gpiochip12"));
 }
 
+TEST_F(GpioLinesTest, ANumberIsReadAsANumber) {
+    add("gpiochip0", {"pinctrl"});
+    add("gpiochip7", {"expander"});
+    open("07", {0});
+    open("000", {0});
+    EXPECT_THAT(chips_.calls(), ::testing::Contains("open " + dev("gpiochip7")));
+    EXPECT_THAT(chips_.calls(), ::testing::Contains("open " + dev("gpiochip0")));
+    EXPECT_THAT(chips_.calls(), ::testing::Not(::testing::Contains("open " + dev("gpiochip07"))));
+}
+
 TEST_F(GpioLinesTest, AnAbsolutePathOpensThatDevice) {
     const auto path = add("gpiochip3", {"pinctrl"});
     open(path.string(), {0});
