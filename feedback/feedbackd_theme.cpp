@@ -6,38 +6,39 @@ namespace vibscore::feedback {
 
 namespace {
 
-using Pointer = nlohmann::json::json_pointer;
-
 constexpr double kRumbleStrength = 32768.0 / 65535.0;  // feedbackd's strong_magnitude 0x8000
 constexpr unsigned kPeriodicFull = 0x7fff;             // a periodic effect's full magnitude
 constexpr unsigned kDefaultDurationMs = 1000;          // FBD_FEEDBACK_VIBRA_DEFAULT_DURATION
 constexpr long kMaxMs = 3'600'000;                     // a score lasts at most an hour
 
-unsigned milliseconds(const JsonDocument& document, const Pointer& at, unsigned fallback) {
-    return document.has(at) ? static_cast<unsigned>(document.integer(at, 0, kMaxMs)) : fallback;
+unsigned milliseconds(const JsonFields& json, const JsonValue& at, const char* key,
+                      unsigned fallback) {
+    const JsonValue* value = at.find(key);
+    return value != nullptr ? static_cast<unsigned>(json.integer(*value, 0, kMaxMs)) : fallback;
 }
 
-ThemeEntry vibra_entry(const JsonDocument& document, const Pointer& at, const std::string& type,
+ThemeEntry vibra_entry(const JsonFields& json, const JsonValue& at, const std::string& type,
                        const std::string& event) {
     ThemeEntry entry;
     entry.usage = usage_for_event(event);
-    const unsigned duration = milliseconds(document, at / "duration", kDefaultDurationMs);
+    const unsigned duration = milliseconds(json, at, "duration", kDefaultDurationMs);
     if (type == "VibraRumble") {
-        document.only_members(at, {"event-name", "type", "duration", "count", "pause"});
-        const auto count =
-            document.has(at / "count") ? document.integer(at / "count", 1, 1'000'000) : 1;
-        entry.pattern = rumble_pattern(duration, static_cast<unsigned>(count),
-                                       milliseconds(document, at / "pause", 0));
+        json.only_members(at, {"event-name", "type", "duration", "count", "pause"});
+        const JsonValue* count = at.find("count");
+        entry.pattern = rumble_pattern(
+            duration,
+            count != nullptr ? static_cast<unsigned>(json.integer(*count, 1, 1'000'000)) : 1u,
+            milliseconds(json, at, "pause", 0));
     } else {
-        document.only_members(
+        json.only_members(
             at, {"event-name", "type", "duration", "magnitude", "fade-in-time", "fade-in-level"});
         const auto level = [&](const char* key) {
-            return document.has(at / key)
-                       ? static_cast<unsigned>(document.integer(at / key, 0, kPeriodicFull))
-                       : 0u;
+            const JsonValue* value = at.find(key);
+            return value != nullptr ? static_cast<unsigned>(json.integer(*value, 0, kPeriodicFull))
+                                    : 0u;
         };
         entry.pattern = periodic_pattern(duration, level("magnitude"), level("fade-in-level"),
-                                         milliseconds(document, at / "fade-in-time", 0));
+                                         milliseconds(json, at, "fade-in-time", 0));
     }
     return entry;
 }
@@ -90,37 +91,34 @@ VibrationPattern periodic_pattern(unsigned duration_ms, unsigned magnitude, unsi
     return pattern;
 }
 
-Theme read_feedbackd_theme(const JsonDocument& document) {
-    const Pointer root;
-    document.only_members(root, {"name", "profiles"});
+Theme read_feedbackd_theme(const JsonFields& json) {
+    const JsonValue& root = json.document().root();
+    json.only_members(root, {"name", "profiles"});
     Theme theme;
-    theme.name = document.string(root / "name");
-    const auto& profiles = document.array(root / "profiles");
-    for (std::size_t p = 0; p < profiles.size(); ++p) {
-        const Pointer profile_at = root / "profiles" / p;
-        document.only_members(profile_at, {"name", "feedbacks"});
-        const auto profile_name = document.string(profile_at / "name");
+    theme.name = json.string(json.member(root, "name"));
+    for (const auto& profile_at : json.array(json.member(root, "profiles")).items) {
+        json.only_members(profile_at, {"name", "feedbacks"});
+        const JsonValue& name = json.member(profile_at, "name");
+        const auto profile_name = json.string(name);
         const auto profile = parse_profile(profile_name);
         if (!profile) {
-            throw document.error(profile_at / "name", "unknown profile \"" + profile_name +
-                                                          "\" (expected " +
-                                                          std::string(kProfileNames) + ")");
+            throw json.error(name, "unknown profile \"" + profile_name + "\" (expected " +
+                                       std::string(kProfileNames) + ")");
         }
-        const auto& feedbacks = document.array(profile_at / "feedbacks");
-        for (std::size_t f = 0; f < feedbacks.size(); ++f) {
-            const Pointer at = profile_at / "feedbacks" / f;
-            document.object(at);
-            const auto event = document.string(at / "event-name");
-            const auto type = document.string(at / "type");
+        for (const auto& at : json.array(json.member(profile_at, "feedbacks")).items) {
+            json.object(at);
+            const auto event = json.string(json.member(at, "event-name"));
+            const JsonValue& type_at = json.member(at, "type");
+            const auto type = json.string(type_at);
             if (type == "Sound" || type == "Led" || type == "Dummy") {
                 continue;
             }
             if (type != "VibraRumble" && type != "VibraPeriodic") {
-                throw document.error(at / "type", "unknown feedback type \"" + type +
-                                                      "\" (expected Sound, Led, Dummy, "
-                                                      "VibraRumble or VibraPeriodic)");
+                throw json.error(type_at, "unknown feedback type \"" + type +
+                                              "\" (expected Sound, Led, Dummy, "
+                                              "VibraRumble or VibraPeriodic)");
             }
-            auto entry = vibra_entry(document, at, type, event);
+            auto entry = vibra_entry(json, at, type, event);
             // feedbackd plays one vibra feedback at a time: the first of an event's is it.
             const auto known = theme.events().find(event);
             if (known == theme.events().end() || !known->second.contains(*profile)) {

@@ -1,6 +1,6 @@
 #pragma once
 
-#include "feedback/json_document.hpp"
+#include "feedback/json_fields.hpp"
 #include "feedback/theme.hpp"
 #include "score/pattern_score.hpp"
 
@@ -22,7 +22,7 @@ VibrationPattern rumble_pattern(unsigned duration_ms, unsigned count, unsigned p
 VibrationPattern periodic_pattern(unsigned duration_ms, unsigned magnitude, unsigned fade_in_level,
                                   unsigned fade_in_time_ms);
 
-// Throws JsonError "file:line:column: what".
-Theme read_feedbackd_theme(const JsonDocument& document);
+// Throws DocumentError "file:line:column: what".
+Theme read_feedbackd_theme(const JsonFields& json);
 
 }  // namespace vibscore::feedback

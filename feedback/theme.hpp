@@ -5,7 +5,7 @@
 #include <string>
 #include <string_view>
 
-#include "feedback/json_document.hpp"
+#include "common/json/json_document.hpp"
 #include "feedback/profile.hpp"
 #include "score/pattern_score.hpp"
 
@@ -44,7 +44,7 @@ class Theme {
 };
 
 // A theme file of either format (told apart by vibscore's "vibscore-theme" key). Throws
-// JsonError "file:line:column: what" for anything that is not a valid theme.
+// DocumentError "file:line:column: what" for anything that is not a valid theme.
 Theme load_theme(const std::string& path);
 Theme parse_theme(const JsonDocument& document);
 
