@@ -71,11 +71,12 @@ std::uint64_t FeedbackService::play(const ThemeEntry& entry, const std::string& 
         std::string score = entry.score;
         double intensity = entry.intensity;
         if (score.empty()) {
-            if (pattern_seconds(entry.pattern) <= 0.0) {
+            const auto pattern = entry.vibra ? vibra_pattern(*entry.vibra) : VibrationPattern{};
+            if (pattern_seconds(pattern) <= 0.0) {
                 return 0;  // nothing to play, and nothing to repeat
             }
             auto on_clef =
-                pattern_on_clef(entry.pattern, title, kPatternClefHref, haptics_.pattern_clef());
+                pattern_on_clef(pattern, title, kPatternClefHref, haptics_.pattern_clef());
             score = std::move(on_clef.document);
             intensity *= on_clef.intensity;
         }
@@ -266,7 +267,7 @@ bool FeedbackService::Vibrate(const std::string& app_id,
         throw invalid_args("the pattern has " + std::to_string(pattern.size()) +
                            " steps; at most " + std::to_string(kMaxPatternSteps) + " are allowed");
     }
-    VibrationPattern steps;
+    std::vector<VibraStep> steps;
     for (std::size_t i = 0; i < pattern.size(); ++i) {
         const double strength = pattern[i].get<0>();
         const std::uint32_t ms = pattern[i].get<1>();
@@ -278,12 +279,13 @@ bool FeedbackService::Vibrate(const std::string& app_id,
             throw invalid_args("step " + std::to_string(i + 1) + ": " + std::to_string(ms) +
                                " ms is longer than " + std::to_string(kMaxStepMs) + " ms");
         }
-        steps.push_back({ms / 1000.0, strength, strength, 0.0});
+        steps.push_back({strength, ms});
     }
     if (profile_ < feedback::Profile::quiet) {
         return false;
     }
-    if (pattern_seconds(steps) <= 0.0) {
+    auto feedback = pattern_feedback(std::move(steps));
+    if (feedback.duration_ms == 0) {
         if (haptic_playback_) {
             try {
                 haptics_.Stop(*haptic_playback_);
@@ -294,7 +296,7 @@ bool FeedbackService::Vibrate(const std::string& app_id,
         return true;
     }
     ThemeEntry entry;
-    entry.pattern = std::move(steps);
+    entry.vibra = std::move(feedback);
     entry.usage = settings_.haptic_usage;
     const auto playback = play(entry, "haptic pattern of " + app_id, 0);
     if (playback != 0) {

@@ -74,6 +74,13 @@ bool JsonFields::boolean(const JsonValue& value) const {
     return value.boolean;
 }
 
+double JsonFields::number(const JsonValue& value) const {
+    if (value.kind != JsonValue::Kind::number) {
+        throw error(value, "expected a number, found " + describe(value));
+    }
+    return value.number;
+}
+
 double JsonFields::number(const JsonValue& value, double min, double max) const {
     if (value.kind != JsonValue::Kind::number || !(value.number >= min && value.number <= max)) {
         throw error(value, "expected a number from " + number_text(min) + " to " +

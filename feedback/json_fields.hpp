@@ -27,6 +27,7 @@ class JsonFields {
     const JsonValue& array(const JsonValue& value) const;
     std::string string(const JsonValue& value) const;
     bool boolean(const JsonValue& value) const;
+    double number(const JsonValue& value) const;
     // A number in [min, max].
     double number(const JsonValue& value, double min, double max) const;
     // A whole number (no fraction or exponent) in [min, max].

@@ -13,6 +13,7 @@
 #include "daemon/log.hpp"
 #include "daemon/usage.hpp"
 #include "feedback/feedback_service.hpp"
+#include "feedback/feedbackd_theme.hpp"
 #include "feedback/theme.hpp"
 
 using namespace vibscore;
@@ -30,7 +31,10 @@ struct Options {
 };
 
 int serve(const Options& options) {
-    const Theme theme = load_theme(options.theme);
+    const Theme theme = load_theme(options.theme, ThemeSearch::from_environment());
+    for (const auto& warning : theme.warnings) {
+        log::warning(format(warning));
+    }
     log::info("theme \"" + theme.name + "\" (" + options.theme + "), " +
               std::to_string(theme.events().size()) + " events");
     daemon::EventLoop loop;

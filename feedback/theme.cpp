@@ -78,17 +78,19 @@ void Theme::add(Profile profile, const std::string& event, ThemeEntry entry) {
     events_[event][profile] = std::move(entry);
 }
 
-Theme parse_theme(const JsonDocument& document) {
+Theme parse_theme(const JsonDocument& document, const ThemeSearch& search) {
     const JsonFields json(document);
     if (document.root().kind != JsonValue::Kind::object) {
         throw json.error(document.root(), "a theme is a JSON object");
     }
-    return document.root().find(kFormatKey) != nullptr ? read_vibscore_theme(json)
-                                                       : read_feedbackd_theme(json);
+    if (document.root().find(kFormatKey) != nullptr) {
+        return read_vibscore_theme(json);
+    }
+    return expand_feedbackd_theme(read_feedbackd_theme_file(json), search);
 }
 
-Theme load_theme(const std::string& path) {
-    return parse_theme(read_json_file(path));
+Theme load_theme(const std::string& path, const ThemeSearch& search) {
+    return parse_theme(read_json_file(path), search);
 }
 
 std::string usage_for_event(std::string_view event) {

@@ -7,6 +7,7 @@
 #include <thread>
 
 #include "daemon/render/cue_adaptation.hpp"
+#include "feedback/feedbackd_theme.hpp"
 #include "feedback/theme.hpp"
 #include "tests/hil/score_expectations.hpp"
 #include "tests/support/feedback_fixture.hpp"
@@ -108,7 +109,8 @@ void expect_plays(const std::vector<TraceRow>& rows, const std::vector<render::C
 }
 
 TEST_F(FeedbackApi, EveryEventOfTheShippedThemePlaysItsScore) {
-    const auto theme = feedback::load_theme(testing::required_env("VIBSCORE_FEEDBACK_THEME"));
+    const auto theme = feedback::load_theme(testing::required_env("VIBSCORE_FEEDBACK_THEME"),
+                                            feedback::ThemeSearch{});
     ASSERT_GE(theme.events().size(), 12u);
     for (const auto& [event, levels] : theme.events()) {
         const auto* entry = theme.lookup(event, Profile::full);
@@ -281,11 +283,12 @@ TEST_F(FeedbackApi, BadHapticPatternsGetErrorsAndSilentGetsFalse) {
 TEST_F(FeedbackApi, FeedbackdsOwnThemePlaysItsRumblesAsFeedbackdWould) {
     server.reset();
     serve({"--theme", kFeedbackdTheme});
-    // message-new-sms: two rumbles of 150 ms, 100 ms apart, at feedbackd's rumble strength.
+    // message-new-sms: two rumbles of 150 ms, 100 ms apart, at feedbackd 0.8's default
+    // rumble magnitude.
     const auto first = daemon.trace_rows().size();
     EXPECT_EQ(fbcli({"-E", "message-new-sms"}), 0);
     const auto rows = rows_from(first);
-    const double strength = 32768.0 / 65535.0;
+    const double strength = 0.5;
     ASSERT_GE(rows.size(), 4u);
     EXPECT_NEAR(rows[0].amplitude, strength, 1e-9);
     EXPECT_EQ(rows[0].frequency_hz, 0.0);  // the actuator's own, as a rumble motor's
