@@ -6,6 +6,7 @@
 #include <cstdint>
 
 #include "common/json/json_document.hpp"
+#include "feedback/feedbackd_theme.hpp"
 #include "feedback/theme.hpp"
 #include "fuzz/fuzz_support.hpp"
 #include "score/document_error.hpp"
@@ -15,8 +16,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     if (size > max_json_file_bytes) {
         return 0;  // read_json_file refuses it before parsing
     }
+    // Parent themes are looked for nowhere, so that no input reads a file.
+    static const feedback::ThemeSearch nowhere{{}, {}, {}, "/nonexistent/feedbackd/themes"};
     try {
-        feedback::parse_theme(JsonDocument(fuzz::as_text(data, size), "fuzz.json"));
+        feedback::parse_theme(JsonDocument(fuzz::as_text(data, size), "fuzz.json"), nowhere);
     } catch (const DocumentError&) {
     }
     return 0;
