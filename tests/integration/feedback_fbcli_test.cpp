@@ -9,6 +9,7 @@
 #include "daemon/render/cue_adaptation.hpp"
 #include "feedback/feedbackd_theme.hpp"
 #include "feedback/theme.hpp"
+#include "feedback/vibra_feedback.hpp"
 #include "tests/hil/score_expectations.hpp"
 #include "tests/support/feedback_fixture.hpp"
 
@@ -315,6 +316,125 @@ TEST_F(FeedbackApi, FeedbackdsOwnThemePlaysItsRumblesAsFeedbackdWould) {
     const auto before = daemon.trace_rows().size();
     EXPECT_EQ(fbcli({"-E", "camera-shutter"}), 0);
     EXPECT_EQ(daemon.trace_rows().size(), before);
+}
+
+TEST_F(FeedbackApi, AnotherClientCanEndNeitherAnEventNorAPatternThatIsNotItsOwn) {
+    FeedbackClient stranger(session);
+    const auto looping = client->TriggerFeedback("org.vibscore.test", "phone-incoming-call", {}, 0);
+    std::this_thread::sleep_for(200ms);
+    stranger.EndFeedback(looping);
+    EXPECT_FALSE(client->wait_ended(looping, 300ms));
+    // Ids are checked against the caller: guessing the next one ends nothing either.
+    stranger.EndFeedback(looping + 1);
+    client->EndFeedback(looping);
+    EXPECT_EQ(client->wait_ended(looping)->reason, kExplicit);
+
+    EXPECT_TRUE(client->Vibrate("org.vibscore.test", {{0.8, 3000u}}));
+    std::this_thread::sleep_for(100ms);
+    EXPECT_TRUE(stranger.Vibrate("org.vibscore.stranger", {}));  // ends only its own: none
+    std::this_thread::sleep_for(200ms);
+    EXPECT_NEAR(daemon.trace_rows().back().amplitude, 0.8, 1e-9);
+    EXPECT_TRUE(client->Vibrate("org.vibscore.test", {}));
+    std::this_thread::sleep_for(100ms);
+    EXPECT_EQ(daemon.trace_rows().back().amplitude, 0.0);
+}
+
+TEST_F(FeedbackApi, LogsAnAppIdEscapedSoThatItCannotForgeALogLine) {
+    const auto id = client->TriggerFeedback("evil\n<3>forged error", "no-such-event", {}, -1);
+    client->wait_ended(id);
+    const auto log = server->log();
+    EXPECT_NE(log.find("from \"evil\\x0a<3>forged error\""), std::string::npos) << log;
+    EXPECT_EQ(log.find("\n<3>forged"), std::string::npos) << log;
+}
+
+TEST_F(FeedbackApi, AnImportantEventOfAnAllowedAppPlaysInSilentAndTheMaximumStrengthHolds) {
+    server.reset();
+    serve({"--profile", "silent", "--allow-important", "org.vibscore.clock,org.vibscore.test",
+           "--max-haptic-strength", "0.5"});
+    const std::map<std::string, sdbus::Variant> important{{"important", sdbus::Variant(true)}};
+    auto first = daemon.trace_rows().size();
+    const auto plain = client->TriggerFeedback("org.vibscore.test", "button-pressed", {}, -1);
+    EXPECT_EQ(client->wait_ended(plain)->reason, kNotFound);
+    const auto stranger =
+        client->TriggerFeedback("org.vibscore.other", "button-pressed", important, -1);
+    EXPECT_EQ(client->wait_ended(stranger)->reason, kNotFound);
+    EXPECT_EQ(daemon.trace_rows().size(), first);
+    const auto allowed =
+        client->TriggerFeedback("org.vibscore.test", "button-pressed", important, -1);
+    EXPECT_EQ(client->wait_ended(allowed)->reason, kNatural);
+    // touch-click at half its strength: the score scaled so that its full strength is 0.5.
+    expect_plays(rows_from(first), expected_drives_of("touch-click"), "touch-click", 0.5);
+    EXPECT_EQ(error_of([&] {
+                  client->TriggerFeedback("org.vibscore.test", "button-pressed",
+                                          {{"important", sdbus::Variant(1)}}, -1);
+              }),
+              std::string(kInvalidArgs) + ": hint \"important\" must be a boolean (b), not i");
+    // A pattern's steps are capped at the maximum.
+    client->Profile("full");
+    first = daemon.trace_rows().size();
+    EXPECT_TRUE(client->Vibrate("org.vibscore.test", {{1.0, 100u}, {0.3, 100u}}));
+    std::this_thread::sleep_for(300ms);
+    const auto rows = rows_from(first);
+    ASSERT_GE(rows.size(), 2u);
+    EXPECT_EQ(rows[0].amplitude, 0.5);
+    EXPECT_NEAR(rows[1].amplitude, 0.5 * 0.5556, 1e-9);  // 0.3 of the strongest 0.5: 5/9
+}
+
+// Each Debian release's feedbackd default theme, as its package ships it (the host's, and the
+// trixie chroot's when this machine has one): every vibra event plays its pattern, no
+// stronger than its strongest step.
+TEST_F(FeedbackApi, EveryVibraEventOfEachReleasesDefaultThemePlays) {
+    std::vector<std::string> themes;
+    for (const char* path :
+         {kFeedbackdTheme, "/srv/trixie/usr/share/feedbackd/themes/default.json"}) {
+        if (std::filesystem::exists(path)) {
+            themes.emplace_back(path);
+        }
+    }
+    if (themes.empty()) {
+        GTEST_SKIP() << "no feedbackd default theme on this machine";
+    }
+    for (const auto& path : themes) {
+        server.reset();
+        serve({"--theme", path});
+        const auto theme = feedback::load_theme(path, feedback::ThemeSearch{});
+        int events = 0;
+        for (const auto& [event, levels] : theme.events()) {
+            const auto* entry = theme.lookup(event, Profile::full);
+            if (entry == nullptr || !entry->vibra) {
+                continue;
+            }
+            ++events;
+            const auto pattern = feedback::vibra_pattern(*entry->vibra);
+            double strongest = 0.0;
+            for (const auto& step : pattern) {
+                strongest = std::max({strongest, step.from, step.to});
+            }
+            const auto first = daemon.trace_rows().size();
+            const auto id = client->TriggerFeedback("org.vibscore.test", event, {}, -1);
+            // Long ones (Debian 12's 10 s ringing) are ended after a second.
+            auto ended = client->wait_ended(id, 1500ms);
+            if (!ended) {
+                client->EndFeedback(id);
+                ended = client->wait_ended(id);
+            }
+            ASSERT_TRUE(ended) << path << ": " << event;
+            EXPECT_NE(ended->reason, kNotFound) << path << ": " << event;
+            const auto rows = rows_from(first);
+            double loudest = 0.0;
+            for (const auto& row : rows) {
+                loudest = std::max(loudest, row.amplitude);
+            }
+            EXPECT_GT(loudest, 0.0) << path << ": " << event;
+            EXPECT_LE(loudest, strongest + 1e-9) << path << ": " << event;
+            if (ended->reason == kNatural) {
+                EXPECT_NEAR(loudest, strongest, 1e-9) << path << ": " << event;
+            }
+            ASSERT_FALSE(rows.empty());
+            EXPECT_EQ(rows.back().amplitude, 0.0) << path << ": " << event;
+        }
+        EXPECT_GE(events, 12) << path;
+    }
 }
 
 TEST(FeedbackActivation, TheFirstCallStartsVibscoreFeedbackOnTheSessionBus) {
