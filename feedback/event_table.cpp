@@ -46,11 +46,7 @@ void EventTable::trigger(std::uint32_t id, const Trigger& trigger, std::uint64_t
     const std::string about = "event " + std::to_string(id) + " " + quoted_text(trigger.event) +
                               " from " + quoted_text(trigger.app_id) + " (" + trigger.sender +
                               "), " + std::string(to_string(level)) + ": ";
-    const ThemeEntry* entry = theme_.lookup(trigger.event, level);
-    const auto played = entry != nullptr
-                            ? haptics_.play({*entry, trigger.event, trigger.timeout == -1 ? 0 : -1,
-                                             settings_.max_haptic_strength})
-                            : Haptics::Played{};
+    const auto [played, entry_level] = play_for(trigger, level);
     if (played.playback == 0) {
         log::debug(about + "no feedback");
         callbacks_.feedback_ended(id, end_reason::not_found);
@@ -59,12 +55,66 @@ void EventTable::trigger(std::uint32_t id, const Trigger& trigger, std::uint64_t
     log::debug(about + "playback " + std::to_string(played.playback));
     Event& added = events_[id];
     added.sender = trigger.sender;
-    added.level = theme_.level_of(trigger.event, level).value();
+    added.level = entry_level;
     added.playback = played.playback;
     if (trigger.timeout > 0) {
         added.expires_us = now_us + static_cast<std::uint64_t>(trigger.timeout) * 1'000'000;
         update_expiry();
     }
+}
+
+EventTable::Chosen EventTable::play_for(const Trigger& trigger, Profile level) {
+    const int repeat = trigger.timeout == -1 ? 0 : -1;
+    const ThemeEntry* entry = theme_.lookup(trigger.event, level);
+    const auto theme_level = theme_.level_of(trigger.event, level);
+    const auto mine = user_scores_.find(trigger.event);
+    const bool in_theme = theme_.events().contains(trigger.event);
+    if (mine != user_scores_.end() && (in_theme ? entry != nullptr : level >= Profile::quiet)) {
+        ThemeEntry chosen;
+        chosen.score = mine->second;
+        chosen.usage = entry != nullptr ? entry->usage : usage_for_event(trigger.event);
+        const auto played =
+            haptics_.play({chosen, trigger.event, repeat, settings_.max_haptic_strength});
+        if (!played.unknown_score) {
+            return {played, theme_level.value_or(Profile::quiet)};
+        }
+        log::warning("the score " + quoted_text(mine->second) + " chosen for " +
+                     quoted_text(trigger.event) +
+                     " is not in vibscored's registry: the theme's plays instead");
+    }
+    if (entry == nullptr) {
+        return {};
+    }
+    return {haptics_.play({*entry, trigger.event, repeat, settings_.max_haptic_strength}),
+            *theme_level};
+}
+
+bool EventTable::set_user_scores(UserScores scores) {
+    if (scores == user_scores_) {
+        return false;
+    }
+    user_scores_ = std::move(scores);
+    return true;
+}
+
+std::vector<EventScore> EventTable::event_scores() const {
+    std::map<std::string, EventScore> events;
+    for (const auto& [event, levels] : theme_.events()) {
+        if (const ThemeEntry* entry = theme_.lookup(event, Profile::full)) {
+            events[event] = {event, entry->score, entry->score, false};
+        }
+    }
+    for (const auto& [event, score] : user_scores_) {
+        auto& listed = events[event];
+        listed.event = event;
+        listed.score = score;
+        listed.assigned = true;
+    }
+    std::vector<EventScore> list;
+    for (auto& [event, score] : events) {
+        list.push_back(std::move(score));
+    }
+    return list;
 }
 
 void EventTable::end(std::uint32_t id, const std::string& sender) {

@@ -10,6 +10,7 @@
 #include "feedback/haptics.hpp"
 #include "feedback/profile.hpp"
 #include "feedback/theme.hpp"
+#include "feedback/user_scores.hpp"
 #include "feedback/vibra_feedback.hpp"
 
 // The feedbackd API's rules without a bus (feedbackd 0.8.2's fbd-feedback-manager.c,
@@ -58,6 +59,16 @@ struct HapticStep {
     std::uint32_t ms = 0;
 };
 
+// An event and the score it plays (org.vibscore.Feedback1.EventScores).
+struct EventScore {
+    std::string event;
+    std::string score;        // what it plays now: the user's choice, else the theme's
+    std::string theme_score;  // the theme's registry score; "" for a pattern, or none
+    bool assigned = false;    // the user chose `score`
+
+    bool operator==(const EventScore&) const = default;
+};
+
 class EventTable {
   public:
     struct Callbacks {
@@ -93,6 +104,15 @@ class EventTable {
     void set_max_haptic_strength(double strength);
     void set_allow_important(std::vector<std::string> app_ids);
 
+    // The user's own scores (user_scores.hpp). An assigned event plays its score where the
+    // theme's entry would play (its level and usage), or, when the theme has no entry for it,
+    // at the quiet level with the usage its name gives. A score vibscored does not have plays
+    // the theme's instead, with a log line. True when they changed.
+    bool set_user_scores(UserScores scores);
+    const UserScores& user_scores() const { return user_scores_; }
+    // Every event the theme gives feedback for (quiet or full) and every assigned one, in order.
+    std::vector<EventScore> event_scores() const;
+
     // An event's timeout ran out (the time expiry_changed gave came).
     void expire(std::uint64_t now_us);
     // vibscored's reports: a playback ended (for whatever reason); vibscored left the bus, so
@@ -117,6 +137,13 @@ class EventTable {
     using Events = std::map<std::uint32_t, Event>;
 
     Profile level_for(const Trigger& trigger) const;
+    // What `trigger` plays at `level`, and the theme level it counts as; nothing when it gives
+    // no feedback there.
+    struct Chosen {
+        Haptics::Played played;
+        Profile level = Profile::full;
+    };
+    Chosen play_for(const Trigger& trigger, Profile level);
     void end_event(Events::iterator event, std::uint32_t reason);
     void end_where(const std::function<bool(const Event&)>& which, std::uint32_t reason);
     void ended(Events::iterator event);
@@ -132,6 +159,7 @@ class EventTable {
     std::uint32_t next_id_ = 1;
     Events events_;
     std::map<std::string, std::uint64_t> patterns_;  // Haptic.Vibrate playbacks by sender
+    UserScores user_scores_;
     std::optional<std::uint64_t> reported_expiry_;
 };
 

@@ -3,6 +3,8 @@
 #include <stdexcept>
 
 #include "common/monotonic_clock.hpp"
+#include "common/quoted_text.hpp"
+#include "daemon/log.hpp"
 #include "dbus/name_owner_watch.hpp"
 
 namespace vibscore::feedback {
@@ -11,6 +13,7 @@ namespace {
 
 constexpr const char* kObjectPath = "/org/sigxcpu/Feedback";
 constexpr const char* kInvalidArgs = "org.freedesktop.DBus.Error.InvalidArgs";
+constexpr const char* kFailed = "org.freedesktop.DBus.Error.Failed";
 
 sdbus::Error invalid_args(const std::string& message) {
     return sdbus::Error(kInvalidArgs, message);
@@ -43,7 +46,8 @@ void read_hints(const std::map<std::string, sdbus::Variant>& hints, Trigger& tri
 }  // namespace
 
 FeedbackService::FeedbackService(sdbus::IConnection& session_bus, sdbus::IConnection& system_bus,
-                                 daemon::EventLoop& loop, Theme theme, FeedbackSettings settings)
+                                 daemon::EventLoop& loop, Theme theme, FeedbackSettings settings,
+                                 std::optional<std::filesystem::path> user_scores)
     : AdaptorInterfaces(session_bus, kObjectPath),
       haptics_(system_bus, {[this](std::uint64_t playback, const std::string&) {
                                 table_.playback_finished(playback);
@@ -58,14 +62,76 @@ FeedbackService::FeedbackService(sdbus::IConnection& session_bus, sdbus::IConnec
                       expiry_.disarm();
                   }
               }}),
-      expiry_(loop, [this] { table_.expire(monotonic_now_us()); }) {
+      expiry_(loop, [this] { table_.expire(monotonic_now_us()); }),
+      user_scores_(std::move(user_scores)) {
     vanish_watch_ = dbus::watch_connections_leaving(
         session_bus, [this](const std::string& name) { table_.sender_left(name); });
+    if (user_scores_) {
+        try {
+            make_user_directory(user_scores_->parent_path());
+            user_scores_watch_ =
+                std::make_unique<FileWatch>(loop, *user_scores_, [this] { load_user_scores(); });
+        } catch (const std::exception& error) {
+            log::warning(std::string(error.what()) + ": changes to " + user_scores_->string() +
+                         " are not seen until a restart");
+        }
+        load_user_scores();
+    }
     registerAdaptor();
 }
 
 FeedbackService::~FeedbackService() {
     unregisterAdaptor();
+}
+
+void FeedbackService::load_user_scores() {
+    try {
+        std::vector<Diagnostic> warnings;
+        auto scores = read_user_scores(*user_scores_, warnings);
+        for (const auto& warning : warnings) {
+            log::warning(format(warning));
+        }
+        const auto count = scores.size();
+        if (table_.set_user_scores(std::move(scores))) {
+            log::info(std::to_string(count) + " of your own scores for events, from " +
+                      user_scores_->string());
+            emitEventScoresChanged();
+        }
+    } catch (const std::exception& error) {
+        log::warning(std::string(error.what()) + " (the scores read before stay)");
+    }
+}
+
+std::vector<sdbus::Struct<std::string, std::string, std::string, bool>>
+FeedbackService::EventScores() {
+    std::vector<sdbus::Struct<std::string, std::string, std::string, bool>> list;
+    for (const auto& event : table_.event_scores()) {
+        list.emplace_back(event.event, event.score, event.theme_score, event.assigned);
+    }
+    return list;
+}
+
+void FeedbackService::AssignScore(const std::string& event, const std::string& score) {
+    try {
+        check_event_and_score(event, score);
+    } catch (const std::invalid_argument& error) {
+        throw invalid_args(error.what());
+    }
+    if (!user_scores_) {
+        throw sdbus::Error(kFailed,
+                           "vibscore-feedback has no config directory (neither "
+                           "XDG_CONFIG_HOME nor HOME is set)");
+    }
+    try {
+        store_user_score(*user_scores_, event, score);
+    } catch (const std::exception& error) {
+        throw sdbus::Error(
+            kFailed, "cannot store the score for " + quoted_text(event) + ": " + error.what());
+    }
+    log::info("event " + quoted_text(event) + " plays " +
+              (score.empty() ? std::string("the theme's score") : quoted_text(score)) +
+              " from now on (" + sender() + ")");
+    load_user_scores();
 }
 
 std::string FeedbackService::sender() const {

@@ -3,7 +3,10 @@
 #include <sdbus-c++/sdbus-c++.h>
 
 #include <cstdint>
+#include <filesystem>
 #include <map>
+#include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -12,20 +15,26 @@
 #include "feedback/event_table.hpp"
 #include "feedback/haptics_link.hpp"
 #include "feedback/theme.hpp"
+#include "feedback/user_scores_watch.hpp"
+#include "feedback1-adaptor.h"
 
 namespace vibscore::feedback {
 
-// The org.sigxcpu.Feedback object (feedback/org.sigxcpu.Feedback.xml documents each member):
-// it translates between the bus and the event table, which holds every rule, and plays
-// through vibscored. One thread: the loop serving both buses calls everything here.
+// The org.sigxcpu.Feedback object (feedback/org.sigxcpu.Feedback.xml and
+// org.vibscore.Feedback1.xml document each member): it translates between the bus and the
+// event table, which holds every rule, and plays through vibscored. One thread: the loop
+// serving both buses calls everything here.
 class FeedbackService final
     : public sdbus::AdaptorInterfaces<org::sigxcpu::Feedback_adaptor,
-                                      org::sigxcpu::Feedback::Haptic_adaptor> {
+                                      org::sigxcpu::Feedback::Haptic_adaptor,
+                                      org::vibscore::Feedback1_adaptor> {
   public:
     // Serves `session_bus` and plays through vibscored on `system_bus`; both are served by
-    // `loop`.
+    // `loop`. The user's scores are read from `user_scores` (user_scores.hpp) now and whenever
+    // it changes; without one, events play the theme's.
     FeedbackService(sdbus::IConnection& session_bus, sdbus::IConnection& system_bus,
-                    daemon::EventLoop& loop, Theme theme, FeedbackSettings settings);
+                    daemon::EventLoop& loop, Theme theme, FeedbackSettings settings,
+                    std::optional<std::filesystem::path> user_scores);
     ~FeedbackService();
 
   private:
@@ -38,12 +47,20 @@ class FeedbackService final
     bool Vibrate(const std::string& app_id,
                  const std::vector<sdbus::Struct<double, std::uint32_t>>& pattern) override;
 
+    std::vector<sdbus::Struct<std::string, std::string, std::string, bool>> EventScores() override;
+    void AssignScore(const std::string& event, const std::string& score) override;
+
     std::string sender() const;
+    // Reads the user's scores into the table; a file that does not read leaves them as they
+    // were, with a warning.
+    void load_user_scores();
 
     HapticsLink haptics_;
     EventTable table_;
     daemon::EventLoop::Timer expiry_;  // the earliest timeout of all events
     sdbus::Slot vanish_watch_;         // NameOwnerChanged: a client left the bus
+    std::optional<std::filesystem::path> user_scores_;
+    std::unique_ptr<FileWatch> user_scores_watch_;
 };
 
 }  // namespace vibscore::feedback

@@ -17,6 +17,7 @@
 #include "feedback/feedback_service.hpp"
 #include "feedback/feedbackd_theme.hpp"
 #include "feedback/theme.hpp"
+#include "feedback/user_scores.hpp"
 
 using namespace vibscore;
 using namespace vibscore::feedback;
@@ -64,7 +65,14 @@ int serve(const Options& options) {
     settings.haptic_usage = options.haptic_usage;
     settings.max_haptic_strength = options.max_haptic_strength;
     settings.allow_important = split_list(options.allow_important);
-    FeedbackService service(*session_bus, *system_bus, loop, theme, std::move(settings));
+    std::optional<std::filesystem::path> user_scores;
+    try {
+        user_scores = user_scores_path();
+    } catch (const std::exception& error) {
+        log::warning(std::string(error.what()) + ": events play the theme's scores only");
+    }
+    FeedbackService service(*session_bus, *system_bus, loop, theme, std::move(settings),
+                            user_scores);
     session_bus->requestName(kBusName);
     daemon::BusLoopBinding session_binding(loop, *session_bus);
     daemon::BusLoopBinding system_binding(loop, *system_bus);

@@ -4,11 +4,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
 #include <thread>
 
 #include "daemon/render/cue_adaptation.hpp"
 #include "feedback/feedbackd_theme.hpp"
 #include "feedback/theme.hpp"
+#include "feedback/user_scores.hpp"
 #include "feedback/vibra_feedback.hpp"
 #include "tests/hil/score_expectations.hpp"
 #include "tests/support/feedback_fixture.hpp"
@@ -435,6 +437,82 @@ TEST_F(FeedbackApi, EveryVibraEventOfEachReleasesDefaultThemePlays) {
         }
         EXPECT_GE(events, 12) << path;
     }
+}
+
+// vibscore assign: the user's own score for an event, through vibscore-feedback's bus
+// interface, into its file, which it watches.
+TEST_F(FeedbackApi, AScoreTheUserAssignsToAnEventPlaysForItUntilTakenBack) {
+    const auto vibscore = testing::required_env("VIBSCORE");
+    const auto assign = [&](std::vector<std::string> args) {
+        args.insert(args.begin(), {vibscore, "assign"});
+        return testing::run_command(session.on_this_bus(args));
+    };
+    const auto plays = [&](const std::string& score, const std::string& what) {
+        const auto first = daemon.trace_rows().size();
+        EXPECT_EQ(fbcli({"-E", "message-new-sms"}), 0) << what;
+        expect_plays(rows_from(first), expected_drives_of(score), what);
+    };
+    auto result = assign({"message-new-sms", "touch-click"});
+    EXPECT_EQ(result.exit_code, 0) << result.err;
+    EXPECT_EQ(result.out, "message-new-sms plays touch-click from now on\n");
+    plays("touch-click", "assigned");
+    result = assign({"--list"});
+    EXPECT_EQ(result.exit_code, 0) << result.err;
+    EXPECT_NE(result.out.find("message-new-sms              touch-click              yours (the "
+                              "theme's: message-new-sms)\n"),
+              std::string::npos)
+        << result.out;
+    EXPECT_NE(result.out.find("phone-incoming-call          ringtone\n"), std::string::npos);
+    const auto file = session.config_home() / "vibscore" / "feedback.json";
+    std::vector<Diagnostic> warnings;
+    EXPECT_EQ(feedback::read_user_scores(file, warnings),
+              (feedback::UserScores{{"message-new-sms", "touch-click"}}));
+
+    // The file edited by hand is seen at once.
+    std::ofstream(file) << R"({"events": {"message-new-sms": "touch-tick"}})";
+    std::this_thread::sleep_for(300ms);
+    plays("touch-tick", "edited");
+
+    // A score vibscored does not have: the theme's plays, and the log says why.
+    EXPECT_EQ(assign({"message-new-sms", "no-such-score"}).exit_code, 0);
+    plays("message-new-sms", "unknown score");
+    EXPECT_NE(server->log().find("the score \"no-such-score\" chosen for \"message-new-sms\" is "
+                                 "not in vibscored's registry: the theme's plays instead"),
+              std::string::npos)
+        << server->log();
+
+    result = assign({"message-new-sms", "--default"});
+    EXPECT_EQ(result.out, "message-new-sms plays the theme's score from now on\n");
+    plays("message-new-sms", "default");
+    EXPECT_TRUE(feedback::read_user_scores(file, warnings).empty());
+
+    result = assign({"message-new-sms", "Touch"});
+    EXPECT_EQ(result.exit_code, 2);
+    EXPECT_EQ(result.err,
+              "vibscore: score \"Touch\" is not a score name (a name is 1 to 64 of a-z 0-9 . _ "
+              "-, starting with a letter or a digit)\n");
+}
+
+TEST(FeedbackAssign, WithoutVibscoreFeedbackStoresTheChoiceForWhenItStarts) {
+    DaemonFixture daemon;
+    const SessionBus session;  // nothing serves org.sigxcpu.Feedback, nothing is activatable
+    const auto result = testing::run_command(session.on_this_bus(
+        {testing::required_env("VIBSCORE"), "assign", "button-pressed", "touch-tick"}));
+    EXPECT_EQ(result.exit_code, 0) << result.err;
+    EXPECT_NE(result.out.find("button-pressed plays touch-tick when vibscore-feedback runs "
+                              "(vibscore-feedback cannot be reached on the session bus; stored "
+                              "in "),
+              std::string::npos)
+        << result.out;
+    FeedbackServer server(
+        session,
+        testing::vibscore_feedback({"--theme", testing::required_env("VIBSCORE_FEEDBACK_THEME")}));
+    const auto before = daemon.trace_rows().size();
+    Fbcli run(session, {"-E", "button-pressed"});
+    ASSERT_TRUE(run.wait(10s)) << run.output();
+    const auto rows = daemon.trace_rows();
+    ASSERT_GT(rows.size(), before);
+    EXPECT_EQ(rows[before].amplitude, expected_drives_of("touch-tick").front().amplitude);
 }
 
 TEST(FeedbackActivation, TheFirstCallStartsVibscoreFeedbackOnTheSessionBus) {
