@@ -155,8 +155,13 @@ std::vector<std::string> vibscore_feedback(const std::vector<std::string>& args)
     return argv;
 }
 
-std::vector<std::string> real_feedbackd() {
-    return {"/usr/bin/env", "GSETTINGS_BACKEND=memory", "/usr/libexec/feedbackd"};
+std::vector<std::string> real_feedbackd(const std::filesystem::path& root) {
+    std::vector<std::string> argv{"/usr/bin/env", "GSETTINGS_BACKEND=memory",
+                                  "/usr/libexec/feedbackd"};
+    if (root != "/") {
+        argv.insert(argv.begin(), {"/usr/sbin/chroot", root.string()});
+    }
+    return argv;
 }
 
 Fbcli::Fbcli(const SessionBus& bus, const std::vector<std::string>& args) {

@@ -105,8 +105,10 @@ class FeedbackServer {
 
 // vibscore-feedback from the build tree ($VIBSCORE_FEEDBACK) with these arguments.
 std::vector<std::string> vibscore_feedback(const std::vector<std::string>& args);
-// Debian's feedbackd, settings in memory (no dconf), as a phone's session starts it.
-std::vector<std::string> real_feedbackd();
+// Debian's feedbackd, settings in memory (no dconf), as a phone's session starts it; with a
+// `root`, the feedbackd of that Debian root (another release's), chrooted there, which must
+// see /dev, /proc, /sys, /run and /tmp (the session bus's socket).
+std::vector<std::string> real_feedbackd(const std::filesystem::path& root = "/");
 
 // fbcli, libfeedback's own command line client, as an application runs: its standard input is
 // held open, since it ends the feedback at a newline or at the end of its input.
