@@ -18,9 +18,10 @@ EventTable::EventTable(Haptics& haptics, Theme theme, FeedbackSettings settings,
       profile_(settings_.profile) {}
 
 std::uint32_t EventTable::new_id() {
-    const std::uint32_t id = next_id_++;
-    if (next_id_ == 0) {
-        next_id_ = 1;
+    // In order from 1, skipping 0 and, after a wrap, the ids of events still playing.
+    std::uint32_t id = 0;
+    while (id == 0 || events_.contains(id)) {
+        id = next_id_++;
     }
     return id;
 }
@@ -197,7 +198,9 @@ bool EventTable::vibrate(const std::string& sender, const std::string& app_id,
     entry.vibra = std::move(feedback);
     entry.usage = settings_.haptic_usage;
     const auto played =
-        haptics_.play({entry, "haptic pattern of " + app_id, 0, settings_.max_haptic_strength});
+        // The app id in the score's title as the log shows it: bounded, no control characters.
+        haptics_.play(
+            {entry, "haptic pattern of " + quoted_text(app_id), 0, settings_.max_haptic_strength});
     if (played.playback != 0) {
         patterns_[sender] = played.playback;
     }

@@ -342,6 +342,14 @@ TEST_F(AnEventTable, ReplacesOnlyTheCallersOwnPatternAndAnEmptyOneEndsIt) {
     EXPECT_EQ(haptics.requests.size(), plays);
 }
 
+TEST_F(AnEventTable, TitlesAPatternWithItsAppIdBoundedAndWithoutControlCharacters) {
+    ASSERT_TRUE(table.vibrate(":1.7", std::string(1000, 'a') + "\n", {{1.0, 10}}));
+    EXPECT_EQ(haptics.requests.back().title,
+              "haptic pattern of \"" + std::string(80, 'a') + "\"... (1001 bytes)");
+    ASSERT_TRUE(table.vibrate(":1.7", "org.example\nApp", {{1.0, 10}}));
+    EXPECT_EQ(haptics.requests.back().title, "haptic pattern of \"org.example\\x0aApp\"");
+}
+
 TEST_F(AnEventTable, ForgetsAPatternVibscoredEnded) {
     ASSERT_TRUE(table.vibrate(":1.7", "a", {{1.0, 100}}));
     table.playback_finished(last_playback());
