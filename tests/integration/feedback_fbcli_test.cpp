@@ -382,6 +382,20 @@ TEST_F(FeedbackApi, AnImportantEventOfAnAllowedAppPlaysInSilentAndTheMaximumStre
     EXPECT_NEAR(rows[1].amplitude, 0.5 * 0.5556, 1e-9);  // 0.3 of the strongest 0.5: 5/9
 }
 
+// fbcli 0.8 (Debian 13) sets the important hint (-I) and the app id (-A); 0.0.3 cannot.
+TEST_F(FeedbackApi, FbcliOfFeedbackd08PlaysAnImportantEventOfAnAllowedAppInSilent) {
+    const auto help = testing::run_command({"/usr/bin/fbcli", "--help"});
+    if (help.out.find("--important") == std::string::npos) {
+        GTEST_SKIP() << "this release's fbcli has no --important (feedbackd 0.8 has)";
+    }
+    EXPECT_EQ(fbcli({"-P", "silent"}), 0);
+    auto first = daemon.trace_rows().size();
+    EXPECT_EQ(fbcli({"-I", "-A", "org.example.App", "-E", "button-pressed"}), 0);
+    EXPECT_EQ(daemon.trace_rows().size(), first);
+    EXPECT_EQ(fbcli({"-I", "-A", "org.gnome.clocks", "-E", "button-pressed"}), 0);
+    expect_plays(rows_from(first), expected_drives_of("touch-click"), "important");
+}
+
 // Each Debian release's feedbackd default theme, as its package ships it (the host's, and the
 // trixie chroot's when this machine has one): every vibra event plays its pattern, no
 // stronger than its strongest step.
