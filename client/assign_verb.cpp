@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "client/offline_verbs.hpp"
+#include "dbus/sdbus_compat.hpp"
 #include "feedback/user_scores.hpp"
 #include "feedback1-proxy.h"
 
@@ -21,7 +22,8 @@ constexpr const char* kFeedbackPath = "/org/sigxcpu/Feedback";
 class FeedbackLink : public sdbus::ProxyInterfaces<org::vibscore::Feedback1_proxy> {
   public:
     explicit FeedbackLink(std::unique_ptr<sdbus::IConnection> connection)
-        : ProxyInterfaces(*connection, kFeedbackName, kFeedbackPath),
+        : ProxyInterfaces(*connection, dbus::service_name(kFeedbackName),
+                          dbus::object_path(kFeedbackPath)),
           connection_(std::move(connection)) {
         registerProxy();
     }

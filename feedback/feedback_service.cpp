@@ -6,6 +6,7 @@
 #include "common/quoted_text.hpp"
 #include "daemon/log.hpp"
 #include "dbus/name_owner_watch.hpp"
+#include "dbus/sdbus_compat.hpp"
 
 namespace vibscore::feedback {
 
@@ -16,16 +17,16 @@ constexpr const char* kInvalidArgs = "org.freedesktop.DBus.Error.InvalidArgs";
 constexpr const char* kFailed = "org.freedesktop.DBus.Error.Failed";
 
 sdbus::Error invalid_args(const std::string& message) {
-    return sdbus::Error(kInvalidArgs, message);
+    return dbus::bus_error(kInvalidArgs, message);
 }
 
 // TriggerFeedback's hints: "profile" (s) and "important" (b); others ("sound-file") have no
 // effect on vibration.
 void read_hints(const std::map<std::string, sdbus::Variant>& hints, Trigger& trigger) {
     if (const auto hint = hints.find("profile"); hint != hints.end()) {
-        if (hint->second.peekValueType() != "s") {
-            throw invalid_args("hint \"profile\" must be a string (s), not " +
-                               hint->second.peekValueType());
+        const std::string held = dbus::variant_signature(hint->second);
+        if (held != "s") {
+            throw invalid_args("hint \"profile\" must be a string (s), not " + held);
         }
         const auto name = hint->second.get<std::string>();
         trigger.profile_hint = parse_profile(name);
@@ -35,9 +36,9 @@ void read_hints(const std::map<std::string, sdbus::Variant>& hints, Trigger& tri
         }
     }
     if (const auto hint = hints.find("important"); hint != hints.end()) {
-        if (hint->second.peekValueType() != "b") {
-            throw invalid_args("hint \"important\" must be a boolean (b), not " +
-                               hint->second.peekValueType());
+        const std::string held = dbus::variant_signature(hint->second);
+        if (held != "b") {
+            throw invalid_args("hint \"important\" must be a boolean (b), not " + held);
         }
         trigger.important = hint->second.get<bool>();
     }
@@ -48,7 +49,7 @@ void read_hints(const std::map<std::string, sdbus::Variant>& hints, Trigger& tri
 FeedbackService::FeedbackService(sdbus::IConnection& session_bus, sdbus::IConnection& system_bus,
                                  daemon::EventLoop& loop, Theme theme, FeedbackSettings settings,
                                  std::optional<std::filesystem::path> user_scores)
-    : AdaptorInterfaces(session_bus, kObjectPath),
+    : AdaptorInterfaces(session_bus, dbus::object_path(kObjectPath)),
       haptics_(system_bus, {[this](std::uint64_t playback, const std::string&) {
                                 table_.playback_finished(playback);
                             },
@@ -118,14 +119,14 @@ void FeedbackService::AssignScore(const std::string& event, const std::string& s
         throw invalid_args(error.what());
     }
     if (!user_scores_) {
-        throw sdbus::Error(kFailed,
-                           "vibscore-feedback has no config directory (neither "
-                           "XDG_CONFIG_HOME nor HOME is set)");
+        throw dbus::bus_error(kFailed,
+                              "vibscore-feedback has no config directory (neither "
+                              "XDG_CONFIG_HOME nor HOME is set)");
     }
     try {
         store_user_score(*user_scores_, event, score);
     } catch (const std::exception& error) {
-        throw sdbus::Error(
+        throw dbus::bus_error(
             kFailed, "cannot store the score for " + quoted_text(event) + ": " + error.what());
     }
     log::info("event " + quoted_text(event) + " plays " +
@@ -135,7 +136,8 @@ void FeedbackService::AssignScore(const std::string& event, const std::string& s
 }
 
 std::string FeedbackService::sender() const {
-    return getObject().getCurrentlyProcessedMessage()->getSender();
+    return dbus::with_current_message(
+        getObject(), [](const sdbus::Message& message) { return dbus::sender_of(message); });
 }
 
 void FeedbackService::TriggerFeedback(sdbus::Result<std::uint32_t>&& result, std::string app_id,
@@ -176,8 +178,8 @@ void FeedbackService::Profile(const std::string& value) {
                            std::string(kProfileNames) + ")");
     }
     if (table_.set_profile(*profile)) {
-        getObject().emitPropertiesChangedSignal(org::sigxcpu::Feedback_adaptor::INTERFACE_NAME,
-                                                {"Profile"});
+        dbus::emit_properties_changed(getObject(), org::sigxcpu::Feedback_adaptor::INTERFACE_NAME,
+                                      {"Profile"});
     }
 }
 
