@@ -250,6 +250,11 @@ std::string_view to_string(JsonValue::Kind kind) {
 
 JsonDocument::JsonDocument(std::string_view text, std::string file, JsonOptions options)
     : lines_(text, std::move(file)) {
+    // nlohmann's words for this differ between its releases (Debian 12's and 13's): ours.
+    if (std::all_of(text.begin(), text.end(), is_blank)) {
+        throw DocumentError(lines_.at(static_cast<std::ptrdiff_t>(text.size())),
+                            "not JSON: the text is empty");
+    }
     std::string tolerant;
     if (options.trailing_commas) {
         tolerant = blank_trailing_commas(text, trailing_commas_);
