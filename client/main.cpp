@@ -5,6 +5,7 @@
 #include <iterator>
 #include <limits>
 
+#include "client/assign_verb.hpp"
 #include "client/bus_verbs.hpp"
 #include "client/convert_verb.hpp"
 #include "client/editor/documents.hpp"
@@ -218,6 +219,18 @@ int main(int argc, char** argv) {
     show_verb->add_option("--png", show_png, "draw the staff (or the clef) as a PNG image instead");
     add_clefs_option(show_verb, clef_search);
 
+    AssignRequest assign_request;
+    auto* assign_verb = app.add_subcommand(
+        "assign",
+        "Choose the registry score a feedback event plays for you (vibscore-feedback; "
+        "docs/feedbackd.md): EVENT SCORE, EVENT --default, or --list.");
+    assign_verb->add_option("EVENT", assign_request.event, "event name, e.g. phone-incoming-call");
+    assign_verb->add_option("SCORE", assign_request.score, "registry score to play for it");
+    assign_verb->add_flag("--default", assign_request.to_default,
+                          "play the theme's score for EVENT again");
+    assign_verb->add_flag("--list", assign_request.list,
+                          "list the events and the score each plays");
+
     vibscore::editor::EditOptions edit_options;
     auto* edit_verb = app.add_subcommand(
         "edit", "Compose in the terminal, by keyboard or six buttons (docs/editor.md).");
@@ -286,6 +299,9 @@ int main(int argc, char** argv) {
     }
     if (show_verb->parsed()) {
         return vibscore::editor::show_score(show_request, std::cout, std::cerr);
+    }
+    if (assign_verb->parsed()) {
+        return assign(assign_request, std::cout, std::cerr);
     }
     if (edit_verb->parsed()) {
         return vibscore::editor::run_editor(edit_options, std::cerr);
