@@ -302,6 +302,9 @@ int convert(const ConvertRequest& request, const ClefSearch& clefs, std::ostream
         }
         const auto chosen = import_clef(request.clef, clefs);
         auto imported = import_file(from, request.in, chosen.chosen, request);
+        for (const auto& warning : imported.warnings) {
+            err << format(Diagnostic{warning.where, "warning: " + warning.message}) << "\n";
+        }
         if (to != Format::score) {
             const auto bundle = bundle_of(imported, request.in);
             write_file(request.out, export_track(to, bundle, request));

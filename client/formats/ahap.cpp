@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
 
 #include "client/formats/grid_fit.hpp"
@@ -78,10 +79,44 @@ struct HapticEvent {
     double intensity = 1.0, sharpness = 0.5;
 };
 
+// What Apple's parser takes though its documents forbid it, for the reader to say once each,
+// up to limits::diagnostics of them.
+class Warnings {
+  public:
+    explicit Warnings(const JsonDocument& document) : document_(document) {}
+
+    void add(std::ptrdiff_t offset, std::string message) {
+        if (list_.size() < limits::diagnostics) {
+            list_.push_back({document_.where(offset), std::move(message)});
+        } else {
+            ++more_;
+        }
+    }
+    std::vector<Diagnostic> take() && {
+        if (more_ > 0) {
+            list_.push_back({{document_.file()}, std::to_string(more_) + " more like these"});
+        }
+        return std::move(list_);
+    }
+
+  private:
+    const JsonDocument& document_;
+    std::vector<Diagnostic> list_;
+    std::size_t more_ = 0;
+};
+
 class AhapReader {
   public:
     AhapReader(const JsonDocument& document, DiagnosticSink& sink)
-        : json_(document, sink), document_(document) {}
+        : json_(document, sink), document_(document), warnings_(document) {
+        for (const auto offset : document.trailing_commas()) {
+            warnings_.add(offset,
+                          "a trailing comma, which JSON does not allow; Apple's parser (and "
+                          "Apple's own sample files) take it, and so does vibscore");
+        }
+    }
+
+    std::vector<Diagnostic> warnings() && { return std::move(warnings_).take(); }
 
     void read() {
         const auto& root = document_.root();
@@ -215,11 +250,11 @@ class AhapReader {
                                                       "Sustained",  "AudioVolume",    "AudioPan",
                                                       "AudioPitch", "AudioBrightness"};
         if (*id == "HapticIntensity") {
-            event.intensity = json_.number(*value, *id, 0.0, 1.0).value_or(event.intensity);
+            event.intensity = parameter_value(*value, *id, 0.0, 1.0).value_or(event.intensity);
         } else if (*id == "HapticSharpness") {
-            event.sharpness = json_.number(*value, *id, 0.0, 1.0).value_or(event.sharpness);
+            event.sharpness = parameter_value(*value, *id, 0.0, 1.0).value_or(event.sharpness);
         } else if (std::find(kOthers.begin(), kOthers.end(), *id) != kOthers.end()) {
-            json_.number(*value, *id, -1.0, 1.0);  // no counterpart in a score
+            parameter_value(*value, *id, -1.0, 1.0);  // no counterpart in a score
         } else {
             json_.report(*id_value, "unknown event ParameterID \"" + *id + "\"");
         }
@@ -275,7 +310,7 @@ class AhapReader {
                 continue;
             }
             const auto t = json_.number(*at, "control point Time", 0.0, limits::max_score_seconds);
-            const auto v = json_.number(*value, *id + " value", min, 1.0);
+            const auto v = parameter_value(*value, *id + " value", min, 1.0);
             if (t && v) {
                 if (!curve.points.empty() && curve.start + *t < curve.points.back().first) {
                     json_.report(point, "control point times must not go back");
@@ -304,7 +339,7 @@ class AhapReader {
         double min = 0.0;
         auto* target = curves_for(*id_value, *id, min);
         const auto t = json_.number(*time, "Time", 0.0, limits::max_score_seconds);
-        const auto v = json_.number(*value, *id + " value", min, 1.0);
+        const auto v = parameter_value(*value, *id + " value", min, 1.0);
         if (t) {
             last_parameter = std::max(last_parameter, *t);
         }
@@ -313,8 +348,26 @@ class AhapReader {
         }
     }
 
+    // A parameter's value: a finite number, kept within [min, max] as Core Haptics keeps it
+    // (its documentation: values outside a parameter's range are clamped), with a warning.
+    std::optional<double> parameter_value(const JsonValue& value, const std::string& what,
+                                          double min, double max) {
+        const auto read = json_.number(value, what, -std::numeric_limits<double>::max(),
+                                       std::numeric_limits<double>::max());
+        if (!read || (*read >= min && *read <= max)) {
+            return read;
+        }
+        const double clamped = std::clamp(*read, min, max);
+        warnings_.add(value.offset, what + " " + xml::format_number(*read) + " is out of range (" +
+                                        xml::format_number(min) + " to " + xml::format_number(max) +
+                                        "): read as " + xml::format_number(clamped) +
+                                        ", as Core Haptics clamps it");
+        return clamped;
+    }
+
     JsonReader json_;
     const JsonDocument& document_;
+    Warnings warnings_;
 };
 
 }  // namespace
@@ -390,7 +443,8 @@ std::string write_ahap(const SoundTrack& track) {
 
 ImportedScore read_ahap(std::string_view text, const std::string& file, const ChosenClef& chosen) {
     check_document_size(text, file);
-    const JsonDocument document(text, file);
+    // Apple's parser takes trailing commas, and Apple's own sample files have them.
+    const JsonDocument document(text, file, {.trailing_commas = true});
     DiagnosticSink sink;
     AhapReader reader(document, sink);
     reader.read();
@@ -425,8 +479,10 @@ ImportedScore read_ahap(std::string_view text, const std::string& file, const Ch
         events, total, chosen.clef,
         [&](const SoundEvent& event) { return string_at(event.pitch_start, strings); },
         reader.tempo);
-    return build_score(placed.notes, {{0, placed.tempo}}, placed.total_ticks, chosen, reader.title,
-                       file);
+    auto imported = build_score(placed.notes, {{0, placed.tempo}}, placed.total_ticks, chosen,
+                                reader.title, file);
+    imported.warnings = std::move(reader).warnings();
+    return imported;
 }
 
 }  // namespace vibscore::formats

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "score/clef.hpp"
+#include "score/document_error.hpp"
 #include "score/limits.hpp"
 #include "score/score.hpp"
 
@@ -47,6 +48,9 @@ struct ImportedClef {
 struct ImportedScore {
     Score score;  // its Clef declarations carry ids; the caller sets the hrefs
     std::vector<ImportedClef> clefs;
+    // What the reader took though the format's documents forbid it, and how it read it (an
+    // AHAP trailing comma, a parameter out of range clamped, as Apple's own parser does).
+    std::vector<Diagnostic> warnings;
 };
 
 // A bar of the imported score holds at most four beats, so a piece longer than this many ticks

@@ -247,6 +247,20 @@ TEST(ConvertCli, AVibscoreInABuildTreeFindsItsSourceTreesClefsAndAnInstalledOneD
     EXPECT_THAT(from_install.out + from_install.err, Not(HasSubstr(source.string())));
 }
 
+// What Apple's parser takes and JSON forbids is read, and convert says so, file:line:column.
+TEST(ConvertCli, ImportsAnAhapWithATrailingCommaAndSaysWhereItWas) {
+    TempDir dir;
+    const auto file = dir.write("tap.ahap",
+                                "{\"Pattern\": [\n  {\"Event\": {\"Time\": 0, "
+                                "\"EventType\": \"HapticTransient\"}},\n]}");
+    const auto result = convert({file.string(), (dir.path() / "tap.score.xml").string()});
+    EXPECT_EQ(result.exit_code, 0) << result.err;
+    EXPECT_EQ(result.err, file.string() +
+                              ":2:57: warning: a trailing comma, which JSON does not allow; "
+                              "Apple's parser (and Apple's own sample files) take it, and so does "
+                              "vibscore\n");
+}
+
 // Issue 27: 37 bytes whose delta time claims years took vibscore convert to 13.6 GB and past a
 // minute; refused at the byte that claims them, and nothing written.
 TEST(ConvertCli, AMidiFileOfAFewBytesThatClaimsYearsIsRefusedAtItsByte) {

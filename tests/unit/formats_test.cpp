@@ -310,16 +310,16 @@ TEST(Ahap, NamesTheLineAndColumnOfWhatIsWrong) {
     const auto read = [](const std::string& text) {
         return first_error([&] { formats::read_ahap(text, "p.ahap", lra_phone()); });
     };
-    EXPECT_EQ(read("{\n  \"Pattern\": [\n    {\"Event\": {\"Time\": 0,}}\n  ]\n}"),
-              "p.ahap:3:26: not JSON: syntax error while parsing object key - unexpected '}'; "
+    EXPECT_EQ(read("{\n  \"Pattern\": [\n    {\"Event\": {\"Time\": 0,,}}\n  ]\n}"),
+              "p.ahap:3:26: not JSON: syntax error while parsing object key - unexpected ','; "
               "expected string literal");
     EXPECT_EQ(read("{\"Pattern\": [],\n \"Tempo\": 3}"),
               "p.ahap:2:2: unknown key \"Tempo\" in the AHAP file (expected Version, Metadata, "
               "Pattern)");
     EXPECT_EQ(read("{\"Pattern\": [\n {\"Event\": {\"Time\": 0, \"EventType\": \"HapticTransient\","
                    "\n  \"EventParameters\": [{\"ParameterID\": \"HapticIntensity\", "
-                   "\"ParameterValue\": 1.5}]}}]}"),
-              "p.ahap:3:76: HapticIntensity 1.5 is out of range (0 to 1)");
+                   "\"ParameterValue\": \"loud\"}]}}]}"),
+              "p.ahap:3:76: HapticIntensity must be a number, not a string");
     EXPECT_EQ(
         read("{\"Pattern\": [{\"Event\": {\"Time\": 0, \"EventType\": \"HapticContinuous\"}}]}"),
         "p.ahap:1:24: a HapticContinuous event needs an EventDuration");
@@ -330,6 +330,89 @@ TEST(Ahap, NamesTheLineAndColumnOfWhatIsWrong) {
     EXPECT_EQ(read("{\"Pattern\": [], \"Pattern\": []}"),
               "p.ahap:1:17: key \"Pattern\" appears twice in one object");
     EXPECT_EQ(read("{\"Pattern\": []}"), "p.ahap: holds no notes or rests to make a score of");
+}
+
+// Issue 27: 8 of Apple's 21 sample AHAP files (from its Unity plug-in) were refused, 7 for a
+// trailing comma and 1 for HapticSharpness -1. Apple's parser takes both: commas before a
+// closing bracket or brace, and parameters out of range, clamped. Read them so, and say so.
+TEST(Ahap, ReadsApplesSampleShapesTrailingCommasAndParametersOutOfRangeClampedWithWarnings) {
+    const std::string sample = R"({
+    "Version": 1.0,
+    "Metadata": {
+        "Project" : "Basis",
+        "Created" : "1 June 2020",
+    },
+    "Pattern":
+    [
+        {
+            "Event":
+            {
+                "Time": 0.0,
+                "EventType": "HapticTransient",
+                "EventParameters":
+                [
+                    { "ParameterID": "HapticIntensity", "ParameterValue": 1.0 },
+                    { "ParameterID": "HapticSharpness", "ParameterValue": -1 },
+                ]
+            }
+        },
+        {
+            "ParameterCurve":
+            {
+                "ParameterID": "HapticIntensityControl",
+                "Time": 0.2,
+                "ParameterCurveControlPoints": [
+                    { "Time": 0, "ParameterValue": 1.5 },
+                ]
+            }
+        },
+    ]
+})";
+    const auto imported = formats::read_ahap(sample, "Basis.ahap", lra_phone());
+    EXPECT_EQ(imported.score.title, "Basis");
+    const auto notes = notes_in(imported.score);
+    ASSERT_EQ(notes.size(), 1u);
+    EXPECT_EQ(notes[0].string, 1);  // sharpness -1 read as 0: string 1
+    EXPECT_EQ(notes[0].number, 9);
+    std::vector<std::string> warnings;
+    for (const auto& warning : imported.warnings) {
+        warnings.push_back(format(warning));
+    }
+    const std::string comma =
+        ": a trailing comma, which JSON does not allow; Apple's parser (and Apple's own sample "
+        "files) take it, and so does vibscore";
+    EXPECT_EQ(warnings,
+              (std::vector<std::string>{
+                  "Basis.ahap:5:34" + comma, "Basis.ahap:17:79" + comma, "Basis.ahap:27:57" + comma,
+                  "Basis.ahap:30:10" + comma,
+                  "Basis.ahap:17:75: HapticSharpness -1 is out of range (0 to 1): read as 0, as "
+                  "Core Haptics clamps it",
+                  "Basis.ahap:27:52: HapticIntensityControl value 1.5 is out of range (0 to 1): "
+                  "read as 1, as Core Haptics clamps it"}));
+    // At the edges of the range a value is read as it is, with no warning.
+    const auto edges = formats::read_ahap(
+        R"({"Pattern": [{"Event": {"Time": 0, "EventType": "HapticTransient", "EventParameters": [
+        {"ParameterID": "HapticIntensity", "ParameterValue": 0},
+        {"ParameterID": "HapticSharpness", "ParameterValue": 1}]}}]})",
+        "e.ahap", lra_phone());
+    EXPECT_TRUE(edges.warnings.empty());
+    EXPECT_EQ(notes_in(edges.score).at(0).string, 6);
+}
+
+TEST(Ahap, SaysFiftyWarningsAndCountsTheRest) {
+    const auto loud = [](int events) {
+        std::string text = R"({"Pattern": [)";
+        for (int i = 0; i < events; ++i) {
+            text += std::string(i ? "," : "") + R"({"Event": {"Time": )" + std::to_string(i) +
+                    R"(, "EventType": "HapticTransient", "EventParameters": [)" +
+                    R"({"ParameterID": "HapticIntensity", "ParameterValue": 2}]}})";
+        }
+        return formats::read_ahap(text + "]}", "l.ahap", lra_phone()).warnings;
+    };
+    EXPECT_EQ(loud(50).size(), 50u);
+    const auto more = loud(52);
+    ASSERT_EQ(more.size(), 51u);
+    EXPECT_EQ(format(more.back()), "l.ahap: 2 more like these");
 }
 
 // The length of an imported score in seconds, as its clefs play it.
