@@ -255,13 +255,18 @@ void write_imported(formats::ImportedScore imported, const std::filesystem::path
                                                 std::to_string(limits::document_bytes) +
                                                 "-byte limit for a document; nothing written");
     }
+    // Every copy is checked before any is written: a refusal leaves nothing behind.
+    std::vector<std::size_t> copies;
     for (std::size_t i = 0; i < imported.clefs.size(); ++i) {
-        const auto& clef = imported.clefs[i];
-        if (!clef.retimed) {
-            continue;
+        if (imported.clefs[i].retimed) {
+            check_no_other_clef(directory / imported.score.clefs[i].href, imported.clefs[i].clef,
+                                "the score names its copy at that tempo so");
+            copies.push_back(i);
         }
+    }
+    for (const auto i : copies) {
+        const auto& clef = imported.clefs[i];
         const auto clef_file = directory / imported.score.clefs[i].href;
-        check_no_other_clef(clef_file, clef.clef, "the score names its copy at that tempo so");
         std::error_code ignored;
         if (!std::filesystem::exists(clef_file, ignored)) {
             write_file(clef_file, write_clef(clef.clef));

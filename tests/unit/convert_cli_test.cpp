@@ -201,6 +201,17 @@ TEST(ConvertCli, RefusesToNameAClefThatAnotherClefFileBesideTheScoreWouldShadow)
     std::filesystem::remove(dir.path() / "lra-phone.clef.xml");
     std::filesystem::copy_file(shipped("lra-phone.clef.xml"), dir.path() / "lra-phone.clef.xml");
     EXPECT_EQ(convert({pulse.string(), out.string()}).exit_code, 0);
+
+    // The same for the copies at the piece's tempi: every one is checked before any is written.
+    TempDir other;
+    const auto tune = other.write("slowing.rtttl", "slowing:d=4,o=5,b=120:c,d,b=60,e");
+    std::filesystem::copy_file(shipped("erm-phone.clef.xml"),
+                               other.path() / "lra-phone-60bpm.clef.xml");
+    const auto copies = convert({tune.string(), (other.path() / "s.score.xml").string()});
+    EXPECT_EQ(copies.exit_code, 1);
+    EXPECT_THAT(copies.err, HasSubstr("lra-phone-60bpm.clef.xml exists with another clef"));
+    EXPECT_EQ(testing::file_names(other.path()),
+              (std::vector<std::string>{"lra-phone-60bpm.clef.xml", "slowing.rtttl"}));
 }
 
 // The score a reader would refuse for its size (1 MiB) is not written, nor its clef's copy.
