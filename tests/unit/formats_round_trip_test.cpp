@@ -2,6 +2,7 @@
 // notes' timing within one tick of the format and their strengths within one number.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "client/formats/ahap.hpp"
