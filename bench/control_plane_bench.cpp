@@ -112,6 +112,7 @@ struct Row {
     int connections;
     bench::Summary list, play, ping;
     int timeouts = 0;         // root's calls that got no answer within D-Bus's 25 s
+    int refused = 0;          // root's calls refused (an error other than no answer)
     double daemon_cpu_s = 0;  // vibscored's CPU time over the stretch
     double stretch_s = 0;
 };
@@ -200,14 +201,15 @@ int main(int argc, char** argv) {
             std::this_thread::sleep_for(1s);  // flooding in earnest
         }
         std::vector<double> list_ms, play_ms, ping_ms;
-        int timeouts = 0;
+        int timeouts = 0, refused = 0;
         // A call with no answer counts as taking the whole time it waited.
         const auto timed = [&](std::vector<double>& into, const auto& call) {
             const auto start = std::chrono::steady_clock::now();
             try {
                 call();
-            } catch (const sdbus::Error&) {
-                ++timeouts;
+            } catch (const sdbus::Error& error) {
+                ++(dbus::error_name(error) == "org.freedesktop.DBus.Error.NoReply" ? timeouts
+                                                                                 : refused);
             }
             into.push_back(ms_since(start));
         };
@@ -226,12 +228,12 @@ int main(int argc, char** argv) {
             daemon.polkit().signal(SIGCONT);
         }
         rows.push_back({flood, connections, bench::summarize(list_ms), bench::summarize(play_ms),
-                        bench::summarize(ping_ms), timeouts, daemon_cpu_s, stretch_s});
+                        bench::summarize(ping_ms), timeouts, refused, daemon_cpu_s, stretch_s});
         const auto& row = rows.back();
         std::printf(
-            "  %-15s %3d   List %7.2f %8.2f   Play %7.2f %8.2f   Ping %6.2f %7.2f   %5.0f%%  %d\n",
+            "  %-15s %3d   List %7.2f %8.2f   Play %7.2f %8.2f   Ping %6.2f %7.2f   %5.0f%%  %d/%d\n",
             name_of(flood), connections, row.list.p50, row.list.p99, row.play.p50, row.play.p99,
-            row.ping.p50, row.ping.p99, 100.0 * daemon_cpu_s / stretch_s, timeouts);
+            row.ping.p50, row.ping.p99, 100.0 * daemon_cpu_s / stretch_s, timeouts, refused);
         std::fflush(stdout);
     };
 
@@ -239,7 +241,7 @@ int main(int argc, char** argv) {
         "control_plane_bench (%s; a shared, noisy machine: compare each row with its Ping)\n"
         "  %-15s %3s   %-18s   %-18s   %-16s   %6s  %s\n",
         bench::cpu_model().c_str(), "flood", "n", "List p50/p99 ms", "Play p50/p99 ms",
-        "Ping p50/p99 ms", "daemon", "no answer");
+        "Ping p50/p99 ms", "daemon", "no answer/refused");
     measure(Flood::quiet, 0);
     for (const auto flood :
          {Flood::polkit, Flood::inline_score, Flood::big_name, Flood::polkit_stopped}) {
@@ -254,7 +256,8 @@ int main(int argc, char** argv) {
         json += "," + bench::json_summary((prefix + "_list").c_str(), row.list) + "," +
                 bench::json_summary((prefix + "_play").c_str(), row.play) + "," +
                 bench::json_summary((prefix + "_ping").c_str(), row.ping) + ",\"" + prefix +
-                "_timeouts\":" + std::to_string(row.timeouts) + ",\"" + prefix +
+                "_timeouts\":" + std::to_string(row.timeouts) + ",\"" + prefix + "_refused\":" +
+                std::to_string(row.refused) + ",\"" + prefix +
                 "_daemon_cpu\":" + std::to_string(row.daemon_cpu_s / row.stretch_s);
     }
     std::printf("%s}\n", json.c_str());
