@@ -60,14 +60,19 @@ DaemonConfig read_config(const CommandLine& command_line) {
     for (const auto& warning : unknown_sections(config, drivers)) {
         log::warning(warning);
     }
+    // A value from the command line has no line in the file for messages to point at.
+    auto& daemon_lines = config.setting_lines["daemon"];
     if (!command_line.driver.empty()) {
         config.driver = command_line.driver;
+        daemon_lines.erase("driver");
     }
     if (!command_line.store.empty()) {
         config.store = command_line.store;
+        daemon_lines.erase("store");
     }
     if (!command_line.shipped.empty()) {
         config.shipped = command_line.shipped;
+        daemon_lines.erase("shipped");
     }
     return config;
 }

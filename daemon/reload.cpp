@@ -15,11 +15,18 @@ void reload_config(DaemonConfig& running, DaemonConfig fresh, ActuatorHost& host
         throw drivers::SettingError(error.key(),
                                     fresh.where(fresh.driver, error.key()) + error.what());
     }
-    if (fresh.store != running.store || fresh.shipped != running.shipped) {
-        log::warning("store and shipped directories change only on restart");
-        fresh.store = running.store;
-        fresh.shipped = running.shipped;
-    }
+    // The registry was read from these at start; reading another folder now would be a second
+    // registry under the same names.
+    const auto keep_until_restart = [&](const char* key, const std::filesystem::path& running_dir,
+                                        std::filesystem::path& fresh_dir) {
+        if (fresh_dir != running_dir) {
+            log::warning(fresh.where("daemon", key) + key + " = \"" + fresh_dir.string() +
+                         "\" changes only on restart; until then it stays " + running_dir.string());
+            fresh_dir = running_dir;
+        }
+    };
+    keep_until_restart("store", running.store, fresh.store);
+    keep_until_restart("shipped", running.shipped, fresh.shipped);
     callers.set_rate(fresh.requests_per_second, fresh.request_burst);
     const bool clefs_changed = fresh.device_clefs != running.device_clefs;
     running = std::move(fresh);

@@ -11,7 +11,9 @@ namespace vibscore::daemon {
 namespace {
 
 using ::testing::ElementsAre;
+using ::testing::HasSubstr;
 using ::testing::IsEmpty;
+using ::testing::Not;
 
 class ReloadTest : public ::testing::Test {
   protected:
@@ -88,6 +90,38 @@ TEST_F(ReloadTest, ABadSettingChangesNothingAtAll) {
     EXPECT_EQ(running.requests_per_second, 50.0);
     EXPECT_FALSE(running.settings_of("sim").contains("max-on-time-ms"));
     EXPECT_THAT(reasons.reasons, IsEmpty());
+}
+
+// Each alone, so that neither hides behind the other: the warning must come for either change.
+TEST_F(ReloadTest, AReloadThatChangesOnlyTheStoreKeepsItAndSaysItChangesOnlyOnRestart) {
+    DaemonConfig fresh = parse_config("[daemon]\nstore = /elsewhere/store\n", "v.conf", running);
+    ::testing::internal::CaptureStderr();
+    reload_config(running, fresh, *host, callers);
+    const std::string log = ::testing::internal::GetCapturedStderr();
+    EXPECT_EQ(running.store, "/var/lib/vibscore");
+    EXPECT_THAT(log, HasSubstr("v.conf:2: store = \"/elsewhere/store\" changes only on restart; "
+                               "until then it stays /var/lib/vibscore"));
+    EXPECT_THAT(log, Not(HasSubstr("shipped")));
+}
+
+TEST_F(ReloadTest, AReloadThatChangesOnlyTheShippedFolderKeepsItAndSaysItChangesOnlyOnRestart) {
+    DaemonConfig fresh = running;
+    fresh.shipped = "/elsewhere/clefs";
+    ::testing::internal::CaptureStderr();
+    reload_config(running, fresh, *host, callers);
+    const std::string log = ::testing::internal::GetCapturedStderr();
+    EXPECT_EQ(running.shipped, "/usr/share/vibscore/clefs");
+    EXPECT_THAT(log, HasSubstr("shipped = \"/elsewhere/clefs\" changes only on restart; until "
+                               "then it stays /usr/share/vibscore/clefs"));
+    EXPECT_THAT(log, Not(HasSubstr("store")));
+}
+
+TEST_F(ReloadTest, AReloadThatChangesNeitherFolderSaysNothingAboutThem) {
+    DaemonConfig fresh = running;
+    fresh.separation_ms = 10.0;
+    ::testing::internal::CaptureStderr();
+    reload_config(running, fresh, *host, callers);
+    EXPECT_THAT(::testing::internal::GetCapturedStderr(), Not(HasSubstr("only on restart")));
 }
 
 TEST_F(ReloadTest, TheStoreAndShippedDirectoriesKeepTheirRunningValues) {
