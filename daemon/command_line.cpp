@@ -8,6 +8,7 @@
 #include "config.h"
 #include "daemon/drivers/available.hpp"
 #include "daemon/log.hpp"
+#include "daemon/module_record.hpp"
 
 namespace vibscore::daemon {
 
@@ -53,8 +54,11 @@ DaemonConfig read_config(const CommandLine& command_line) {
     if (command_line.config_given || std::filesystem::exists(command_line.config)) {
         config = load_config(command_line.config, defaults);
     }
+    // The modules are tried here, once for this reading of the file (on the bus thread when the
+    // daemon reloads), and listed from then on without loading them again.
+    config.modules = drivers::scan_driver_modules(config.drivers_dir);
     std::vector<std::string> drivers;
-    for (const auto& driver : drivers::available_drivers(config.drivers_dir)) {
+    for (const auto& driver : drivers::available_drivers(*config.modules)) {
         drivers.push_back(driver.name);
     }
     for (const auto& warning : unknown_sections(config, drivers)) {
@@ -73,6 +77,9 @@ DaemonConfig read_config(const CommandLine& command_line) {
     if (!command_line.shipped.empty()) {
         config.shipped = command_line.shipped;
         daemon_lines.erase("shipped");
+    }
+    if (!command_line.safe_off) {
+        config.module_record = config.store / kModuleRecordFile;
     }
     return config;
 }

@@ -5,9 +5,14 @@
 
 #include <filesystem>
 #include <map>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
+
+namespace vibscore::drivers {
+class ModuleCatalog;
+}
 
 namespace vibscore::daemon {
 
@@ -35,6 +40,13 @@ struct DaemonConfig {
     // [clefs]' too).
     std::map<std::string, std::string> section_lines;
     std::map<std::string, std::map<std::string, std::string>> setting_lines;
+
+    // Not from the file: what read_config() found and decided when it read it.
+    // The driver modules of drivers_dir, each tried once (none: only the built-in drivers).
+    std::shared_ptr<const drivers::ModuleCatalog> modules;
+    // The store's file that names the driver module in use (module_record.hpp); empty for
+    // --safe-off, which must leave it for the next start to find.
+    std::filesystem::path module_record;
 
     const std::map<std::string, std::string>& settings_of(const std::string& driver) const;
     // "file:line: " of a driver's setting (or of its section when the key is not set there);
