@@ -1,5 +1,9 @@
 #include "daemon/reload.hpp"
 
+#include <stdexcept>
+#include <string>
+
+#include "daemon/drivers/available.hpp"
 #include "daemon/drivers/configured_actuator.hpp"
 #include "daemon/drivers/driver_settings.hpp"
 #include "daemon/log.hpp"
@@ -8,6 +12,23 @@ namespace vibscore::daemon {
 
 void reload_config(DaemonConfig& running, DaemonConfig fresh, ActuatorHost& host,
                    CallerDirectory& callers) {
+    // A driver that does not exist is known now, before playback is stopped for it.
+    const drivers::ModuleCatalog none;
+    const auto& modules = fresh.modules ? *fresh.modules : none;
+    if (!drivers::is_built_in_driver(fresh.driver) && modules.find(fresh.driver) == nullptr) {
+        std::string why;
+        if (const auto* refused = modules.refused_as(fresh.driver)) {
+            why = ": module " + refused->path.string() + " is not loaded: " + refused->reason;
+        } else {
+            std::string known;
+            for (const auto& driver : drivers::available_drivers(modules)) {
+                known += (known.empty() ? "" : ", ") + driver.name;
+            }
+            why = " (available: " + known + ")";
+        }
+        throw std::invalid_argument(fresh.where("daemon", "driver") + "unknown driver \"" +
+                                    fresh.driver + "\"" + why);
+    }
     DriverSettingsMap fresh_settings = fresh.settings_of(fresh.driver);
     try {
         drivers::take_common_settings(fresh.driver, fresh_settings);

@@ -135,6 +135,16 @@ TEST_F(ReloadTest, TheStoreAndShippedDirectoriesKeepTheirRunningValues) {
     EXPECT_EQ(running.separation_ms, 10.0);
 }
 
+TEST_F(ReloadTest, AnUnknownDriverChangesNothingAndNamesTheLineThatNamesIt) {
+    const DaemonConfig fresh = parse_config("[daemon]\n\ndriver = evdevv\n", "v.conf", running);
+    EXPECT_THAT([&] { reload_config(running, fresh, *host, callers); },
+                ::testing::ThrowsMessage<std::invalid_argument>(::testing::StartsWith(
+                    "v.conf:3: unknown driver \"evdevv\" (available: sim, evdev")));
+    EXPECT_EQ(host->driver(), "sim");
+    EXPECT_EQ(running.driver, "sim");
+    EXPECT_THAT(reasons.reasons, IsEmpty()) << "the playback was not stopped for it";
+}
+
 TEST_F(ReloadTest, ADriverThatWillNotOpenLeavesThePreviousOneRunning) {
     DaemonConfig fresh = running;
     fresh.driver = "evdev";
