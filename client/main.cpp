@@ -5,6 +5,7 @@
 #include <iterator>
 #include <limits>
 
+#include "client/assign_verb.hpp"
 #include "client/bus_verbs.hpp"
 #include "client/convert_verb.hpp"
 #include "client/editor/documents.hpp"
@@ -162,9 +163,15 @@ int main(int argc, char** argv) {
                         "stay until it ends, showing each bar; Ctrl-C stops it");
 
     std::uint64_t stop_id = 0;
+    bool stop_everyone = false;
     auto* stop_verb = app.add_subcommand("stop", "Stop a playback (default: all of yours).");
-    stop_verb->add_option("ID", stop_id, "playback id printed by play")
-        ->check(number_between(1, std::numeric_limits<double>::infinity(), NumberKind::whole));
+    auto* stop_id_option =
+        stop_verb->add_option("ID", stop_id, "playback id printed by play")
+            ->check(number_between(1, std::numeric_limits<double>::infinity(), NumberKind::whole));
+    stop_verb
+        ->add_flag("--all", stop_everyone,
+                   "every playback, whoever started it (polkit: org.vibscore.manage)")
+        ->excludes(stop_id_option);
 
     std::string kind = "score";
     std::string name;
@@ -193,17 +200,36 @@ int main(int argc, char** argv) {
     driver_verb->add_option("NAME", driver_name, "backend to switch to (see 'vibscore drivers')");
 
     vibscore::editor::ShowRequest show_request;
-    auto* show_verb =
-        app.add_subcommand("show", "Draw a registry score or a score file as staff notation.");
-    show_verb->add_option("SCORE", show_request.score, "registry name or VibScore file")
+    auto* show_verb = app.add_subcommand(
+        "show",
+        "Draw a registry score or a score file as staff notation; with --svg or --png, a clef's "
+        "strings and numbers too.");
+    show_verb
+        ->add_option("SCORE", show_request.score,
+                     "registry name or VibScore file (with --svg/--png: or a clef, by file "
+                     "or name)")
         ->required();
     show_verb->add_option("--width", show_request.width, "columns (default: the terminal's)")
         ->check(number_between(20, 10000, NumberKind::whole));
     show_verb->add_flag("--colour,--color", show_request.colour,
                         "ANSI colours even when not writing to a terminal");
     std::string show_svg, show_png;
-    show_verb->add_option("--svg", show_svg, "draw the staff as an SVG picture instead");
-    show_verb->add_option("--png", show_png, "draw the staff as a PNG image instead");
+    show_verb->add_option("--svg", show_svg,
+                          "draw the staff (or the clef) as an SVG picture instead");
+    show_verb->add_option("--png", show_png, "draw the staff (or the clef) as a PNG image instead");
+    add_clefs_option(show_verb, clef_search);
+
+    AssignRequest assign_request;
+    auto* assign_verb = app.add_subcommand(
+        "assign",
+        "Choose the registry score a feedback event plays for you (vibscore-feedback; "
+        "docs/feedbackd.md): EVENT SCORE, EVENT --default, or --list.");
+    assign_verb->add_option("EVENT", assign_request.event, "event name, e.g. phone-incoming-call");
+    assign_verb->add_option("SCORE", assign_request.score, "registry score to play for it");
+    assign_verb->add_flag("--default", assign_request.to_default,
+                          "play the theme's score for EVENT again");
+    assign_verb->add_flag("--list", assign_request.list,
+                          "list the events and the score each plays");
 
     vibscore::editor::EditOptions edit_options;
     auto* edit_verb = app.add_subcommand(
@@ -247,7 +273,7 @@ int main(int argc, char** argv) {
         return play(play_request, clef_search, std::cout, std::cerr);
     }
     if (stop_verb->parsed()) {
-        return stop(stop_id, std::cout, std::cerr);
+        return stop_everyone ? stop_all(std::cout, std::cerr) : stop(stop_id, std::cout, std::cerr);
     }
     if (list_verb->parsed()) {
         return list(kind, std::cout, std::cerr);
@@ -268,10 +294,14 @@ int main(int argc, char** argv) {
         return driver(driver_name, std::cout, std::cerr);
     }
     if (show_verb->parsed() && (!show_svg.empty() || !show_png.empty())) {
-        return show_picture(show_request.score, show_svg, show_png, std::cout, std::cerr);
+        return show_picture(show_request.score, show_svg, show_png, clef_search, std::cout,
+                            std::cerr);
     }
     if (show_verb->parsed()) {
         return vibscore::editor::show_score(show_request, std::cout, std::cerr);
+    }
+    if (assign_verb->parsed()) {
+        return assign(assign_request, std::cout, std::cerr);
     }
     if (edit_verb->parsed()) {
         return vibscore::editor::run_editor(edit_options, std::cerr);

@@ -35,8 +35,10 @@ SessionBus::SessionBus(const std::vector<std::pair<std::string, std::string>>& a
     const auto config = dir_.write("session.conf", session_bus_config(services));
     const auto socket = dir_.path() / "bus";
     address_ = "unix:path=" + socket.string();
+    // Services it starts inherit its environment: the session's config directory.
     bus_ = std::make_unique<Process>(
-        std::vector<std::string>{"/usr/bin/dbus-daemon", "--config-file=" + config.string(),
+        std::vector<std::string>{"/usr/bin/env", "XDG_CONFIG_HOME=" + config_home().string(),
+                                 "/usr/bin/dbus-daemon", "--config-file=" + config.string(),
                                  "--address=" + address_, "--nofork", "--nopidfile"},
         dir_.path() / "bus.log");
     for (int i = 0; i < 500 && !std::filesystem::exists(socket); ++i) {
@@ -51,7 +53,8 @@ SessionBus::SessionBus(const std::vector<std::pair<std::string, std::string>>& a
 SessionBus::~SessionBus() = default;
 
 std::vector<std::string> SessionBus::on_this_bus(std::vector<std::string> argv) const {
-    argv.insert(argv.begin(), {"/usr/bin/env", "DBUS_SESSION_BUS_ADDRESS=" + address_});
+    argv.insert(argv.begin(), {"/usr/bin/env", "DBUS_SESSION_BUS_ADDRESS=" + address_,
+                               "XDG_CONFIG_HOME=" + config_home().string()});
     return argv;
 }
 
@@ -77,8 +80,8 @@ bool SessionBus::wait_for_owner(const std::string& name, std::chrono::millisecon
 
 // The proxy owns its connection and serves it from its own thread, where signals arrive.
 FeedbackClient::FeedbackClient(const SessionBus& bus)
-    : ProxyInterfaces(sdbus::createSessionBusConnectionWithAddress(bus.address()), kFeedbackName,
-                      kFeedbackPath) {
+    : ProxyInterfaces(sdbus::createSessionBusConnectionWithAddress(bus.address()),
+                      dbus::service_name(kFeedbackName), dbus::object_path(kFeedbackPath)) {
     registerProxy();
 }
 
@@ -91,10 +94,10 @@ void FeedbackClient::onFeedbackEnded(const std::uint32_t& id, const std::uint32_
     ended_.push_back({id, reason, std::chrono::steady_clock::now()});
 }
 
-void FeedbackClient::onPropertiesChanged(const std::string& interface,
-                                         const std::map<std::string, sdbus::Variant>& changed,
-                                         const std::vector<std::string>&) {
-    const auto profile = changed.find("Profile");
+void FeedbackClient::onPropertiesChanged(const dbus::InterfaceName& interface,
+                                         const dbus::ChangedProperties& changed,
+                                         const std::vector<dbus::PropertyName>&) {
+    const auto profile = changed.find(dbus::PropertyName("Profile"));
     if (interface == "org.sigxcpu.Feedback" && profile != changed.end()) {
         std::lock_guard lock(mutex_);
         profile_changes_.push_back(profile->second.get<std::string>());
@@ -152,8 +155,13 @@ std::vector<std::string> vibscore_feedback(const std::vector<std::string>& args)
     return argv;
 }
 
-std::vector<std::string> real_feedbackd() {
-    return {"/usr/bin/env", "GSETTINGS_BACKEND=memory", "/usr/libexec/feedbackd"};
+std::vector<std::string> real_feedbackd(const std::filesystem::path& root) {
+    std::vector<std::string> argv{"/usr/bin/env", "GSETTINGS_BACKEND=memory",
+                                  "/usr/libexec/feedbackd"};
+    if (root != "/") {
+        argv.insert(argv.begin(), {"/usr/sbin/chroot", root.string()});
+    }
+    return argv;
 }
 
 Fbcli::Fbcli(const SessionBus& bus, const std::vector<std::string>& args) {
