@@ -26,6 +26,10 @@ ActuatorHost::ActuatorHost(const DaemonConfig& config)
       modules_(running_modules_) {
     const auto crashed = read_module_record(config.module_record);
     remove_module_record(config.module_record);  // about the run that ended; this one starts afresh
+    if (crashed && crashed->name != driver_) {
+        log::warning("vibscored last ended while driver module " + crashed->name + " (" +
+                     crashed->path.string() + ") was in use, without closing it");
+    }
     if (const std::string reason = reason_to_run_sim_instead(crashed); !reason.empty()) {
         log::error(reason +
                    "; running driver sim instead, so the daemon serves. `vibscore driver " +
@@ -52,20 +56,12 @@ ActuatorHost::~ActuatorHost() {
 std::string ActuatorHost::reason_to_run_sim_instead(
     const std::optional<ModuleInUse>& crashed) const {
     if (drivers::is_built_in_driver(driver_)) {
-        if (crashed) {
-            log::warning("vibscored last ended while driver module " + crashed->name + " (" +
-                         crashed->path.string() + ") was in use, without closing it");
-        }
         return {};
     }
     if (crashed && crashed->name == driver_) {
         return "driver module " + driver_ + " (" + crashed->path.string() +
                ") was in use when vibscored last ended without closing it (a crash in it, a "
                "hang, or a kill)";
-    }
-    if (crashed) {
-        log::warning("vibscored last ended while driver module " + crashed->name + " (" +
-                     crashed->path.string() + ") was in use, without closing it");
     }
     if (running_modules_->find(driver_) == nullptr) {
         if (const auto* refused = running_modules_->refused_as(driver_)) {
