@@ -32,7 +32,8 @@ std::variant<CommandLine, int> parse_command_line(int argc, const char* const* a
                  "list the actuator backends and exit");
     app.add_flag("--safe-off", command_line.safe_off,
                  "switch the configured actuator off and exit (the unit's ExecStopPost: it runs "
-                 "after a crash too)");
+                 "after a crash too, and leaves the crashed run's sim trace and driver module "
+                 "record for the next start)");
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& help) {
