@@ -90,6 +90,10 @@ int main(int argc, char** argv) {
         "check", "Validate scores (with the clefs they name) and clefs; list every problem.");
     check->add_option("FILE", check_files, "VibScore or VibClef documents")->required();
     add_clefs_option(check, clef_search);
+    std::string check_actuator;
+    check->add_option("--actuator", check_actuator,
+                      "a file with an [actuator] section (vibscored.conf will do): also warn, "
+                      "naming bar, note and numbers, where a score asks what it cannot give");
 
     RenderRequest render;
     auto* render_verb = app.add_subcommand(
@@ -107,6 +111,11 @@ int main(int argc, char** argv) {
                             "draw the signal and its envelope, with bar and note boundaries, "
                             "as an SVG picture");
     render_verb->add_option("--png", render.png, "the same picture as a PNG image");
+    render_verb->add_option("--actuator", render.actuator,
+                            "a file with an [actuator] section (vibscored.conf will do): --out "
+                            "FILE.csv then has t,written,uncompensated,compensated: the strength "
+                            "written and what that actuator produces without and with "
+                            "compensation");
 
     ConvertRequest convert_request;
     auto* convert_verb = app.add_subcommand(
@@ -235,7 +244,7 @@ int main(int argc, char** argv) {
     }
 
     if (check->parsed()) {
-        return check_documents(check_files, clef_search, std::cout, std::cerr);
+        return check_documents(check_files, clef_search, std::cout, std::cerr, check_actuator);
     }
     if (render_verb->parsed()) {
         return render_document(render, clef_search, std::cout, std::cerr);

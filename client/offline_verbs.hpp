@@ -12,9 +12,11 @@ namespace vibscore::client {
 // Exit codes shared by every verb.
 enum ExitCode : int { exit_ok = 0, exit_failed = 1, exit_usage = 2 };
 
-// vibscore check FILE...: validates scores (with their clefs, found by `clefs`) and clefs.
+// vibscore check FILE... [--actuator DECLARATION]: validates scores (with their clefs, found by
+// `clefs`) and clefs. With an actuator file (an [actuator] section), also warns where a score asks
+// what that actuator cannot give (render::actuator_warnings); warnings do not fail the check.
 int check_documents(const std::vector<std::string>& files, const ClefSearch& clefs,
-                    std::ostream& out, std::ostream& err);
+                    std::ostream& out, std::ostream& err, const std::string& actuator_file = {});
 
 struct RenderRequest {
     std::string file;
@@ -23,6 +25,9 @@ struct RenderRequest {
     bool plot = false;
     int plot_width = 72;
     std::string svg, png;  // the signal and its envelope as a picture; empty for none
+    // A file with an [actuator] section: --out FILE.csv then has the written strength and the
+    // strength that actuator produces without and with compensation (render::actuator_response).
+    std::string actuator;
 };
 
 // vibscore render FILE --rate HZ --out OUT.csv|OUT.wav [--plot] [--svg F] [--png F]

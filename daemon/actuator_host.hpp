@@ -4,6 +4,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -33,8 +34,11 @@ class ActuatorHost {
     // The built-in backends, then the driver modules of the configured drivers directory.
     std::vector<drivers::DriverInfo> drivers() const;
 
-    // The player that plays on the actuator: stopped and pointed at the new backend on a switch.
-    void attach(Player& player) { player_ = &player; }
+    // The player that plays on the actuator: stopped and pointed at the new backend on a switch,
+    // and told the declared actuator ([actuator]) now and after every reload.
+    void attach(Player& player);
+    // The actuator [actuator] declares, as the player uses it.
+    const std::optional<actuator::Declaration>& declaration() const { return config_.actuator; }
     // Called after every switch attempt, since even a failed one may leave another backend.
     void on_change(std::function<void()> changed) { changed_ = std::move(changed); }
 
@@ -45,13 +49,16 @@ class ActuatorHost {
     void switch_to(const std::string& driver);
 
     // After the running configuration changed: switches to its driver when the driver, its
-    // settings or the drivers directory differ from what runs. Returns whether it switched.
+    // settings or the drivers directory differ from what runs, or when the sim runs and the
+    // declared actuator it simulates changed. Hands the player the declaration. Returns whether
+    // it switched.
     bool follow_config();
 
   private:
-    std::unique_ptr<drivers::Actuator> open(const std::string& driver,
-                                            const DriverSettingsMap& settings,
-                                            const std::filesystem::path& drivers_dir) const;
+    std::unique_ptr<drivers::Actuator> open(
+        const std::string& driver, const DriverSettingsMap& settings,
+        const std::filesystem::path& drivers_dir,
+        const std::optional<actuator::Declaration>& declared) const;
     void open_in_place_of_running(const std::string& driver);
 
     const DaemonConfig& config_;
@@ -61,6 +68,7 @@ class ActuatorHost {
     std::string driver_;
     DriverSettingsMap settings_;
     std::filesystem::path drivers_dir_;
+    std::optional<actuator::Declaration> declared_;
     std::unique_ptr<drivers::Actuator> actuator_;
 };
 

@@ -1,10 +1,12 @@
 #pragma once
 
 #include "config.h"
+#include "daemon/actuator/declaration.hpp"
 #include "daemon/device_clefs.hpp"
 
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -14,6 +16,7 @@ namespace vibscore::daemon {
 // vibscored.conf: INI sections of "key = value" lines; '#' and ';' start comments.
 //   [daemon]  driver, drivers-dir, store, shipped, separation-ms, requests-per-second,
 //             request-burst, rt-priority
+//   [actuator] the actuator's physics, declared once (daemon/actuator_config.hpp)
 //   [clefs]   WRITTEN = DEVICE: the clef bars written for WRITTEN play through on this device;
 //             "* = DEVICE" for any other clef
 //   [NAME]    the settings of driver NAME (e.g. [sim] model = erm), handed to that driver
@@ -29,6 +32,7 @@ struct DaemonConfig {
     int rt_priority = 40;  // SCHED_FIFO of the playback thread; 0: normal scheduling
     std::map<std::string, std::map<std::string, std::string>> driver_settings;  // by driver
     DeviceClefs device_clefs;
+    std::optional<actuator::Declaration> actuator;  // [actuator]; nothing: playback as written
     // Where each [section] begins and each of its keys is set, as "file:line", for messages.
     std::map<std::string, std::string> section_lines;
     std::map<std::string, std::map<std::string, std::string>> setting_lines;
@@ -51,7 +55,8 @@ DaemonConfig parse_config(const std::string& text, const std::string& file,
 DaemonConfig load_config(const std::filesystem::path& path, DaemonConfig defaults = {});
 
 // Sections besides [daemon] and the backends' that configure parts of the service.
-inline constexpr const char* kServiceSections[] = {"clefs", "virtual-vibra"};
+inline constexpr const char* kActuatorSection = "actuator";
+inline constexpr const char* kServiceSections[] = {"clefs", "virtual-vibra", kActuatorSection};
 
 // A warning for each section of `config` that is neither [daemon], a service section nor one of
 // `known` (the drivers), whose keys therefore apply nowhere: "file:line: unknown section [x] ...

@@ -31,7 +31,7 @@ _vibscore() {
     program=${COMP_WORDS[0]}
     local verbs="check render info play stop list get compose delete show edit drivers driver convert"
     local formats="score ahap android-json android-xml android-envelope rtttl midi"
-    local valued="--usage|--clef|--clefs|--out|--rate|--repeat|--intensity|--width|--buttons|--keymap|--button-map|--from|--to|--track|--svg|--png"
+    local valued="--usage|--clef|--clefs|--out|--rate|--repeat|--intensity|--width|--buttons|--keymap|--button-map|--from|--to|--track|--svg|--png|--actuator"
 
     verb=
     for ((i = 1; i < COMP_CWORD; i++)); do
@@ -64,6 +64,9 @@ _vibscore() {
         --clefs)
             _vibscore_files "$cur" '*/'
             return ;;
+        --actuator)
+            _vibscore_files "$cur" '*.conf'
+            return ;;
         --out)
             _vibscore_files "$cur" '*.@(csv|wav)'
             return ;;
@@ -77,8 +80,9 @@ _vibscore() {
     if [[ $cur == -* ]]; then
         local options="--help"
         case $verb in
-            check|info) options+=" --clefs" ;;
-            render) options+=" --rate --out --plot --width --svg --png --clefs" ;;
+            check) options+=" --clefs --actuator" ;;
+            info) options+=" --clefs" ;;
+            render) options+=" --rate --out --plot --width --svg --png --clefs --actuator" ;;
             play) options+=" --usage --repeat --clef --intensity --wait --clefs" ;;
             compose) options+=" --clefs" ;;
             show) options+=" --width --colour --color --svg --png" ;;

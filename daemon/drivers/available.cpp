@@ -53,9 +53,10 @@ std::vector<DriverInfo> available_drivers(const std::filesystem::path& drivers_d
 namespace {
 
 std::unique_ptr<Actuator> make_backend(const std::string& name,
-                                       const std::map<std::string, std::string>& settings) {
+                                       const std::map<std::string, std::string>& settings,
+                                       const std::optional<actuator::Declaration>& declared) {
     if (name == "sim") {
-        return make_sim_actuator(settings);
+        return make_sim_actuator(settings, declared);
     }
     if (name == "evdev") {
         return make_evdev_actuator(settings);
@@ -82,10 +83,11 @@ std::unique_ptr<Actuator> make_backend(const std::string& name,
 
 std::unique_ptr<Actuator> make_actuator(const std::string& name,
                                         const std::map<std::string, std::string>& settings,
-                                        const std::filesystem::path& drivers_dir) {
+                                        const std::filesystem::path& drivers_dir,
+                                        const std::optional<actuator::Declaration>& declared) {
     auto own_settings = settings;
     const CommonSettings common = take_common_settings(name, own_settings);
-    auto backend = is_built_in(name) ? make_backend(name, own_settings)
+    auto backend = is_built_in(name) ? make_backend(name, own_settings, declared)
                                      : make_external_actuator(drivers_dir, name, own_settings);
     if (backend) {
         return std::make_unique<ConfiguredActuator>(std::move(backend), common);

@@ -184,6 +184,26 @@ TEST_F(ActuatorHostTest, FollowingTheConfigurationSwitchesOnlyWhenWhatRunsDiffer
     EXPECT_FALSE(host->follow_config());
 }
 
+TEST_F(ActuatorHostTest, ADeclarationChangeReopensOnlyTheSimWhichSimulatesIt) {
+    config.driver_settings["sim"] = {};
+    start();
+    actuator::Declaration board;
+    board.kind = actuator::Kind::erm;
+    board.brake = actuator::Brake::reverse;
+    config.actuator = board;
+    EXPECT_TRUE(host->follow_config());  // the sim is made of the declaration
+    EXPECT_TRUE(host->capabilities().reverse);
+    EXPECT_FALSE(host->follow_config());
+
+    config.driver = "timed-output";
+    EXPECT_TRUE(host->follow_config());
+    const int switches = changes;
+    config.actuator->rated_drive = 0.6;  // the board's vibra is whatever it is
+    EXPECT_FALSE(host->follow_config());
+    EXPECT_EQ(changes, switches);
+    EXPECT_EQ(host->declaration(), config.actuator);
+}
+
 TEST_F(ActuatorHostTest, AfterASwitchOverTheBusAReloadReturnsToTheConfiguredDriver) {
     start();
     host->switch_to("timed-output");
