@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <random>
 
 #include "daemon/actuator/physics.hpp"
 #include "daemon/render/actuator_response.hpp"
@@ -203,6 +204,61 @@ TEST(DrivePlanner, AnLraIsBrakedInAntiPhaseAtItsOwnFrequency) {
 TEST(DrivePlanner, TheScaleIsThePlaybacksIntensity) {
     DrivePlanner planner(erm(), {.scale = 0.5, .compensation = false});
     EXPECT_THAT(plan(planner, 0.0, 1.0, 1.0), ::testing::ElementsAre(DriveIs(0.0, 0.35, 0.0)));
+}
+
+// Whatever the envelope, on either kind, with or without reverse: every drive within full scale,
+// in time order, backwards only with reverse, and no overdrive or brake carrying the actuator
+// past the written strength (it ends where the model gets there, or at the segment's end).
+TEST(DrivePlanner, KeepsItsLimitsOverAnyEnvelope) {
+    std::mt19937 random(22);
+    std::uniform_real_distribution<double> strength(0.0, 1.6), length(0.001, 0.15),
+        frequency(150.0, 200.0);
+    for (const Declaration& declared :
+         {erm(Brake::reverse), erm(Brake::none), lra(Brake::reverse), lra(Brake::none)}) {
+        const bool reverse = declared.brake == Brake::reverse;
+        DrivePlanner planner(declared, {.reverse = reverse});
+        const Physics physics(declared);
+        double at = 0.0;
+        double previous = 0.0;
+        for (int i = 0; i < 400; ++i) {
+            const double written = i % 3 == 0 ? 0.0 : strength(random);
+            const double until = at + length(random);
+            const double f = declared.kind == Kind::lra ? frequency(random) : 0.0;
+            const auto before = planner.carry().state;
+            const auto drives = plan(planner, at, until, written, f, i % 3 == 2);
+            for (std::size_t k = 0; k < drives.size(); ++k) {
+                const Cue& cue = drives[k];
+                ASSERT_LE(std::abs(cue.amplitude), 1.0);
+                ASSERT_TRUE(reverse || cue.amplitude >= 0.0);
+                ASSERT_GE(cue.at, previous);
+                ASSERT_LT(cue.at, until);
+                previous = cue.at;
+            }
+            // A push (full scale either way) that the planner ends within the segment for the
+            // hold has brought the strength to the written one, not beyond. (A drive that stops
+            // instead ends a note early: the felt end.)
+            const double hold = std::min(1.0, physics.amplitude_for(written, f));
+            if (drives.size() == 2 && std::abs(drives[0].amplitude) == 1.0 && drives[0].at == at &&
+                std::abs(drives[1].amplitude - hold) < 1e-12) {
+                const auto state = physics.advance(
+                    before, {drives[0].amplitude, drives[0].frequency_hz}, drives[1].at - at);
+                const double reached = Physics::strength(state);
+                const double target = std::min(written, physics.steady_strength({1.0, f}));
+                if (declared.kind == Kind::erm) {
+                    EXPECT_NEAR(reached, written, 1e-6) << "segment " << i;
+                } else if (written > 0.0 && drives[0].amplitude > 0.0) {
+                    EXPECT_LE(reached, std::max(target, written) + 1e-6) << "segment " << i;
+                } else if (written > 0.0) {
+                    // A brake stops where it stops helping: never below the written strength.
+                    EXPECT_GE(reached, written - 1e-6) << "segment " << i;
+                } else {
+                    // To rest: exactly, or (no brake frequency nulls it) as low as it gets.
+                    EXPECT_LT(reached, Physics::strength(before)) << "segment " << i;
+                }
+            }
+            at = until;
+        }
+    }
 }
 
 // The stage in the pipeline: what the player receives for a score.
