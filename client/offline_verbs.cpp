@@ -6,7 +6,6 @@
 #include <map>
 #include <optional>
 
-#include "client/actuator_option.hpp"
 #include "client/pictures/signal_picture.hpp"
 #include "client/signal_output.hpp"
 #include "client/terminal_plot.hpp"
@@ -141,16 +140,8 @@ std::size_t write_actuator_csv(const render::ActuatorResponse& response, const s
 }  // namespace
 
 int check_documents(const std::vector<std::string>& files, const ClefSearch& clefs,
-                    std::ostream& out, std::ostream& err, const std::string& actuator_file) {
-    std::optional<actuator::Declaration> declared;
-    if (!actuator_file.empty()) {
-        try {
-            declared = load_actuator(actuator_file);
-        } catch (const std::exception& error) {
-            err << "check: " << error.what() << "\n";
-            return exit_usage;
-        }
-    }
+                    std::ostream& out, std::ostream& err,
+                    const std::optional<actuator::Declaration>& declared) {
     int failed = 0;
     std::size_t warned = 0;
     for (const auto& file : files) {
@@ -194,18 +185,10 @@ int render_document(const RenderRequest& request, const ClefSearch& clefs, std::
                "--png FILE\n";
         return exit_usage;
     }
-    if (!request.actuator.empty() && !request.out.empty() && !request.out.ends_with(".csv")) {
+    const std::optional<actuator::Declaration>& declared = request.actuator;
+    if (declared && !request.out.empty() && !request.out.ends_with(".csv")) {
         err << "render: --actuator writes strengths to a .csv file, not " << request.out << "\n";
         return exit_usage;
-    }
-    std::optional<actuator::Declaration> declared;
-    if (!request.actuator.empty()) {
-        try {
-            declared = load_actuator(request.actuator);
-        } catch (const std::exception& error) {
-            err << "render: " << error.what() << "\n";
-            return exit_usage;
-        }
     }
     try {
         if (!request.out.empty()) {

@@ -114,6 +114,9 @@ bool ActuatorHost::follow_config() {
         switch_to(config_.driver);
     } else {
         declared_ = config_.actuator;
+        if (declaration_changed && changed_) {
+            changed_();  // the bus announces the new declaration
+        }
     }
     return differs;
 }

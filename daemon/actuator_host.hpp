@@ -39,7 +39,8 @@ class ActuatorHost {
     void attach(Player& player);
     // The actuator [actuator] declares, as the player uses it.
     const std::optional<actuator::Declaration>& declaration() const { return config_.actuator; }
-    // Called after every switch attempt, since even a failed one may leave another backend.
+    // Called after every switch attempt, since even a failed one may leave another backend, and
+    // when a reload changes only the declared actuator.
     void on_change(std::function<void()> changed) { changed_ = std::move(changed); }
 
     // Ends playback with reason "driver-switch" and opens `driver` with its configured settings.

@@ -5,6 +5,7 @@
 #include "common/monotonic_clock.hpp"
 #include "common/number_text.hpp"
 #include "config.h"
+#include "daemon/actuator/declaration.hpp"
 #include "daemon/log.hpp"
 #include "daemon/play_request.hpp"
 #include "daemon/request_error.hpp"
@@ -95,7 +96,8 @@ HapticsService::HapticsService(sdbus::IConnection& connection, const DaemonConfi
       host_(host),
       authorizer_(authorizer),
       announced_driver_(Driver()),
-      announced_capabilities_(Capabilities()) {
+      announced_capabilities_(Capabilities()),
+      announced_actuator_(Actuator()) {
     vanish_watch_ = dbus::watch_connections_leaving(connection, [this](const std::string& name) {
         playback_.call([&](Player& player) { player.sender_vanished(name); });
         callers_.forget(name);
@@ -120,6 +122,19 @@ std::vector<std::string> HapticsService::Capabilities() {
     return playback_.call([&](Player&) { return host_.capabilities().names(); });
 }
 
+std::map<std::string, std::string> HapticsService::Actuator() {
+    return playback_.call([&](Player&) {
+        const auto& declared = host_.declaration();
+        std::map<std::string, std::string> settings;
+        if (declared) {
+            for (auto& [key, value] : actuator::to_settings(*declared)) {
+                settings.emplace(std::move(key), std::move(value));
+            }
+        }
+        return settings;
+    });
+}
+
 double HapticsService::Intensity() {
     return playback_.call([](Player& player) { return player.master_intensity(); });
 }
@@ -127,12 +142,16 @@ double HapticsService::Intensity() {
 void HapticsService::driver_switched() {
     auto driver = Driver();
     auto capabilities = Capabilities();
-    if (driver == announced_driver_ && capabilities == announced_capabilities_) {
+    auto actuator = Actuator();
+    if (driver == announced_driver_ && capabilities == announced_capabilities_ &&
+        actuator == announced_actuator_) {
         return;
     }
     announced_driver_ = std::move(driver);
     announced_capabilities_ = std::move(capabilities);
-    dbus::emit_properties_changed(getObject(), INTERFACE_NAME, {"Driver", "Capabilities"});
+    announced_actuator_ = std::move(actuator);
+    dbus::emit_properties_changed(getObject(), INTERFACE_NAME,
+                                  {"Driver", "Capabilities", "Actuator"});
 }
 
 const Caller& HapticsService::admit_caller() {

@@ -50,13 +50,15 @@ class HapticsService final : public sdbus::AdaptorInterfaces<org::vibscore::Hapt
     void SwitchDriver(const std::string& driver) override;
     std::string Driver() override;
     std::vector<std::string> Capabilities() override;
+    std::map<std::string, std::string> Actuator() override;
     double Intensity() override;
     void Intensity(const double& value) override;
     std::string Version() override;
 
     // The caller of the method being handled; counts the request against its rate.
     const Caller& admit_caller();
-    // Driver and Capabilities changed with a switch: announced with PropertiesChanged.
+    // Driver, Capabilities or Actuator changed with a switch or reload: announced with
+    // PropertiesChanged.
     void driver_switched();
 
     const DaemonConfig& config_;
@@ -67,6 +69,7 @@ class HapticsService final : public sdbus::AdaptorInterfaces<org::vibscore::Hapt
     const Authorizer& authorizer_;
     std::string announced_driver_;
     std::vector<std::string> announced_capabilities_;
+    std::map<std::string, std::string> announced_actuator_;
     sdbus::Slot vanish_watch_;  // NameOwnerChanged: a caller left the bus
 };
 

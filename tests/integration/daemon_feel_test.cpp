@@ -15,6 +15,7 @@
 #include "score/bundle.hpp"
 #include "score/score_xml.hpp"
 #include "tests/support/daemon_fixture.hpp"
+#include "tests/support/run_command.hpp"
 
 namespace vibscore {
 namespace {
@@ -131,6 +132,58 @@ TEST(DaemonFeel, SighupReloadsTheDeclarationAndABadOneChangesNothing) {
     rows = play_one_note(daemon);
     ASSERT_FALSE(rows.empty());
     EXPECT_DOUBLE_EQ(rows[0].amplitude, 1.0);  // the running declaration plays on
+}
+
+std::string property(const DaemonFixture& daemon, const std::string& name) {
+    return daemon
+        .busctl({"get-property", "org.vibscore.Haptics1", "/org/vibscore/Haptics1",
+                 "org.vibscore.Haptics1", name})
+        .out;
+}
+
+testing::CommandResult vibscore(const std::vector<std::string>& args) {
+    std::vector<std::string> argv{testing::required_env("VIBSCORE")};
+    argv.insert(argv.end(), args.begin(), args.end());
+    return testing::run_command(argv);
+}
+
+TEST(DaemonFeel, TheDeclarationIsPublishedOnTheBusAndShownByTheClient) {
+    DaemonFixture daemon(erm_section("reverse", "on"));
+    EXPECT_EQ(property(daemon, "Actuator"),
+              "a{ss} 6 \"brake\" \"reverse\" \"compensation\" \"on\" \"kind\" \"erm\" "
+              "\"rated-drive\" \"0.7\" \"spin-down-ms\" \"80\" \"spin-up-ms\" \"40\"\n");
+    EXPECT_THAT(property(daemon, "Capabilities"), HasSubstr("\"reverse-drive\""));
+    const std::string declared =
+        "actuator: erm: spin-up 40 ms, spin-down 80 ms, rated-drive 0.7, brake reverse, "
+        "compensation on\n";
+    const auto driver = vibscore({"driver"});
+    EXPECT_EQ(driver.exit_code, 0) << driver.err;
+    EXPECT_THAT(driver.out, HasSubstr(declared));
+    EXPECT_THAT(vibscore({"info", "ringtone"}).out, HasSubstr(declared));
+    // --actuator without a file asks the daemon.
+    const auto check =
+        vibscore({"check", testing::required_env("VIBSCORE_CLEFS") + "/touch-click.score.xml",
+                  "--actuator"});
+    EXPECT_EQ(check.exit_code, 0) << check.err;
+    EXPECT_THAT(check.err, HasSubstr("touch-click.score.xml: warning: bar 1, note 1: too short"));
+    EXPECT_THAT(check.out, HasSubstr("for the actuator (erm: spin-up 40 ms"));
+
+    // A reload that declares another actuator changes the property.
+    daemon.write_config("[actuator]\nkind = lra\nq = 20\n", "trace = " + daemon.trace().string());
+    daemon.signal_daemon(SIGHUP);
+    ASSERT_TRUE(wait_for_log(daemon, "configuration reloaded")) << daemon.daemon_log();
+    EXPECT_THAT(property(daemon, "Actuator"), HasSubstr("\"kind\" \"lra\""));
+    EXPECT_THAT(property(daemon, "Actuator"), HasSubstr("\"q\" \"20\""));
+}
+
+TEST(DaemonFeel, WithoutADeclarationThePropertyIsEmptyAndTheClientSaysSo) {
+    DaemonFixture daemon;
+    EXPECT_EQ(property(daemon, "Actuator"), "a{ss} 0\n");
+    EXPECT_THAT(vibscore({"driver"}).out, HasSubstr("actuator: none declared"));
+    const auto check = vibscore(
+        {"check", testing::required_env("VIBSCORE_CLEFS") + "/touch-tick.score.xml", "--actuator"});
+    EXPECT_EQ(check.exit_code, 1);
+    EXPECT_THAT(check.err, HasSubstr("vibscored declares no actuator"));
 }
 
 TEST(DaemonFeel, ABadDeclarationStopsStartUpNamingTheFileLineKeyAndValue) {

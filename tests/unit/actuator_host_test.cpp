@@ -197,11 +197,15 @@ TEST_F(ActuatorHostTest, ADeclarationChangeReopensOnlyTheSimWhichSimulatesIt) {
 
     config.driver = "timed-output";
     EXPECT_TRUE(host->follow_config());
-    const int switches = changes;
+    player->play(endless());
+    const int announced = changes;
     config.actuator->rated_drive = 0.6;  // the board's vibra is whatever it is
     EXPECT_FALSE(host->follow_config());
-    EXPECT_EQ(changes, switches);
+    EXPECT_TRUE(player->current_id().has_value()) << "the backend was not reopened";
+    EXPECT_EQ(changes, announced + 1) << "the new declaration is announced";
     EXPECT_EQ(host->declaration(), config.actuator);
+    EXPECT_FALSE(host->follow_config());
+    EXPECT_EQ(changes, announced + 1);
 }
 
 TEST_F(ActuatorHostTest, AfterASwitchOverTheBusAReloadReturnsToTheConfiguredDriver) {
