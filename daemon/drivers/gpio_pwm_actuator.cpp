@@ -108,7 +108,7 @@ PwmWaveform erm_waveform(double amplitude, double carrier_hz, bool enable_line,
 PwmWaveform lra_waveform(double amplitude, double frequency_hz, bool enable_line) {
     const std::int64_t period = period_ns(frequency_hz);
     const std::int64_t half = period / 2;
-    const std::int64_t high = std::llround(std::abs(amplitude) * static_cast<double>(half));
+    const std::int64_t high = std::llround(lra_pulse_share(amplitude) * static_cast<double>(half));
     if (!(high > 0)) {
         return {};
     }

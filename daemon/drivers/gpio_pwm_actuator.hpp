@@ -25,8 +25,9 @@ PwmWaveform erm_waveform(double amplitude, double carrier_hz, bool enable_line,
 
 // LRA on an H-bridge, lines A and B (then the enable line) in antiphase at frequency f, T = 1/f:
 // A high for duty × T/2 from the period start, B high for duty × T/2 from the half period, never
-// both at once, duty = |amplitude|. Duty 0 is off (every line low). A negative amplitude is the
-// drive in anti-phase: B first, then A.
+// both at once, duty = lra_pulse_share(amplitude) (the pulses' fundamental, which the LRA answers,
+// is then |amplitude| of the full square wave's). Duty 0 is off (every line low). A negative
+// amplitude is the drive in anti-phase: B first, then A.
 PwmWaveform lra_waveform(double amplitude, double frequency_hz, bool enable_line);
 
 struct GpioPwmSettings {

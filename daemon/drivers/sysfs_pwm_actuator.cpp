@@ -160,7 +160,7 @@ void SysfsPwmActuator::apply(const Drive& drive) {
         return;
     }
     const std::int64_t period = period_ns(lra_frequency_hz(drive, settings_.resonance_hz));
-    set(period, std::llround(amplitude * static_cast<double>(period) / 2.0));
+    set(period, std::llround(lra_pulse_share(amplitude) * static_cast<double>(period) / 2.0));
 }
 
 void SysfsPwmActuator::off() noexcept {

@@ -27,7 +27,8 @@ struct SysfsPwmSettings {
 
 // A hardware PWM channel through <sysfs-root>/class/pwm/pwmchipN/pwmK ("sysfs-pwm").
 //   erm: period = 1/carrier, duty_cycle = amplitude × period.
-//   lra: period = 1/(the drive's frequency), duty_cycle = amplitude × period / 2.
+//   lra: period = 1/(the drive's frequency), duty_cycle = lra_pulse_share(amplitude) × period / 2
+//        (the pulses' fundamental, which the LRA answers, is then proportional to the amplitude).
 // The channel stays enabled from open to close; off is duty_cycle 0, the one output level the
 // PWM API defines (a disabled channel's pin level is up to the controller).
 // With a direction line (a GPIO on an H-bridge's phase pin) the drive can be reversed: a negative

@@ -4,13 +4,16 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <cmath>
 #include <map>
 #include <memory>
+#include <numbers>
 #include <stdexcept>
 #include <string>
 #include <thread>
 #include <vector>
 
+#include "daemon/drivers/drive_levels.hpp"
 #include "daemon/drivers/driver_settings.hpp"
 #include "tests/fakes/fake_gpio_lines.hpp"
 
@@ -51,12 +54,17 @@ TEST(ErmWaveform, ZeroIsOffAndFullIsSteadyHigh) {
     EXPECT_THAT(full.edges, ElementsAre(PwmEdge{0, {1, 1}}));
 }
 
-TEST(LraWaveform, AntiphaseHalvesWithDutyOfEachHalf) {
+TEST(LraWaveform, AntiphaseHalvesEachAPulseWhoseFundamentalIsTheAmplitude) {
+    // sin(pi d / 2) = 0.5: d = 1/3 of each 5 ms half.
     const auto waveform = lra_waveform(0.5, 100.0, false);
     EXPECT_EQ(waveform.period_ns, 10'000'000);
     EXPECT_THAT(waveform.edges,
-                ElementsAre(PwmEdge{0, {1, 0}}, PwmEdge{2'500'000, {0, 0}},
-                            PwmEdge{5'000'000, {0, 1}}, PwmEdge{7'500'000, {0, 0}}));
+                ElementsAre(PwmEdge{0, {1, 0}}, PwmEdge{1'666'667, {0, 0}},
+                            PwmEdge{5'000'000, {0, 1}}, PwmEdge{6'666'667, {0, 0}}));
+    EXPECT_DOUBLE_EQ(lra_pulse_share(0.5), 1.0 / 3.0);
+    EXPECT_DOUBLE_EQ(lra_pulse_share(-1.0), 1.0);
+    EXPECT_DOUBLE_EQ(lra_pulse_share(0.0), 0.0);
+    EXPECT_NEAR(std::sin(std::numbers::pi * lra_pulse_share(0.3) / 2.0), 0.3, 1e-12);
 }
 
 TEST(LraWaveform, FullDutyAlternatesWithoutAGap) {
@@ -91,8 +99,8 @@ TEST(ErmWaveform, WithoutADirectionLineBackwardsIsOff) {
 TEST(LraWaveform, AntiPhaseIsTheSameDriveHalfAPeriodOn) {
     const auto waveform = lra_waveform(-0.5, 100.0, false);
     EXPECT_THAT(waveform.edges,
-                ElementsAre(PwmEdge{0, {0, 1}}, PwmEdge{2'500'000, {0, 0}},
-                            PwmEdge{5'000'000, {1, 0}}, PwmEdge{7'500'000, {0, 0}}));
+                ElementsAre(PwmEdge{0, {0, 1}}, PwmEdge{1'666'667, {0, 0}},
+                            PwmEdge{5'000'000, {1, 0}}, PwmEdge{6'666'667, {0, 0}}));
     EXPECT_THAT(lra_waveform(-1.0, 200.0, true).edges,
                 ElementsAre(PwmEdge{0, {0, 1, 1}}, PwmEdge{2'500'000, {1, 0, 1}}));
     for (int step = 1; step <= 100; ++step) {
@@ -348,9 +356,11 @@ TEST(GpioLra, AntiphaseNeverBothHighAndEachLineHalfTheDuty) {
             EXPECT_EQ(values[2], 1) << "enable while driving, record " << i;
         }
     }
+    // Each line high for (2/pi) asin(0.6) = 0.41 of its half period: 0.2 of the period.
     const auto measured = records_since(*gpio, from);
-    EXPECT_NEAR(median_duty(measured, 0), 0.3, kDutyTolerance);
-    EXPECT_NEAR(median_duty(measured, 1), 0.3, kDutyTolerance);
+    const double share = lra_pulse_share(0.6) / 2.0;
+    EXPECT_NEAR(median_duty(measured, 0), share, kDutyTolerance);
+    EXPECT_NEAR(median_duty(measured, 1), share, kDutyTolerance);
 }
 
 TEST(GpioErm, DrivenBackwardsTheDirectionLineIsHighWhileTheMotorLinePulses) {

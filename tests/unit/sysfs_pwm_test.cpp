@@ -100,7 +100,7 @@ TEST_F(SysfsPwmTest, LraPeriodFollowsTheNoteInAnOrderTheKernelAccepts) {
                                              "class/pwm/pwmchip0/pwm0/duty_cycle=2000000",
                                              "class/pwm/pwmchip0/pwm0/period=4000000",
                                              "class/pwm/pwmchip0/pwm0/period=5000000",
-                                             "class/pwm/pwmchip0/pwm0/duty_cycle=1250000",
+                                             "class/pwm/pwmchip0/pwm0/duty_cycle=833333",
                                              "class/pwm/pwmchip0/pwm0/duty_cycle=0"));
     EXPECT_TRUE(pwm->capabilities().frequency_control);
 }
