@@ -11,6 +11,7 @@
 #include "daemon/render/actuator_response.hpp"
 #include "daemon/render/cue_adaptation.hpp"
 #include "daemon/render/drive_planner.hpp"
+#include "daemon/render/performance.hpp"
 #include "tests/support/support.hpp"
 
 namespace vibscore::render {
@@ -279,6 +280,70 @@ Cue position(double at, std::size_t symbol) {
     cue.kind = Cue::Kind::position;
     cue.symbol = symbol;
     return cue;
+}
+
+// A one-bar score on a sine clef (tempo 0.2 s; strings 170-180 Hz, inside the LRA's band;
+// numbers 0.5 and 1) as the declared actuator produces it with compensation, sampled at 1 kHz.
+struct Felt {
+    std::vector<double> written, produced;
+};
+Felt felt(const std::string& notes, const Declaration& declared) {
+    const auto bundle = testing::bundle_from(
+        testing::one_clef_score("<Bar clef=\"c\">" + notes + "</Bar>"),
+        {{"c.xml", testing::sine_clef(0.2, {170.0, 175.0, 180.0}, {0.5, 1.0})}});
+    const Performance performance(bundle);
+    ResponseOptions options;
+    options.tail_s = 0.1;
+    const auto response = actuator_response(performance, declared, options);
+    return {response.written, response.compensated};
+}
+
+double lowest(const std::vector<double>& values, std::size_t from, std::size_t to) {
+    return *std::min_element(values.begin() + static_cast<std::ptrdiff_t>(from),
+                             values.begin() + static_cast<std::ptrdiff_t>(to));
+}
+
+TEST(ActuatorDrives, LegatoAndPortamentoStayContinuousWhileTheDefaultSilenceIsFelt) {
+    for (const Declaration& declared : {erm(), lra()}) {
+        // Two quarter notes (200 ms each) from strength 1 to 0.5: tied, glided, or separated by
+        // the default silence (30 ms at the first note's end).
+        const auto legato = felt(
+            "<Note length=\"quarter\" number=\"2\" string=\"2\" legato=\"1\"/>"
+            "<Note length=\"quarter\" number=\"1\" string=\"3\" legato=\"1\"/>",
+            declared);
+        const auto glide = felt(
+            "<Note length=\"quarter\" number=\"2\" string=\"1\" portamento=\"1\"/>"
+            "<Note length=\"quarter\" number=\"1\" string=\"3\" portamento=\"1\"/>",
+            declared);
+        const auto apart = felt(
+            "<Note length=\"quarter\" number=\"2\" string=\"2\"/>"
+            "<Note length=\"quarter\" number=\"1\" string=\"3\"/>",
+            declared);
+        // Around the change (150..250 ms): tied notes never fall much below the lower level ...
+        EXPECT_GT(lowest(legato.produced, 150, 250), 0.4);
+        EXPECT_GT(lowest(glide.produced, 150, 250), 0.4);
+        // ... the untied ones dip to less than half of the weaker note: a felt silence.
+        EXPECT_LT(lowest(apart.produced, 150, 250), 0.25);
+    }
+}
+
+TEST(ActuatorDrives, AHairpinIsFollowedStepByStep) {
+    // A crescendo from silence to 1 over a half note (400 ms), then a decrescendo back to
+    // silence over another: once the actuator has caught up (20 ms), it stays within a few
+    // hundredths of the written ramp.
+    for (const Declaration& declared : {erm(), lra()}) {
+        const auto hairpin = felt(
+            "<Note length=\"half\" number=\"2\" string=\"2\" dynamics=\"crescendo\" "
+            "legato=\"1\"/>"
+            "<Note length=\"half\" number=\"2\" string=\"2\" dynamics=\"decrescendo\" "
+            "legato=\"1\"/>",
+            declared);
+        double worst = 0.0;
+        for (std::size_t k = 20; k < 780; ++k) {
+            worst = std::max(worst, std::abs(hairpin.produced[k] - hairpin.written[k]));
+        }
+        EXPECT_LT(worst, 0.05);
+    }
 }
 
 TEST(ActuatorDrives, BrakeOnlyWhereTheBackendCanAndTheBoardIsDeclaredTo) {
