@@ -7,6 +7,7 @@
 
 #include "client/actuator_option.hpp"
 #include "client/bus_verbs.hpp"
+#include "client/clef_verbs.hpp"
 #include "client/convert_verb.hpp"
 #include "client/editor/documents.hpp"
 #include "client/editor/editor_app.hpp"
@@ -173,6 +174,26 @@ int main(int argc, char** argv) {
     convert_verb->add_flag("--loop", convert_request.loop,
                            "Android: the pattern repeats (repeat index 0, <repeating>)");
 
+    auto* clef_verb = app.add_subcommand("clef", "Work on clefs: fit one to the actuator.");
+    clef_verb->require_subcommand(1);
+    ClefFitRequest clef_fit;
+    std::string clef_fit_actuator = kDaemonActuator;
+    auto* clef_fit_verb = clef_verb->add_subcommand(
+        "fit",
+        "Write a device clef for the declared actuator from a written clef: strings where it "
+        "plays them at full strength (or roughness), numbers keeping their strengths, shapes it "
+        "cannot follow smoothed (docs/clefs.md). What changed goes to standard error.");
+    clef_fit_verb->add_option("CLEF", clef_fit.clef, "VibClef file or registry clef name")
+        ->required();
+    clef_fit_verb
+        ->add_option("--actuator", clef_fit_actuator,
+                     "the actuator declared in FILE's [actuator] section (vibscored.conf will "
+                     "do), or 'daemon' (the default): the one vibscored declares")
+        ->type_name("FILE|daemon");
+    clef_fit_verb->add_option("-o,--output", clef_fit.output,
+                              "write the fitted clef to OUT (default: standard output)");
+    add_clefs_option(clef_fit_verb, clef_search);
+
     std::string info_file;
     auto* info = app.add_subcommand(
         "info",
@@ -295,6 +316,14 @@ int main(int argc, char** argv) {
             return failed;
         }
         return render_document(render, clef_search, std::cout, std::cerr);
+    }
+    if (clef_fit_verb->parsed()) {
+        std::optional<vibscore::actuator::Declaration> declared;
+        if (const int failed = resolve_actuator(clef_fit_actuator, declared, std::cerr)) {
+            return failed;
+        }
+        clef_fit.actuator = *declared;
+        return fit_clef_document(clef_fit, clef_search, std::cout, std::cerr);
     }
     if (convert_verb->parsed()) {
         return convert(convert_request, std::cout, std::cerr);

@@ -12,6 +12,7 @@
 #include "common/number_text.hpp"
 #include "daemon/render/actuator_check.hpp"
 #include "daemon/render/actuator_response.hpp"
+#include "daemon/render/clef_check.hpp"
 #include "daemon/render/performance.hpp"
 #include "score/bundle.hpp"
 #include "score/clef_xml.hpp"
@@ -150,6 +151,12 @@ int check_documents(const std::vector<std::string>& files, const ClefSearch& cle
             if (document_kind(text, file) == DocumentKind::clef) {
                 const Clef clef = read_clef(text, file);
                 out << file << ": ok (clef: " << clef_summary(clef) << ")\n";
+                if (declared) {
+                    for (const auto& warning : render::clef_warnings(clef, *declared)) {
+                        err << file << ": warning: " << warning << "\n";
+                        ++warned;
+                    }
+                }
             } else {
                 const auto bundle = load_score(file, clefs).bundle;
                 const render::Performance performance(bundle);

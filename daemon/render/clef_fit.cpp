@@ -311,7 +311,8 @@ std::vector<double> roughness_periods_s(const actuator::Declaration& declaration
         const double thesis = kRoughestPeriodS - (kRoughestPeriodS - kSmoothestPeriodS) *
                                                      static_cast<double>(s) / steps;
         const double floor = s + 1 == strings ? shortest : periods[s + 1] * kDistinctPitchRatio;
-        periods[s] = std::max(thesis, floor);
+        // Lengthened periods are whole milliseconds, so a fitted clef reads as written by hand.
+        periods[s] = floor > thesis ? std::ceil(floor * 1000.0 - 1e-9) / 1000.0 : thesis;
     }
     return periods;
 }

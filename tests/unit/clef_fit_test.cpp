@@ -218,7 +218,8 @@ TEST(RoughnessPeriods, LengthenSoTheActuatorReachesFullStrengthInHalfAPeriod) {
         const auto periods = render::roughness_periods_s(d, 6, 1.0);
         const double reach = render::time_to_strength_s(d, 1.0);
         EXPECT_GT(reach, 0.010);  // neither follows the thesis' 20 ms
-        EXPECT_NEAR(periods.back(), 2.0 * reach, 1e-12);
+        EXPECT_GE(periods.back(), 2.0 * reach);
+        EXPECT_LT(periods.back(), 2.0 * reach + 0.001);  // a whole millisecond
         for (std::size_t s = 0; s + 1 < periods.size(); ++s) {
             EXPECT_GE(periods[s] / periods[s + 1], render::kDistinctPitchRatio - 1e-12);
             EXPECT_GE(periods[s], render::kRoughestPeriodS - 0.020 * static_cast<double>(s));
