@@ -238,6 +238,10 @@ int main(int argc, char** argv) {
     auto* get_verb = app.add_subcommand("get", "Print a registry score or clef.");
     get_verb->add_option("KIND", kind, kKindHelp)->required()->check(kind_validator());
     get_verb->add_option("NAME", name, "registry name")->required();
+    bool get_device = false;
+    get_verb->add_flag("--device", get_device,
+                       "a clef as this device plays it: the clef [clefs] maps it to, or fitted to "
+                       "the declared actuator (fit = auto)");
     auto* compose_verb = app.add_subcommand(
         "compose", "Store a score or clef file in the registry (root or group vibscore).");
     compose_verb->add_option("NAME", name, "registry name")->required();
@@ -338,7 +342,7 @@ int main(int argc, char** argv) {
         return list(kind, std::cout, std::cerr);
     }
     if (get_verb->parsed()) {
-        return get(kind, name, std::cout, std::cerr);
+        return get(kind, name, std::cout, std::cerr, get_device);
     }
     if (compose_verb->parsed()) {
         return compose(name, file, clef_search, std::cout, std::cerr);

@@ -63,6 +63,14 @@ void add_device_clef(DeviceClefs& clefs, const std::string& written, const std::
     }
 }
 
+// [clefs] fit = auto | off.
+bool fit_mode(const std::string& value, const std::string& where) {
+    if (value == "auto" || value == "off") {
+        return value == "auto";
+    }
+    throw ConfigError(where + ": [clefs] fit = \"" + value + "\" is neither auto nor off");
+}
+
 }  // namespace
 
 const std::map<std::string, std::string>& DaemonConfig::settings_of(const std::string& name) const {
@@ -105,6 +113,8 @@ DaemonConfig parse_config(const std::string& text, const std::string& file, Daem
     std::string line;
     std::string section;
     int number = 0;
+    bool fit_auto = false;  // [clefs] fit = auto
+    std::string fit_where;
     while (std::getline(lines, line)) {
         ++number;
         const std::string where = file + ":" + std::to_string(number);
@@ -133,7 +143,12 @@ DaemonConfig parse_config(const std::string& text, const std::string& file, Daem
             throw ConfigError(where + ": \"" + key + "\" is outside any [section]");
         }
         if (section == "clefs") {
-            add_device_clef(config.device_clefs, key, value, where);
+            if (key == "fit") {
+                fit_where = where;
+                fit_auto = fit_mode(value, where);
+            } else {
+                add_device_clef(config.device_clefs, key, value, where);
+            }
             continue;
         }
         if (section != "daemon") {
@@ -168,6 +183,14 @@ DaemonConfig parse_config(const std::string& text, const std::string& file, Daem
         }
     }
     config.actuator = declared_actuator(config);
+    config.device_clefs.fit_to.reset();
+    if (fit_auto) {
+        if (!config.actuator) {
+            throw ConfigError(fit_where +
+                              ": [clefs] fit = auto needs an [actuator] section to fit to");
+        }
+        config.device_clefs.fit_to = config.actuator;
+    }
     return config;
 }
 

@@ -230,6 +230,9 @@ void HapticsService::Compose(const std::string& name, const std::string& documen
         const auto stored = registry_.compose(name, document);
         log::info("uid " + std::to_string(caller.uid) + " composed " +
                   std::string(to_string(stored)) + " \"" + name + "\"");
+        if (stored == DocumentKind::clef) {
+            log_stored_clef(registry_, config_.device_clefs, config_.actuator, name);
+        }
         emitRegistryChanged(std::string(to_string(stored)), name);
     });
 }

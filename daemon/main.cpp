@@ -79,6 +79,7 @@ int serve(const CommandLine& command_line) {
     if (!config.device_clefs.empty()) {
         log::info("device clefs: " + describe(config.device_clefs));
     }
+    log_clef_fits(registry, config.device_clefs);
     // From here on every actuator call happens on the playback thread.
     PlaybackThread playback(loop, host.actuator(),
                             {first_playback_id(config.store), config.rt_priority});
@@ -119,6 +120,7 @@ int serve(const CommandLine& command_line) {
         try {
             DaemonConfig fresh = read_config(command_line);
             playback.call([&](Player&) { reload_config(config, std::move(fresh), host, callers); });
+            log_clef_fits(registry, config.device_clefs);  // refitted to what was declared now
         } catch (const std::exception& error) {
             log::error(std::string("reload failed, keeping the running configuration: ") +
                        error.what());

@@ -3,6 +3,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "daemon/actuator/declaration.hpp"
@@ -26,6 +27,10 @@ inline constexpr double kSmoothestPeriodS = 0.020;
 // Without compensation the renderer drives number x rated-drive whatever the frequency: a string
 // is placed only where that still gives this share of the number's strength.
 inline constexpr double kUncompensatedGain = 0.9;
+
+// How vibscored names a clef it fitted to the actuator (BarClefs, vibscore info NAME):
+// "lra-phone (fitted)".
+inline constexpr std::string_view kFittedMark = " (fitted)";
 
 // A clef the fit cannot write (a roughness string needing more points than a string may hold).
 class ClefFitError : public std::invalid_argument {
