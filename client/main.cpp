@@ -190,8 +190,10 @@ int main(int argc, char** argv) {
                      "the actuator declared in FILE's [actuator] section (vibscored.conf will "
                      "do), or 'daemon' (the default): the one vibscored declares")
         ->type_name("FILE|daemon");
-    clef_fit_verb->add_option("-o,--output", clef_fit.output,
-                              "write the fitted clef to OUT (default: standard output)");
+    clef_fit_verb
+        ->add_option("-o,--output", clef_fit.output,
+                     "write the fitted clef to OUT (default: standard output)")
+        ->type_name("OUT");
     add_clefs_option(clef_fit_verb, clef_search);
 
     std::string info_file;
