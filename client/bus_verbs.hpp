@@ -26,6 +26,8 @@ struct PlayRequest {
 // as files are sent along with it, registry clefs go by name.
 int play(const PlayRequest& request, const ClefSearch& clefs, std::ostream& out, std::ostream& err);
 int stop(std::uint64_t id, std::ostream& out, std::ostream& err);
+// Every playback, whoever started it (StopAll: polkit org.vibscore.manage).
+int stop_all(std::ostream& out, std::ostream& err);
 int list(const std::string& kind, std::ostream& out, std::ostream& err);
 // --device: a clef as this device plays it ([clefs] maps it, or fit = auto fits it to the
 // declared actuator), as vibscored binds it.

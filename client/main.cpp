@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "client/actuator_option.hpp"
+#include "client/assign_verb.hpp"
 #include "client/bus_verbs.hpp"
 #include "client/clef_verbs.hpp"
 #include "client/convert_verb.hpp"
@@ -165,8 +166,10 @@ int main(int argc, char** argv) {
                              "format of OUT when its name does not tell: score, ahap, "
                              "android-json, android-xml, android-envelope, midi");
     convert_verb->add_option("--clef", convert_request.clef,
-                             "clef an import is written on: a clef file or a shipped clef's "
-                             "name (default lra-phone)");
+                             "clef an import is written on: a clef file, or a clef's name found "
+                             "as check finds one (--clefs, vibscored, the shipped clefs; "
+                             "default lra-phone)");
+    add_clefs_option(convert_verb, clef_search);
     convert_verb
         ->add_option("--track", convert_request.track,
                      "MIDI track to import, from 1 (default: the first with notes)")
@@ -227,9 +230,15 @@ int main(int argc, char** argv) {
                         "stay until it ends, showing each bar; Ctrl-C stops it");
 
     std::uint64_t stop_id = 0;
+    bool stop_everyone = false;
     auto* stop_verb = app.add_subcommand("stop", "Stop a playback (default: all of yours).");
-    stop_verb->add_option("ID", stop_id, "playback id printed by play")
-        ->check(number_between(1, std::numeric_limits<double>::infinity(), NumberKind::whole));
+    auto* stop_id_option =
+        stop_verb->add_option("ID", stop_id, "playback id printed by play")
+            ->check(number_between(1, std::numeric_limits<double>::infinity(), NumberKind::whole));
+    stop_verb
+        ->add_flag("--all", stop_everyone,
+                   "every playback, whoever started it (polkit: org.vibscore.manage)")
+        ->excludes(stop_id_option);
 
     std::string kind = "score";
     std::string name;
@@ -280,6 +289,18 @@ int main(int argc, char** argv) {
                           "draw the staff (or the clef) as an SVG picture instead");
     show_verb->add_option("--png", show_png, "draw the staff (or the clef) as a PNG image instead");
     add_clefs_option(show_verb, clef_search);
+
+    AssignRequest assign_request;
+    auto* assign_verb = app.add_subcommand(
+        "assign",
+        "Choose the registry score a feedback event plays for you (vibscore-feedback; "
+        "docs/feedbackd.md): EVENT SCORE, EVENT --default, or --list.");
+    assign_verb->add_option("EVENT", assign_request.event, "event name, e.g. phone-incoming-call");
+    assign_verb->add_option("SCORE", assign_request.score, "registry score to play for it");
+    assign_verb->add_flag("--default", assign_request.to_default,
+                          "play the theme's score for EVENT again");
+    assign_verb->add_flag("--list", assign_request.list,
+                          "list the events and the score each plays");
 
     vibscore::editor::EditOptions edit_options;
     auto* edit_verb = app.add_subcommand(
@@ -332,13 +353,13 @@ int main(int argc, char** argv) {
         return fit_clef_document(clef_fit, clef_search, std::cout, std::cerr);
     }
     if (convert_verb->parsed()) {
-        return convert(convert_request, std::cout, std::cerr);
+        return convert(convert_request, clef_search, std::cout, std::cerr);
     }
     if (play_verb->parsed()) {
         return play(play_request, clef_search, std::cout, std::cerr);
     }
     if (stop_verb->parsed()) {
-        return stop(stop_id, std::cout, std::cerr);
+        return stop_everyone ? stop_all(std::cout, std::cerr) : stop(stop_id, std::cout, std::cerr);
     }
     if (list_verb->parsed()) {
         return list(kind, std::cout, std::cerr);
@@ -364,6 +385,9 @@ int main(int argc, char** argv) {
     }
     if (show_verb->parsed()) {
         return vibscore::editor::show_score(show_request, std::cout, std::cerr);
+    }
+    if (assign_verb->parsed()) {
+        return assign(assign_request, std::cout, std::cerr);
     }
     if (edit_verb->parsed()) {
         return vibscore::editor::run_editor(edit_options, std::cerr);

@@ -75,12 +75,17 @@ void log_clef_fits(const Registry& registry, const DeviceClefs& clefs) {
 void log_stored_clef(const Registry& registry, const DeviceClefs& clefs,
                      const std::optional<actuator::Declaration>& actuator,
                      const std::string& name) {
-    if (clefs.fits(name)) {
-        log_fit(name, registry.clef(name), *clefs.fit_to);
-    } else if (actuator) {
-        for (const auto& warning : render::clef_warnings(registry.clef(name), *actuator)) {
-            log::warning("clef \"" + name + "\": " + warning);
+    try {
+        if (clefs.fits(name)) {
+            log_fit(name, registry.clef(name), *clefs.fit_to);
+        } else if (actuator) {
+            for (const auto& warning : render::clef_warnings(registry.clef(name), *actuator)) {
+                log::warning("clef \"" + name + "\": " + warning);
+            }
         }
+    } catch (const std::exception& error) {
+        // Only the log is lost: the clef is stored.
+        log::warning("clef \"" + name + "\" cannot be read to check: " + error.what());
     }
 }
 

@@ -65,7 +65,7 @@ ScoreBundle bind_device_clefs(const Registry& registry, const ScoreBundle& writt
 void log_clef_fits(const Registry& registry, const DeviceClefs& clefs);
 
 // The log for a clef just stored: its fit, or (not fitted) the check's warnings against the
-// declared actuator, if any.
+// declared actuator, if any. Never throws: the clef is stored whatever its log says.
 void log_stored_clef(const Registry& registry, const DeviceClefs& clefs,
                      const std::optional<actuator::Declaration>& actuator, const std::string& name);
 

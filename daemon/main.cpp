@@ -23,6 +23,7 @@
 #include "daemon/registry/registry.hpp"
 #include "daemon/reload.hpp"
 #include "daemon/virtual_vibra/virtual_vibra.hpp"
+#include "daemon/watchdog.hpp"
 #include "dbus/haptics1_names.hpp"
 #include "dbus/sdbus_compat.hpp"
 
@@ -32,16 +33,26 @@ using namespace vibscore::daemon;
 namespace {
 
 int list_drivers(const CommandLine& command_line) {
-    std::filesystem::path drivers_dir = VIBSCORE_DRIVERDIR;
+    std::vector<drivers::DriverInfo> drivers;
     try {
-        drivers_dir = read_config(command_line).drivers_dir;
+        // read_config() has already tried each module of the configured directory in a child.
+        const DaemonConfig config = read_config(command_line);
+        drivers = drivers::available_drivers(*config.modules);
     } catch (const std::exception& error) {
         log::warning(std::string("listing the default drivers directory: ") + error.what());
+        drivers = drivers::available_drivers(std::filesystem::path(VIBSCORE_DRIVERDIR));
     }
-    for (const auto& driver : drivers::available_drivers(drivers_dir)) {
+    for (const auto& driver : drivers) {
         std::cout << driver.name << "\t" << driver.description << "\n";
     }
     return 0;
+}
+
+// A [clefs] line naming a clef nobody installed would only show when a playback falls back.
+void warn_about_missing_device_clefs(const DaemonConfig& config, const Registry& registry) {
+    for (const auto& warning : missing_device_clefs(config, registry)) {
+        log::warning(warning);
+    }
 }
 
 // After the daemon ended, however it ended (SIGKILL, a crash): the configured backend, opened
@@ -80,17 +91,18 @@ int serve(const CommandLine& command_line) {
         log::info("device clefs: " + describe(config.device_clefs));
     }
     log_clef_fits(registry, config.device_clefs);
+    warn_about_missing_device_clefs(config, registry);
     // From here on every actuator call happens on the playback thread.
     PlaybackThread playback(loop, host.actuator(),
                             {first_playback_id(config.store), config.rt_priority});
-    playback.call([&](Player& player) { host.attach(player); });
+    playback.call([&host](Player& player) { host.attach(player); });
 
     auto connection = sdbus::createSystemBusConnection();
     BusCredentials credentials(*connection);
     CallerDirectory callers(config.requests_per_second, config.request_burst,
                             [&](const std::string& sender) { return credentials.uid_of(sender); });
     BusPolkitAuthority polkit(*connection);
-    const Authorizer authorizer(polkit);
+    Authorizer authorizer(polkit);
     HapticsService service(*connection, config, registry, playback, callers, host, authorizer);
     // The kernel's vibra for programs that only know force feedback (feedbackd, games, fftest).
     const auto vibra_settings = parse_virtual_vibra_settings(config.settings_of("virtual-vibra"));
@@ -98,14 +110,22 @@ int serve(const CommandLine& command_line) {
     if (vibra_settings.enabled) {
         vibra.emplace(
             loop,
-            [&playback](const auto& work) { playback.call([&](Player& player) { work(player); }); },
+            [&playback](const auto& work) {
+                playback.call([work](Player& player) { work(player); });
+            },
             vibra_settings, config.separation_ms / 1000.0);
     }
     dbus::request_name(*connection, haptics1::kBusName);
     BusLoopBinding binding(loop, *connection);
+    // Pinged while both threads answer (WatchdogSec= in the unit).
+    const Watchdog watchdog(loop, playback);
 
     const auto stop_playback = [&] {
-        playback.call([](Player& player) { player.stop_all(kServiceStopped); });
+        try {
+            playback.call([](Player& player) { player.stop_all(kServiceStopped); });
+        } catch (const PlaybackStuck& stuck) {
+            log::error(std::string("stopping: ") + stuck.what());
+        }
     };
     const auto shut_down = [&] {
         log::info("stopping");
@@ -118,9 +138,14 @@ int serve(const CommandLine& command_line) {
     auto on_hup = loop.on_signal(SIGHUP, [&] {
         sd_notify(0, "RELOADING=1");
         try {
-            DaemonConfig fresh = read_config(command_line);
-            playback.call([&](Player&) { reload_config(config, std::move(fresh), host, callers); });
+            // The running configuration, the host and the callers live as long as the daemon;
+            // the fresh configuration goes with the work.
+            playback.call(
+                [&config, &host, &callers, fresh = read_config(command_line)](Player&) mutable {
+                    reload_config(config, std::move(fresh), host, callers);
+                });
             log_clef_fits(registry, config.device_clefs);  // refitted to what was declared now
+            warn_about_missing_device_clefs(config, registry);
         } catch (const std::exception& error) {
             log::error(std::string("reload failed, keeping the running configuration: ") +
                        error.what());

@@ -29,8 +29,10 @@ _vibscore() {
     cur=${COMP_WORDS[COMP_CWORD]}
     prev=${COMP_WORDS[COMP_CWORD-1]}
     program=${COMP_WORDS[0]}
-    local verbs="check render info play stop list get compose delete show edit drivers driver convert clef"
-    local formats="score ahap android-json android-xml android-envelope rtttl midi"
+    local verbs="check render info play stop list get compose delete show edit drivers driver convert assign clef"
+    # What convert reads (--from) and writes (--to).
+    local readable="score ahap android-json android-xml rtttl midi"
+    local writable="score ahap android-json android-xml android-envelope midi"
     local valued="--usage|--clef|--clefs|--out|-o|--output|--rate|--repeat|--intensity|--width|--buttons|--keymap|--button-map|--from|--to|--track|--svg|--png|--actuator"
 
     verb=
@@ -55,8 +57,11 @@ _vibscore() {
             # convert reads the clef itself: a clef file too.
             [[ $verb == convert ]] && _vibscore_files "$cur" '*.xml'
             return ;;
-        --from|--to)
-            COMPREPLY=($(compgen -W "$formats" -- "$cur"))
+        --from)
+            COMPREPLY=($(compgen -W "$readable" -- "$cur"))
+            return ;;
+        --to)
+            COMPREPLY=($(compgen -W "$writable" -- "$cur"))
             return ;;
         --svg|--png)
             _vibscore_files "$cur" "*.${prev#--}"
@@ -89,10 +94,12 @@ _vibscore() {
             info) options+=" --clefs" ;;
             render) options+=" --rate --out --plot --width --svg --png --clefs --actuator" ;;
             play) options+=" --usage --repeat --clef --intensity --wait --clefs" ;;
+            stop) options+=" --all" ;;
             compose) options+=" --clefs" ;;
             show) options+=" --width --colour --color --svg --png --clefs" ;;
-            convert) options+=" --from --to --clef --track --loop" ;;
+            convert) options+=" --from --to --clef --clefs --track --loop" ;;
             edit) options+=" --buttons --keymap --button-map --grab --clef" ;;
+            assign) options+=" --default --list" ;;
             clef) options+=" --actuator -o --output --clefs" ;;
         esac
         COMPREPLY=($(compgen -W "$options" -- "$cur"))
@@ -141,6 +148,12 @@ _vibscore() {
             elif [[ $position -eq 1 ]]; then
                 COMPREPLY=($(compgen -W "$(_vibscore_registry "$program" clefs)" -- "$cur"))
                 _vibscore_files "$cur" '*.xml'
+            fi ;;
+        assign)
+            if [[ $position -eq 0 ]]; then
+                COMPREPLY=($(compgen -W "$("$program" assign --list 2>/dev/null | cut -d' ' -f1)" -- "$cur"))
+            elif [[ $position -eq 1 ]]; then
+                COMPREPLY=($(compgen -W "$(_vibscore_registry "$program" scores)" -- "$cur"))
             fi ;;
         driver)
             [[ $position -eq 0 ]] &&

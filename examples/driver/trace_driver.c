@@ -11,8 +11,9 @@
  *                                             pulse-modulates (default false)
  *     reverse = true                          report VIBSCORE_CAP_REVERSE: negative amplitudes
  *                                             (backwards, anti-phase) come through (default false)
- * Build: cc -shared -fPIC -I<vibscore>/include -o trace.so trace_driver.c, then put trace.so
- * into vibscored's drivers directory and set "driver = trace".
+ * Build: cc -shared -fPIC -I<vibscore>/include -o trace.so trace_driver.c, then install it
+ * into vibscored's drivers directory (install -m 0755 -o root trace.so DIR: a module others may
+ * write is refused) and set "driver = trace".
  */
 #include <vibscore/driver.h>
 

@@ -190,6 +190,12 @@ TEST_F(GpioSettingsTest, BadSettingsNameTheKey) {
     };
     EXPECT_THAT(message({}, false), HasSubstr("gpio-erm setting line is missing"));
     EXPECT_THAT(message({{"line-a", "1"}}, true), HasSubstr("gpio-lra setting line-b is missing"));
+    EXPECT_THAT(message({{"line-b", "2"}}, true), HasSubstr("gpio-lra setting line-a is missing"));
+    // A misspelt key is the mistake to report, with the key it most likely meant.
+    EXPECT_THAT(message({{"lines", "17"}}, false),
+                HasSubstr("unknown gpio-erm setting lines = \"17\" (did you mean line?)"));
+    EXPECT_THAT(message({{"line-a", "1"}, {"lineb", "2"}}, true),
+                HasSubstr("unknown gpio-lra setting lineb = \"2\" (did you mean line-b?)"));
     EXPECT_THAT(message({{"line", "1"}, {"carrier-hz", "5"}}, false),
                 HasSubstr("carrier-hz = \"5\""));
     EXPECT_THAT(message({{"line", "-1"}}, false), HasSubstr("line = \"-1\""));
@@ -210,18 +216,6 @@ TEST_F(GpioSettingsTest, LineRequestFailureIsADeviceError) {
                           ": cannot request as output: Device or resource busy");
     };
     EXPECT_THROW(make_gpio_erm_actuator({{"line", "5"}}, busy), DeviceError);
-}
-
-// A line the kernel releases when the daemon dies falls to its bias: the pull-down is what stops
-// a motor that was on at a SIGKILL (the hil tier checks the kernel side on gpio-sim).
-TEST(GpioLineRequest, OutputsForVibscoredWithThePullDownBias) {
-    const gpiod::line_request request = output_line_request();
-    EXPECT_EQ(request.request_type, gpiod::line_request::DIRECTION_OUTPUT);
-    EXPECT_EQ(request.consumer, "vibscored");
-    EXPECT_EQ(request.flags & gpiod::line_request::FLAG_BIAS_PULL_DOWN,
-              gpiod::line_request::FLAG_BIAS_PULL_DOWN);
-    EXPECT_EQ(request.flags & gpiod::line_request::FLAG_BIAS_PULL_UP, 0);
-    EXPECT_EQ(request.flags & gpiod::line_request::FLAG_OPEN_DRAIN, 0);
 }
 
 // ----- playing through the PWM thread on fake lines -----

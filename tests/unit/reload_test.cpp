@@ -3,6 +3,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <fstream>
 
 #include "daemon/reload.hpp"
@@ -13,7 +14,9 @@ namespace vibscore::daemon {
 namespace {
 
 using ::testing::ElementsAre;
+using ::testing::HasSubstr;
 using ::testing::IsEmpty;
+using ::testing::Not;
 
 class ReloadTest : public ::testing::Test {
   protected:
@@ -80,8 +83,8 @@ TEST_F(ReloadTest, ANewRequestRateAppliesAtOnceWithoutTouchingTheBackend) {
     fresh.request_burst = 1.0;
     reload_config(running, fresh, *host, callers);
     EXPECT_EQ(callers.requests_per_second(), 5.0);
-    EXPECT_TRUE(callers.admit(":1.1", 1'000'000));
-    EXPECT_FALSE(callers.admit(":1.1", 1'000'000));
+    EXPECT_TRUE(callers.admit(1000, 1'000'000));
+    EXPECT_FALSE(callers.admit(1000, 1'000'000));
     EXPECT_EQ(running.requests_per_second, 5.0);
     EXPECT_THAT(reasons.reasons, IsEmpty());
 }
@@ -106,6 +109,38 @@ TEST_F(ReloadTest, ABadSettingChangesNothingAtAll) {
     EXPECT_THAT(reasons.reasons, IsEmpty());
 }
 
+// Each alone, so that neither hides behind the other: the warning must come for either change.
+TEST_F(ReloadTest, AReloadThatChangesOnlyTheStoreKeepsItAndSaysItChangesOnlyOnRestart) {
+    DaemonConfig fresh = parse_config("[daemon]\nstore = /elsewhere/store\n", "v.conf", running);
+    ::testing::internal::CaptureStderr();
+    reload_config(running, fresh, *host, callers);
+    const std::string log = ::testing::internal::GetCapturedStderr();
+    EXPECT_EQ(running.store, "/var/lib/vibscore");
+    EXPECT_THAT(log, HasSubstr("v.conf:2: store = \"/elsewhere/store\" changes only on restart; "
+                               "until then it stays /var/lib/vibscore"));
+    EXPECT_THAT(log, Not(HasSubstr("shipped")));
+}
+
+TEST_F(ReloadTest, AReloadThatChangesOnlyTheShippedFolderKeepsItAndSaysItChangesOnlyOnRestart) {
+    DaemonConfig fresh = running;
+    fresh.shipped = "/elsewhere/clefs";
+    ::testing::internal::CaptureStderr();
+    reload_config(running, fresh, *host, callers);
+    const std::string log = ::testing::internal::GetCapturedStderr();
+    EXPECT_EQ(running.shipped, "/usr/share/vibscore/clefs");
+    EXPECT_THAT(log, HasSubstr("shipped = \"/elsewhere/clefs\" changes only on restart; until "
+                               "then it stays /usr/share/vibscore/clefs"));
+    EXPECT_THAT(log, Not(HasSubstr("store")));
+}
+
+TEST_F(ReloadTest, AReloadThatChangesNeitherFolderSaysNothingAboutThem) {
+    DaemonConfig fresh = running;
+    fresh.separation_ms = 10.0;
+    ::testing::internal::CaptureStderr();
+    reload_config(running, fresh, *host, callers);
+    EXPECT_THAT(::testing::internal::GetCapturedStderr(), Not(HasSubstr("only on restart")));
+}
+
 TEST_F(ReloadTest, TheStoreAndShippedDirectoriesKeepTheirRunningValues) {
     DaemonConfig fresh = running;
     fresh.store = "/elsewhere/store";
@@ -117,18 +152,23 @@ TEST_F(ReloadTest, TheStoreAndShippedDirectoriesKeepTheirRunningValues) {
     EXPECT_EQ(running.separation_ms, 10.0);
 }
 
-// The first drive a one-note playback of strength 1 sends, as the sim's trace recorded it.
+// The first drive a one-note playback of strength 1 sends, as the sim's trace recorded it (the
+// trace is appended to: the lines after what it held before).
 double first_drive_sent(Player& player, const std::filesystem::path& trace) {
     PlaybackRequest request;
     request.cues = std::make_shared<render::CueList>(std::vector<render::Cue>{
         render::drive_at(0.0, 1.0, 175.0), render::drive_at(0.5, 0.0, 0.0)});
     request.duration_s = 1.0;
+    const auto before = static_cast<std::streamoff>(std::filesystem::file_size(trace));
     player.play(request);
     player.stop_all("test");
     std::ifstream in(trace);
-    std::string header, line;
-    std::getline(in, header);
+    in.seekg(before);
+    std::string line;
     while (std::getline(in, line)) {
+        if (line.starts_with("time_ns")) {
+            continue;  // the header
+        }
         const double amplitude = std::stod(line.substr(line.find(',') + 1));
         if (amplitude != 0.0) {
             return amplitude;
@@ -158,6 +198,16 @@ TEST_F(ReloadTest, TheDeclaredActuatorIsReloadedForTheSimAndTheNextPlay) {
     reload_config(running, undeclared, *host, callers);
     EXPECT_FALSE(host->capabilities().reverse);
     EXPECT_EQ(first_drive_sent(*player, trace), 1.0);  // as written again
+}
+
+TEST_F(ReloadTest, AnUnknownDriverChangesNothingAndNamesTheLineThatNamesIt) {
+    const DaemonConfig fresh = parse_config("[daemon]\n\ndriver = evdevv\n", "v.conf", running);
+    EXPECT_THAT([&] { reload_config(running, fresh, *host, callers); },
+                ::testing::ThrowsMessage<std::invalid_argument>(::testing::StartsWith(
+                    "v.conf:3: unknown driver \"evdevv\" (available: sim, evdev")));
+    EXPECT_EQ(host->driver(), "sim");
+    EXPECT_EQ(running.driver, "sim");
+    EXPECT_THAT(reasons.reasons, IsEmpty()) << "the playback was not stopped for it";
 }
 
 TEST_F(ReloadTest, ADriverThatWillNotOpenLeavesThePreviousOneRunning) {
