@@ -150,7 +150,7 @@ int main(int argc, char** argv) {
     add_actuator_option(render_verb, render_actuator,
                         "--out FILE.csv then has t,written,uncompensated,compensated: the "
                         "strength written and what the actuator produces without and with "
-                        "compensation");
+                        "compensation; --plot, --svg and --png draw those three");
 
     ConvertRequest convert_request;
     auto* convert_verb = app.add_subcommand(
