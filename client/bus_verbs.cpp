@@ -14,6 +14,7 @@
 #include <sstream>
 #include <thread>
 
+#include "client/clef_verbs.hpp"
 #include "client/daemon_errors.hpp"
 #include "client/daemon_watch.hpp"
 #include "client/editor/documents.hpp"
@@ -326,9 +327,31 @@ int list(const std::string& kind, std::ostream& out, std::ostream& err) {
     });
 }
 
-int get(const std::string& kind, const std::string& name, std::ostream& out, std::ostream& err) {
+int get(const std::string& kind, const std::string& name, std::ostream& out, std::ostream& err,
+        bool device) {
     return with_daemon(err, [&](Haptics& haptics) {
-        out << haptics.Get(kind, name);
+        if (!device) {
+            out << haptics.Get(kind, name);
+            return exit_ok;
+        }
+        if (!kind.starts_with("clef")) {
+            err << "vibscore: get --device: only a clef has a device form, not a " << kind << "\n";
+            return exit_usage;
+        }
+        // The clef a bar written for NAME plays through here, as BarClefs tells it.
+        const std::string probe = "<VibScore><Clef id=\"c\" href=\"" + name +
+                                  ".clef.xml\"/><Bar clef=\"c\"><Rest length=\"quarter\"/>"
+                                  "</Bar></VibScore>";
+        const std::string device_clef = haptics.BarClefs(probe).at(0).get<1>();
+        const std::string fitted_mark(render::kFittedMark);
+        if (!device_clef.ends_with(fitted_mark)) {
+            out << haptics.Get("clef", device_clef);
+            return exit_ok;
+        }
+        // Fitted: the same pure fit vibscored makes, to the actuator it declares.
+        const auto declared = declaration_of(haptics.Actuator());
+        const Clef written = read_clef(haptics.Get("clef", name), "clef \"" + name + "\"");
+        out << fitted_document(render::fit_clef(written, declared), name, declared);
         return exit_ok;
     });
 }

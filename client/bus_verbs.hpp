@@ -29,7 +29,10 @@ int stop(std::uint64_t id, std::ostream& out, std::ostream& err);
 // Every playback, whoever started it (StopAll: polkit org.vibscore.manage).
 int stop_all(std::ostream& out, std::ostream& err);
 int list(const std::string& kind, std::ostream& out, std::ostream& err);
-int get(const std::string& kind, const std::string& name, std::ostream& out, std::ostream& err);
+// --device: a clef as this device plays it ([clefs] maps it, or fit = auto fits it to the
+// declared actuator), as vibscored binds it.
+int get(const std::string& kind, const std::string& name, std::ostream& out, std::ostream& err,
+        bool device = false);
 // A score's clefs must be registry clefs in the store: each href that names a clef file is
 // rewritten to the registry clef of the same name when that clef is the same, else refused.
 int compose(const std::string& name, const std::string& file, const ClefSearch& clefs,

@@ -8,6 +8,7 @@
 #include "client/actuator_option.hpp"
 #include "client/assign_verb.hpp"
 #include "client/bus_verbs.hpp"
+#include "client/clef_verbs.hpp"
 #include "client/convert_verb.hpp"
 #include "client/editor/documents.hpp"
 #include "client/editor/editor_app.hpp"
@@ -149,7 +150,7 @@ int main(int argc, char** argv) {
     add_actuator_option(render_verb, render_actuator,
                         "--out FILE.csv then has t,written,uncompensated,compensated: the "
                         "strength written and what the actuator produces without and with "
-                        "compensation");
+                        "compensation; --plot, --svg and --png draw those three");
 
     ConvertRequest convert_request;
     auto* convert_verb = app.add_subcommand(
@@ -175,6 +176,28 @@ int main(int argc, char** argv) {
         ->check(number_between(1, 65535, NumberKind::whole));
     convert_verb->add_flag("--loop", convert_request.loop,
                            "Android: the pattern repeats (repeat index 0, <repeating>)");
+
+    auto* clef_verb = app.add_subcommand("clef", "Work on clefs: fit one to the actuator.");
+    clef_verb->require_subcommand(1);
+    ClefFitRequest clef_fit;
+    std::string clef_fit_actuator = kDaemonActuator;
+    auto* clef_fit_verb = clef_verb->add_subcommand(
+        "fit",
+        "Write a device clef for the declared actuator from a written clef: strings where it "
+        "plays them at full strength (or roughness), numbers keeping their strengths, shapes it "
+        "cannot follow smoothed (docs/clefs.md). What changed goes to standard error.");
+    clef_fit_verb->add_option("CLEF", clef_fit.clef, "VibClef file or registry clef name")
+        ->required();
+    clef_fit_verb
+        ->add_option("--actuator", clef_fit_actuator,
+                     "the actuator declared in FILE's [actuator] section (vibscored.conf will "
+                     "do), or 'daemon' (the default): the one vibscored declares")
+        ->type_name("FILE|daemon");
+    clef_fit_verb
+        ->add_option("-o,--output", clef_fit.output,
+                     "write the fitted clef to OUT (default: standard output)")
+        ->type_name("OUT");
+    add_clefs_option(clef_fit_verb, clef_search);
 
     std::string info_file;
     auto* info = app.add_subcommand(
@@ -226,6 +249,10 @@ int main(int argc, char** argv) {
     auto* get_verb = app.add_subcommand("get", "Print a registry score or clef.");
     get_verb->add_option("KIND", kind, kKindHelp)->required()->check(kind_validator());
     get_verb->add_option("NAME", name, "registry name")->required();
+    bool get_device = false;
+    get_verb->add_flag("--device", get_device,
+                       "a clef as this device plays it: the clef [clefs] maps it to, or fitted to "
+                       "the declared actuator (fit = auto)");
     auto* compose_verb = app.add_subcommand(
         "compose", "Store a score or clef file in the registry (root or group vibscore).");
     compose_verb->add_option("NAME", name, "registry name")->required();
@@ -317,6 +344,14 @@ int main(int argc, char** argv) {
         }
         return render_document(render, clef_search, std::cout, std::cerr);
     }
+    if (clef_fit_verb->parsed()) {
+        std::optional<vibscore::actuator::Declaration> declared;
+        if (const int failed = resolve_actuator(clef_fit_actuator, declared, std::cerr)) {
+            return failed;
+        }
+        clef_fit.actuator = *declared;
+        return fit_clef_document(clef_fit, clef_search, std::cout, std::cerr);
+    }
     if (convert_verb->parsed()) {
         return convert(convert_request, clef_search, std::cout, std::cerr);
     }
@@ -330,7 +365,7 @@ int main(int argc, char** argv) {
         return list(kind, std::cout, std::cerr);
     }
     if (get_verb->parsed()) {
-        return get(kind, name, std::cout, std::cerr);
+        return get(kind, name, std::cout, std::cerr, get_device);
     }
     if (compose_verb->parsed()) {
         return compose(name, file, clef_search, std::cout, std::cerr);

@@ -4,14 +4,17 @@
 #include <cstdio>
 #include <fstream>
 #include <map>
+#include <memory>
 #include <optional>
 
+#include "client/pictures/response_picture.hpp"
 #include "client/pictures/signal_picture.hpp"
 #include "client/signal_output.hpp"
 #include "client/terminal_plot.hpp"
 #include "common/number_text.hpp"
 #include "daemon/render/actuator_check.hpp"
 #include "daemon/render/actuator_response.hpp"
+#include "daemon/render/clef_check.hpp"
 #include "daemon/render/performance.hpp"
 #include "score/bundle.hpp"
 #include "score/clef_xml.hpp"
@@ -120,6 +123,10 @@ void describe_score(const LoadedScore& loaded, std::ostream& out) {
 
 namespace {
 
+// Samples a second of what a declared actuator produces, for --plot and the picture: a pixel or
+// a column is at least a millisecond for all but the shortest scores.
+constexpr double kResponsePictureRate = 1000.0;
+
 // The strengths written and produced, one row per sample: what `render --actuator --out F.csv`
 // writes, for plots and spreadsheets.
 std::size_t write_actuator_csv(const render::ActuatorResponse& response, const std::string& path) {
@@ -150,6 +157,12 @@ int check_documents(const std::vector<std::string>& files, const ClefSearch& cle
             if (document_kind(text, file) == DocumentKind::clef) {
                 const Clef clef = read_clef(text, file);
                 out << file << ": ok (clef: " << clef_summary(clef) << ")\n";
+                if (declared) {
+                    for (const auto& warning : render::clef_warnings(clef, *declared)) {
+                        err << file << ": warning: " << warning << "\n";
+                        ++warned;
+                    }
+                }
             } else {
                 const auto bundle = load_score(file, clefs).bundle;
                 const render::Performance performance(bundle);
@@ -211,18 +224,26 @@ int render_document(const RenderRequest& request, const ClefSearch& clefs, std::
         }
         const auto bundle = load_score(request.file, clefs).bundle;
         const render::Performance performance(bundle);
+        const std::string title = bundle.score.title.empty() ? request.file : bundle.score.title;
+        // What the declared actuator makes of the score, sampled at `rate`.
+        const auto response = [&](double rate) {
+            render::ResponseOptions options;
+            options.rate_hz = rate;
+            options.reverse = declared->brake == actuator::Brake::reverse;
+            return render::actuator_response(performance, *declared, options);
+        };
         if (request.plot) {
-            out << (bundle.score.title.empty() ? request.file : bundle.score.title) << "  ("
-                << fixed(performance.duration()) << " s, peak "
+            out << title << "  (" << fixed(performance.duration()) << " s, peak "
                 << number(performance.peak_amplitude()) << ")\n";
-            plot_envelope(out, performance, request.plot_width, 8);
+            if (declared) {
+                out << "on the actuator: " << actuator::describe(*declared) << "\n";
+                plot_response(out, response(kResponsePictureRate), request.plot_width, 4);
+            } else {
+                plot_envelope(out, performance, request.plot_width, 8);
+            }
         }
         if (!request.out.empty() && declared) {
-            render::ResponseOptions options;
-            options.rate_hz = request.rate;
-            options.reverse = declared->brake == actuator::Brake::reverse;
-            const auto samples = write_actuator_csv(
-                render::actuator_response(performance, *declared, options), request.out);
+            const auto samples = write_actuator_csv(response(request.rate), request.out);
             out << "wrote " << request.out << ": " << samples << " samples at " << request.rate
                 << " Hz of the written strength and what the actuator produces without and with "
                    "compensation\n";
@@ -232,11 +253,17 @@ int render_document(const RenderRequest& request, const ClefSearch& clefs, std::
                 << " Hz, " << fixed(performance.duration()) << " s\n";
         }
         if (!request.svg.empty() || !request.png.empty()) {
-            const pictures::SignalPicture picture(
-                performance, bundle.score.title.empty() ? request.file : bundle.score.title);
+            std::unique_ptr<pictures::Drawing> picture;
+            if (declared) {
+                picture = std::make_unique<pictures::ResponsePicture>(
+                    performance, response(kResponsePictureRate), title,
+                    "on the actuator: " + actuator::describe(*declared));
+            } else {
+                picture = std::make_unique<pictures::SignalPicture>(performance, title);
+            }
             for (const auto& path : {request.svg, request.png}) {
                 if (!path.empty()) {
-                    pictures::write_picture(picture, path);
+                    pictures::write_picture(*picture, path);
                     out << "wrote " << path << "\n";
                 }
             }

@@ -30,7 +30,8 @@ struct RenderRequest {
     std::string svg, png;  // the signal and its envelope as a picture; empty for none
     // --actuator [FILE] (an [actuator] section, or the daemon's): --out FILE.csv then has the
     // written strength and the strength that actuator produces without and with compensation
-    // (render::actuator_response).
+    // (render::actuator_response); --plot draws the three as charts and --svg/--png as a
+    // picture (pictures::ResponsePicture) in place of the envelope and the signal.
     std::optional<actuator::Declaration> actuator;
 };
 

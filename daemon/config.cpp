@@ -67,6 +67,14 @@ void add_device_clef(DeviceClefs& clefs, const std::string& written, const std::
     }
 }
 
+// [clefs] fit = auto | off.
+bool fit_mode(const std::string& value, const std::string& where) {
+    if (value == "auto" || value == "off") {
+        return value == "auto";
+    }
+    throw ConfigError(where + ": [clefs] fit = \"" + value + "\" is neither auto nor off");
+}
+
 }  // namespace
 
 const std::map<std::string, std::string>& DaemonConfig::settings_of(const std::string& name) const {
@@ -139,6 +147,8 @@ DaemonConfig parse_config(const std::string& text, const std::string& file, Daem
     std::string line;
     std::string section;
     int number = 0;
+    bool fit_auto = false;  // [clefs] fit = auto
+    std::string fit_where;
     // Every value as the file gave it, by section and key, for the messages about repeated keys.
     std::map<std::string, std::map<std::string, std::string>> values;
     while (std::getline(lines, line)) {
@@ -181,7 +191,12 @@ DaemonConfig parse_config(const std::string& text, const std::string& file, Daem
         }
         refuse_repeated(config.setting_lines[section], section, key, value, where, values[section]);
         if (section == "clefs") {
-            add_device_clef(config.device_clefs, key, value, where);
+            if (key == "fit") {
+                fit_where = where;
+                fit_auto = fit_mode(value, where);
+            } else {
+                add_device_clef(config.device_clefs, key, value, where);
+            }
             continue;
         }
         if (section != "daemon") {
@@ -221,6 +236,14 @@ DaemonConfig parse_config(const std::string& text, const std::string& file, Daem
         }
     }
     config.actuator = declared_actuator(config);
+    config.device_clefs.fit_to.reset();
+    if (fit_auto) {
+        if (!config.actuator) {
+            throw ConfigError(fit_where +
+                              ": [clefs] fit = auto needs an [actuator] section to fit to");
+        }
+        config.device_clefs.fit_to = config.actuator;
+    }
     return config;
 }
 

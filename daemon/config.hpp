@@ -24,7 +24,7 @@ namespace vibscore::daemon {
 //             request-burst, rt-priority
 //   [actuator] the actuator's physics, declared once (daemon/actuator_config.hpp)
 //   [clefs]   WRITTEN = DEVICE: the clef bars written for WRITTEN play through on this device;
-//             "* = DEVICE" for any other clef
+//             "* = DEVICE" for any other clef; "fit = auto" fits every other clef to [actuator]
 //   [NAME]    the settings of driver NAME (e.g. [sim] model = erm), handed to that driver
 // docs/daemon.md documents every key.
 struct DaemonConfig {

@@ -262,6 +262,10 @@ void HapticsService::Compose(sdbus::Result<>&& result, std::string name, std::st
                          const auto stored = registry_.compose(name, document);
                          log::info("uid " + std::to_string(caller.uid) + " composed " +
                                    std::string(to_string(stored)) + " \"" + name + "\"");
+                         if (stored == DocumentKind::clef) {
+                             log_stored_clef(registry_, config_.device_clefs, config_.actuator,
+                                             name);
+                         }
                          emitRegistryChanged(std::string(to_string(stored)), name);
                      });
     });

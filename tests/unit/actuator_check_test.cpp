@@ -5,6 +5,8 @@
 
 #include <fstream>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include "daemon/render/actuator_check.hpp"
 #include "daemon/render/actuator_response.hpp"
@@ -156,6 +158,86 @@ TEST(ClientActuator, RenderWritesTheWrittenAndProducedStrengths) {
                            "--out", (dir.path() / "x.wav").string()})
                   .exit_code,
               2);
+}
+
+// The cells of a plot row after its "│", one string per character (they are UTF-8 blocks).
+std::vector<std::string> plot_cells(const std::string& line) {
+    const std::string bar = "│";
+    std::vector<std::string> cells;
+    for (std::size_t at = line.find(bar) + bar.size(); at < line.size();) {
+        std::size_t length = 1;
+        while (at + length < line.size() && (line[at + length] & 0xC0) == 0x80) {
+            ++length;
+        }
+        cells.push_back(line.substr(at, length));
+        at += length;
+    }
+    return cells;
+}
+
+// The last column of a plot row that holds ink; -1 for none.
+int last_inked(const std::vector<std::string>& cells) {
+    for (int c = static_cast<int>(cells.size()) - 1; c >= 0; --c) {
+        if (cells[static_cast<std::size_t>(c)] != " ") {
+            return c;
+        }
+    }
+    return -1;
+}
+
+TEST(ClientActuator, RenderPlotsTheWrittenAndProducedStrengthsOnOneScale) {
+    TempDir dir;
+    const auto board = dir.write("erm.conf",
+                                 "[actuator]\nkind = erm\nspin-up-ms = 40\nspin-down-ms = 80\n"
+                                 "rated-drive = 0.7\nbrake = reverse\n");
+    const auto result =
+        run_command({vibscore(), "render", shipped("notification-message.score.xml"), "--actuator",
+                     board, "--plot", "--width", "70"});
+    ASSERT_EQ(result.exit_code, 0) << result.err;
+    EXPECT_THAT(result.out, HasSubstr("on the actuator: erm: spin-up 40 ms, spin-down 80 ms"));
+    EXPECT_THAT(result.out, HasSubstr("strength, 1 = the rated drive; each chart from 0 to 0.9"));
+    std::vector<std::string> lines;
+    std::istringstream text(result.out);
+    for (std::string line; std::getline(text, line);) {
+        lines.push_back(line);
+    }
+    // Three charts of four rows each, labelled, over one time axis from 0 to the ringing's end.
+    const auto chart = [&](const std::string& label) {
+        for (std::size_t i = 0; i + 3 < lines.size(); ++i) {
+            if (lines[i].starts_with(label + " ")) {
+                return i;
+            }
+        }
+        ADD_FAILURE() << "no chart " << label << " in\n" << result.out;
+        return std::size_t{0};
+    };
+    const auto written = chart("written");
+    const auto off = chart("uncompensated");
+    const auto on = chart("compensated");
+    EXPECT_EQ(off, written + 4);
+    EXPECT_EQ(on, off + 4);
+    ASSERT_LT(on + 5, lines.size());
+    EXPECT_THAT(lines[on + 4], HasSubstr("└"));
+    EXPECT_THAT(lines[on + 5], HasSubstr("0.7 s"));  // 0.4 s of score, 0.3 s of ringing
+    for (const auto first : {written, off, on}) {
+        for (std::size_t row = first; row < first + 4; ++row) {
+            EXPECT_EQ(plot_cells(lines[row]).size(), 70u) << lines[row];
+        }
+    }
+    // The bottom rows, 10 ms a column: the score is written to 0.4 s; the braked motor stops
+    // within 20 ms of it, the coasting one is still felt 150 ms on.
+    const int written_end = last_inked(plot_cells(lines[written + 3]));
+    EXPECT_EQ(written_end, 39);
+    EXPECT_LE(last_inked(plot_cells(lines[on + 3])), written_end + 2);
+    EXPECT_GE(last_inked(plot_cells(lines[off + 3])), written_end + 15);
+}
+
+TEST(ClientActuator, RenderWithoutTheActuatorPlotsTheEnvelopeAlone) {
+    const auto result =
+        run_command({vibscore(), "render", shipped("notification-message.score.xml"), "--plot"});
+    ASSERT_EQ(result.exit_code, 0) << result.err;
+    EXPECT_THAT(result.out, HasSubstr("peak │"));
+    EXPECT_THAT(result.out, ::testing::Not(HasSubstr("uncompensated")));
 }
 
 }  // namespace

@@ -63,6 +63,20 @@ TEST_F(ReloadTest, ANewClefMapIsTheRunningOneAtOnceAndPlaybackGoesOn) {
     EXPECT_TRUE(player->current_id().has_value());
 }
 
+TEST_F(ReloadTest, ANewActuatorWithFitAutoRefitsEveryClefItDoesNotMap) {
+    actuator::Declaration erm;
+    erm.kind = actuator::Kind::erm;
+    DaemonConfig fresh = running;
+    fresh.driver_settings["sim"] = {};  // the sim simulates the declared actuator
+    fresh.actuator = erm;
+    fresh.device_clefs.fit_to = erm;
+    fresh.device_clefs.by_written["lra-phone"] = "erm-phone";
+    reload_config(running, fresh, *host, callers);
+    EXPECT_EQ(running.device_clefs.for_written("lra-phone"), "erm-phone");
+    EXPECT_EQ(running.device_clefs.for_written("soft-shapes"), "soft-shapes (fitted)");
+    EXPECT_EQ(running.device_clefs.fit_to, erm);
+}
+
 TEST_F(ReloadTest, ANewRequestRateAppliesAtOnceWithoutTouchingTheBackend) {
     DaemonConfig fresh = running;
     fresh.requests_per_second = 5.0;
