@@ -289,6 +289,11 @@ int main(int argc, char** argv) {
                           "draw the staff (or the clef) as an SVG picture instead");
     show_verb->add_option("--png", show_png, "draw the staff (or the clef) as a PNG image instead");
     add_clefs_option(show_verb, clef_search);
+    std::string show_actuator;
+    add_actuator_option(show_verb, show_actuator,
+                        "with --svg/--png, a clef is drawn over the actuator's response (an LRA's "
+                        "strength at full drive over frequency, and what each number reaches on "
+                        "each string)");
 
     AssignRequest assign_request;
     auto* assign_verb = app.add_subcommand(
@@ -380,8 +385,16 @@ int main(int argc, char** argv) {
         return driver(driver_name, std::cout, std::cerr);
     }
     if (show_verb->parsed() && (!show_svg.empty() || !show_png.empty())) {
+        std::optional<vibscore::actuator::Declaration> declared;
+        if (const int failed = resolve_actuator(show_actuator, declared, std::cerr)) {
+            return failed;
+        }
         return show_picture(show_request.score, show_svg, show_png, clef_search, std::cout,
-                            std::cerr);
+                            std::cerr, declared);
+    }
+    if (show_verb->parsed() && !show_actuator.empty()) {
+        std::cerr << "vibscore: show --actuator draws a picture: give --svg FILE or --png FILE\n";
+        return exit_usage;
     }
     if (show_verb->parsed()) {
         return vibscore::editor::show_score(show_request, std::cout, std::cerr);

@@ -50,7 +50,8 @@ Shown read_shown(const std::string& document, const ClefSearch& clefs) {
 }  // namespace
 
 int show_picture(const std::string& document, const std::string& svg, const std::string& png,
-                 const ClefSearch& clefs, std::ostream& out, std::ostream& err) {
+                 const ClefSearch& clefs, std::ostream& out, std::ostream& err,
+                 const std::optional<actuator::Declaration>& actuator) {
     try {
         for (const auto& path : {svg, png}) {
             if (!path.empty()) {
@@ -65,7 +66,12 @@ int show_picture(const std::string& document, const std::string& svg, const std:
         const Shown shown = read_shown(document, clefs);
         std::unique_ptr<pictures::Drawing> picture;
         if (shown.clef) {
-            picture = std::make_unique<pictures::ClefPicture>(*shown.clef, shown.name);
+            picture = std::make_unique<pictures::ClefPicture>(*shown.clef, shown.name, actuator);
+        } else if (actuator) {
+            err << "show: --actuator draws an actuator's response behind a clef, and " << document
+                << " is a score (vibscore render " << document
+                << " --actuator draws what the actuator makes of it)\n";
+            return exit_usage;
         } else {
             picture = std::make_unique<pictures::StaffPicture>(*shown.score);
         }

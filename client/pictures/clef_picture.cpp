@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "client/pictures/axis_ticks.hpp"
 #include "client/pictures/picture_text.hpp"
 #include "common/number_text.hpp"
+#include "daemon/actuator/physics.hpp"
 #include "daemon/render/waveform.hpp"
 
 namespace vibscore::pictures {
@@ -18,10 +20,15 @@ constexpr double kTop = 64.0;   // below the title, and the string numbers over 
 constexpr double kPlotWidth = 520.0;
 constexpr double kSineHeight = 250.0;
 constexpr double kShapeHeight = 52.0, kShapeGap = 18.0;
-constexpr double kBelowPlots = 44.0;  // tick labels and the axis title
-constexpr double kTableGap = 48.0;    // between a plot (and its number labels) and the table
-constexpr double kRow = 15.0;         // a table row
-constexpr int kShapeSamples = 1024;   // over a quarter note
+constexpr double kBelowPlots = 44.0;   // tick labels and the axis title
+constexpr double kTableGap = 48.0;     // between a plot (and its number labels) and the table
+constexpr double kRow = 15.0;          // a table row
+constexpr int kShapeSamples = 1024;    // over a quarter note
+constexpr int kResponseSamples = 520;  // one per pixel of the plot's width
+constexpr double kReachedHalfWidth = 6.0;
+
+constexpr double kResponseInk[3] = {0.95, 0.55, 0.15};
+constexpr double kReachedInk[3] = {0.85, 0.3, 0.05};
 
 constexpr double kStringInk[3] = {0.25, 0.4, 0.75};
 constexpr double kPointInk[3] = {0.85, 0.2, 0.1};
@@ -70,9 +77,26 @@ std::vector<ClefPoint> outline(const Clef& clef, const std::vector<ClefPoint>& p
 
 }  // namespace
 
-ClefPicture::ClefPicture(const Clef& clef, std::string name) : clef_(clef) {
+ClefPicture::ClefPicture(const Clef& clef, std::string name,
+                         std::optional<actuator::Declaration> actuator)
+    : clef_(clef), actuator_(std::move(actuator)) {
     title_ = name + ": " + std::string(to_string(clef.type)) + " clef, a quarter note lasts " +
              number_text(clef.tempo) + " s";
+    if (actuator_) {
+        caption_.push_back("on the actuator: " + actuator::describe(*actuator_));
+        if (actuator_->kind == actuator::Kind::erm) {
+            caption_.push_back(clef.type == ClefType::sine
+                                   ? "an ERM has no pitch: it plays every string alike, at the "
+                                     "strengths marked"
+                                   : "an ERM has no pitch: only the shapes are felt");
+        } else if (clef.type == ClefType::sine) {
+            caption_.push_back(
+                "curve: the strength full drive gives; bars: what each number "
+                "reaches on each string");
+        } else {
+            caption_.push_back("the LRA plays these shapes at its resonance");
+        }
+    }
     double bottom = kTop;
     if (clef.type == ClefType::sine) {
         Plot plot{kLeft, kTop, kPlotWidth, kSineHeight};
@@ -85,7 +109,15 @@ ClefPicture::ClefPicture(const Clef& clef, std::string name) : clef_(clef) {
         const double pad = high > low ? (high - low) * 0.12 : std::max(low * 0.2, 1.0);
         plot.x_from = std::max(0.0, low - pad);
         plot.x_to = high + pad;
-        const double loudest = *std::max_element(clef.numbers.begin(), clef.numbers.end());
+        double loudest = *std::max_element(clef.numbers.begin(), clef.numbers.end());
+        if (actuator_ && actuator_->kind == actuator::Kind::lra) {
+            // The response's peak too, where it is inside the plot.
+            for (int k = 0; k <= kResponseSamples; ++k) {
+                loudest =
+                    std::max(loudest, full_drive_strength(plot.x_from + (plot.x_to - plot.x_from) *
+                                                                            k / kResponseSamples));
+            }
+        }
         plot.y_to = loudest > 0.0 ? loudest * 1.12 : 1.0;
         // A number at (or near) 0 sits above the frame, not on it.
         plot.y_from = -0.06 * plot.y_to;
@@ -104,6 +136,10 @@ ClefPicture::ClefPicture(const Clef& clef, std::string name) : clef_(clef) {
         }
         bottom = kTop + count * (kShapeHeight + kShapeGap) - kShapeGap;
     }
+    if (!caption_.empty()) {
+        caption_top_ = bottom + kBelowPlots + 6;
+        bottom += static_cast<double>(caption_.size()) * kRow + 6;
+    }
     table_left_ = kLeft + kPlotWidth + kTableGap;
     const double rows = clef.type == ClefType::sine
                             ? 3.0 + clef.strings.size() + clef.numbers.size()
@@ -114,8 +150,33 @@ ClefPicture::ClefPicture(const Clef& clef, std::string name) : clef_(clef) {
                              &cairo_surface_destroy);
     const CairoPtr measure(cairo_create(scratch.get()), &cairo_destroy);
     select_font(measure.get(), 14, true);
-    const double title_width = kMargin + text_width(measure.get(), title_);
-    width_ = std::ceil(std::max(table_left_ + 190, title_width + kMargin));
+    double text_right = kMargin + text_width(measure.get(), title_);
+    select_font(measure.get(), 10, false);
+    for (const auto& line : caption_) {
+        text_right = std::max(text_right, kMargin + text_width(measure.get(), line));
+    }
+    width_ = std::ceil(std::max(table_left_ + 190, text_right + kMargin));
+}
+
+double ClefPicture::full_drive_strength(double frequency_hz) const {
+    if (!actuator_) {
+        return 0.0;
+    }
+    return actuator::Physics(*actuator_).steady_strength({1.0, frequency_hz});
+}
+
+double ClefPicture::reached_strength(std::size_t s, std::size_t n) const {
+    if (!actuator_) {
+        return 0.0;
+    }
+    const actuator::Physics physics(*actuator_);
+    const double frequency = clef_.type == ClefType::sine ? clef_.strings.at(s).frequency : 0.0;
+    const double number = clef_.numbers.at(n);
+    // The drive the renderer holds a note with (render::DrivePlanner; uncompensated, the
+    // written strength times rated-drive), never more than full scale.
+    const double drive = actuator_->compensation ? physics.amplitude_for(number, frequency)
+                                                 : number * actuator_->rated_drive;
+    return physics.steady_strength({std::min(1.0, drive), frequency});
 }
 
 void ClefPicture::draw(cairo_t* cairo, Layers layers) const {
@@ -125,11 +186,63 @@ void ClefPicture::draw(cairo_t* cairo, Layers layers) const {
         show_text_at(cairo, kMargin, 22, title_);
     }
     if (clef_.type == ClefType::sine) {
+        draw_response(cairo, layers);
         draw_sine(cairo, layers);
     } else {
         draw_shapes(cairo, layers);
     }
     draw_table(cairo, layers);
+    draw_caption(cairo, layers);
+}
+
+void ClefPicture::draw_response(cairo_t* cairo, Layers layers) const {
+    if (!actuator_) {
+        return;
+    }
+    const Plot& plot = plots_.front();
+    cairo_save(cairo);
+    // Inside the frame only: a response higher than the plot is cut at its top.
+    cairo_rectangle(cairo, std::round(plot.left) + 1, std::round(plot.top) + 1,
+                    std::round(plot.width) - 1, std::round(plot.height) - 1);
+    cairo_clip(cairo);
+    if ((layers & response) && actuator_->kind == actuator::Kind::lra) {
+        set_rgb(cairo, kResponseInk);
+        cairo_set_line_width(cairo, 2.0);
+        cairo_set_line_join(cairo, CAIRO_LINE_JOIN_ROUND);
+        for (int k = 0; k <= kResponseSamples; ++k) {
+            const double f = plot.x_from + (plot.x_to - plot.x_from) * k / kResponseSamples;
+            const double x = plot.x_of(f), y = plot.y_of(full_drive_strength(f));
+            k == 0 ? cairo_move_to(cairo, x, y) : cairo_line_to(cairo, x, y);
+        }
+        cairo_stroke(cairo);
+    }
+    if (layers & reached) {
+        set_rgb(cairo, kReachedInk);
+        cairo_set_line_width(cairo, 2.0);
+        for (std::size_t s = 0; s < clef_.strings.size(); ++s) {
+            const double x = std::round(plot.x_of(clef_.strings[s].frequency)) + 0.5;
+            for (std::size_t n = 0; n < clef_.numbers.size(); ++n) {
+                const double y = std::round(plot.y_of(reached_strength(s, n))) + 0.5;
+                cairo_move_to(cairo, x - kReachedHalfWidth, y);
+                cairo_line_to(cairo, x + kReachedHalfWidth, y);
+                cairo_stroke(cairo);
+            }
+        }
+    }
+    cairo_restore(cairo);
+}
+
+void ClefPicture::draw_caption(cairo_t* cairo, Layers layers) const {
+    if (!(layers & caption) || caption_.empty()) {
+        return;
+    }
+    cairo_set_source_rgb(cairo, 0, 0, 0);
+    select_font(cairo, 10, false);
+    double y = caption_top_;
+    for (const auto& line : caption_) {
+        show_text_at(cairo, kMargin, y, line);
+        y += kRow;
+    }
 }
 
 void ClefPicture::draw_frame(cairo_t* cairo, const Plot& plot, Layers layers, bool x_labels,

@@ -1,9 +1,11 @@
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "client/pictures/picture_file.hpp"
+#include "daemon/actuator/declaration.hpp"
 #include "score/clef.hpp"
 
 namespace vibscore::pictures {
@@ -13,6 +15,9 @@ namespace vibscore::pictures {
 //   horizontal line at its amplitude, and a dot where they cross: every note the clef can play;
 // - curve and line: each string's waveform over one quarter note with its control points,
 //   string 6 on top as on the staff; the numbers scale it.
+// With an actuator (`show CLEF --actuator`), captioned with its declaration: behind a sine clef's
+// strings an LRA's response, the strength full drive gives at each frequency, and at each string
+// the strength each number reaches there; an ERM is said to have no pitch.
 class ClefPicture : public Drawing {
   public:
     // The kinds of mark, one layer each (see Drawing).
@@ -25,15 +30,20 @@ class ClefPicture : public Drawing {
         notes = 1u << 5,    // where a sine string and number cross
         points = 1u << 6,   // a shape string's control points
         table = 1u << 7,
+        response = 1u << 8,  // the LRA's strength at full drive over frequency
+        reached = 1u << 9,   // the strength each number reaches on each string
+        caption = 1u << 10,  // the actuator, and for an ERM that it has no pitch
     };
 
-    // `name`: what the title calls the clef (its registry name or file).
-    ClefPicture(const Clef& clef, std::string name);
+    // `name`: what the title calls the clef (its registry name or file); `actuator`: the one
+    // whose response is drawn behind the clef.
+    ClefPicture(const Clef& clef, std::string name,
+                std::optional<actuator::Declaration> actuator = std::nullopt);
 
     double width() const override { return width_; }
     double height() const override { return height_; }
     void draw(cairo_t* cairo, Layers layers) const override;
-    Layers text_layers() const override { return title | axis_labels | table; }
+    Layers text_layers() const override { return title | axis_labels | table | caption; }
 
     // A plot inside the picture: its frame, and what its axes span.
     struct Plot {
@@ -49,15 +59,27 @@ class ClefPicture : public Drawing {
     // One plot for a sine clef; one per string for a shape clef, string 1's first.
     const std::vector<Plot>& plots() const { return plots_; }
 
+    // With an actuator, from its model (actuator::Physics, as clef fit and check use it): the
+    // strength full drive gives at this frequency, and the strength number `n` reaches on string
+    // `s` with the drive the renderer gives it (compensation on: up to full drive; off: number x
+    // rated-drive).
+    double full_drive_strength(double frequency_hz) const;
+    double reached_strength(std::size_t s, std::size_t n) const;
+
   private:
     void draw_sine(cairo_t* cairo, Layers layers) const;
     void draw_shapes(cairo_t* cairo, Layers layers) const;
     void draw_frame(cairo_t* cairo, const Plot& plot, Layers layers, bool x_labels,
                     const char* x_title) const;
     void draw_table(cairo_t* cairo, Layers layers) const;
+    void draw_response(cairo_t* cairo, Layers layers) const;
+    void draw_caption(cairo_t* cairo, Layers layers) const;
 
     const Clef& clef_;
+    std::optional<actuator::Declaration> actuator_;
     std::string title_;
+    std::vector<std::string> caption_;
+    double caption_top_ = 0.0;
     std::vector<Plot> plots_;
     double table_left_ = 0.0;
     double width_ = 0.0, height_ = 0.0;

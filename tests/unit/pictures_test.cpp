@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <memory>
 #include <optional>
 #include <set>
@@ -20,6 +21,7 @@
 #include "client/pictures/response_picture.hpp"
 #include "client/pictures/signal_picture.hpp"
 #include "client/pictures/staff_picture.hpp"
+#include "daemon/actuator/physics.hpp"
 #include "daemon/config.hpp"
 #include "daemon/render/actuator_response.hpp"
 #include "daemon/render/waveform.hpp"
@@ -327,12 +329,12 @@ struct PictureCommand {
     std::string line;
     std::vector<std::string> words;  // after "vibscore"
     std::string document, picture;   // the document drawn, and the picture written
-    std::string actuator;            // render --actuator FILE: the file declaring it
+    std::string actuator;            // render/show --actuator FILE: the file declaring it
 };
 
 std::vector<PictureCommand> documented_picture_commands(const std::filesystem::path& root) {
     std::vector<PictureCommand> commands;
-    for (const char* file : {"README.md", "docs/formats.md"}) {
+    for (const char* file : {"README.md", "docs/formats.md", "docs/clefs.md"}) {
         std::istringstream text(testing::read_file(root / file));
         for (std::string line; std::getline(text, line);) {
             const auto at = line.find("build/client/vibscore ");
@@ -404,8 +406,13 @@ std::unique_ptr<InProcess> draw_in_process(const std::string& verb,
             std::make_unique<SignalPicture>(*drawn->performance, drawn->bundle->score.title);
     } else if (document_kind(text, document.string()) == DocumentKind::clef) {
         drawn->clef = read_clef(text, document.string());
-        drawn->picture =
-            std::make_unique<pictures::ClefPicture>(*drawn->clef, document.filename().string());
+        std::optional<actuator::Declaration> declared;
+        if (!actuator_file.empty()) {
+            declared = daemon::load_config(actuator_file).actuator;
+            EXPECT_TRUE(declared) << actuator_file << " declares no actuator";
+        }
+        drawn->picture = std::make_unique<pictures::ClefPicture>(
+            *drawn->clef, document.filename().string(), declared);
     } else {
         drawn->score = read_score(text, document.string()).score;
         drawn->picture = std::make_unique<StaffPicture>(*drawn->score);
@@ -418,8 +425,9 @@ TEST(Pictures, EveryPictureInTheDocsIsWhatItsCommandDraws) {
     TempDir dir;
     const auto root = shipped("..");
     const auto commands = documented_picture_commands(root);
-    // The README's staff and signal, the docs' clef and a tacton on the feel issue's ERM.
-    ASSERT_GE(commands.size(), 4u);
+    // The README's staff and signal, the docs' clef, a tacton on the feel issue's ERM, and
+    // lra-phone on its LRA before and after fitting.
+    ASSERT_GE(commands.size(), 6u);
     for (const auto& command : commands) {
         SCOPED_TRACE(command.line);
         std::vector<std::string> argv{testing::required_env("VIBSCORE")};
@@ -1151,6 +1159,239 @@ TEST(ClefPicture, ShowDrawsAClefByFileOrByName) {
     EXPECT_NE(result.err.find("no clef \"no-such-thing\" in " + shipped("").string()),
               std::string::npos)
         << result.err;
+}
+
+// --- Clef over an actuator's response ------------------------------------------------------
+
+bool has_ink(const Image& ink) {
+    for (int y = 0; y < ink.height(); ++y) {
+        for (int x = 0; x < ink.width(); ++x) {
+            if (ink.at(x, y).a >= 64) {
+                return true;
+            }
+        }
+    }
+    return false;
+}
+
+actuator::Declaration declared_in(const std::string& example) {
+    const auto declared = daemon::load_config(shipped("../examples/actuator/" + example)).actuator;
+    EXPECT_TRUE(declared) << example;
+    return declared.value_or(actuator::Declaration{});
+}
+
+TEST(ClefPicture, DrawsAnLrasResponseBehindASineClefAndWhatEachNumberReaches) {
+    const auto clef = shipped_clef("lra-phone");
+    const auto lra = declared_in("lra.conf");
+    const ClefPicture picture(clef, "lra-phone", lra);
+    const auto& plot = picture.plots().front();
+    // The response: the model's strength at full drive, 1 / rated-drive at resonance.
+    EXPECT_NEAR(picture.full_drive_strength(175.0), 1.0 / 0.7, 1e-9);
+    EXPECT_NEAR(picture.full_drive_strength(235.0),
+                actuator::Physics(lra).steady_strength({1.0, 235.0}), 1e-12);
+    // Its peak is inside the plot, not cut off.
+    EXPECT_LT(plot.y_to, 1.0 / 0.7 * 1.2);
+    EXPECT_GT(plot.y_to, 1.0 / 0.7);
+    const auto response = Image::ink_of(picture, ClefPicture::response);
+    for (double f = plot.x_from + 1.0; f < plot.x_to - 1.0; f += 2.5) {
+        EXPECT_TRUE(
+            inked_near(response, plot.x_of(f), plot.y_of(picture.full_drive_strength(f)), 2))
+            << f << " Hz";
+    }
+    // Far off resonance the curve is low: nothing where full strength would be.
+    EXPECT_FALSE(inked_near(response, plot.x_of(235.0), plot.y_of(1.0), 4));
+    EXPECT_TRUE(inked_near(response, plot.x_of(175.0), plot.y_of(1.0 / 0.7), 2));
+
+    // What each number reaches: near resonance every number (compensation drives harder off it);
+    // at 235 Hz full drive gives less than number 1 asks, so every number reaches only that.
+    const auto reached = Image::ink_of(picture, ClefPicture::reached);
+    const double at_235 = picture.full_drive_strength(235.0);
+    ASSERT_LT(at_235, clef.numbers.front());
+    for (std::size_t n = 0; n < clef.numbers.size(); ++n) {
+        EXPECT_NEAR(picture.reached_strength(1, n), clef.numbers[n], 1e-9) << "number " << n + 1;
+        EXPECT_NEAR(picture.reached_strength(5, n), at_235, 1e-9) << "number " << n + 1;
+    }
+    for (std::size_t s = 0; s < clef.strings.size(); ++s) {
+        const double x = plot.x_of(clef.strings[s].frequency);
+        for (std::size_t n = 0; n < clef.numbers.size(); ++n) {
+            // The bar reaches past the note's dot on both sides.
+            const double y = plot.y_of(picture.reached_strength(s, n));
+            EXPECT_TRUE(inked_near(reached, x - 5, y, 1)) << "string " << s + 1 << " " << n + 1;
+            EXPECT_TRUE(inked_near(reached, x + 5, y, 1)) << "string " << s + 1 << " " << n + 1;
+        }
+    }
+    const double x6 = plot.x_of(235.0);
+    EXPECT_FALSE(inked_near(reached, x6 + 5, plot.y_of(clef.numbers.front()), 3));
+    EXPECT_FALSE(inked_near(reached, x6 + 5, plot.y_of(1.0), 3));
+
+    // Without compensation the renderer drives number x rated-drive at any frequency: each
+    // number reaches its share of the gain there.
+    auto uncompensated = lra;
+    uncompensated.compensation = false;
+    const ClefPicture plain(clef, "lra-phone", uncompensated);
+    const double gain_235 = actuator::Physics::lra_gain(235.0, 175.0, 15.0);
+    EXPECT_NEAR(plain.reached_strength(5, 0), 0.2 * gain_235, 1e-9);
+    EXPECT_NEAR(plain.reached_strength(5, 8), 1.0 * gain_235, 1e-9);
+    EXPECT_LT(plain.reached_strength(5, 0), plain.reached_strength(5, 8));
+}
+
+TEST(ClefPicture, WithoutAnActuatorDrawsNoResponseNoBarsAndNoCaption) {
+    const auto clef = shipped_clef("lra-phone");
+    const ClefPicture picture(clef, "lra-phone");
+    const auto with = ClefPicture(clef, "lra-phone", declared_in("lra.conf"));
+    for (const auto layer : {ClefPicture::response, ClefPicture::reached, ClefPicture::caption}) {
+        EXPECT_FALSE(has_ink(Image::ink_of(picture, layer))) << layer;
+        EXPECT_TRUE(has_ink(Image::ink_of(with, layer))) << layer;
+    }
+    // The caption takes room of its own below the plot.
+    EXPECT_GT(with.height(), picture.height());
+}
+
+TEST(ClefPicture, SaysAnErmHasNoPitchAndDrawsNoResponseCurve) {
+    const auto clef = shipped_clef("lra-phone");
+    const auto erm = declared_in("erm.conf");
+    const ClefPicture picture(clef, "lra-phone", erm);
+    const auto& plot = picture.plots().front();
+    EXPECT_FALSE(has_ink(Image::ink_of(picture, ClefPicture::response)));
+    const auto caption = Image::ink_of(picture, ClefPicture::caption);
+    EXPECT_TRUE(has_ink(caption));
+    // Two lines: the declaration, and that the ERM has no pitch. The caption is below the plot.
+    int first = caption.height(), last = -1;
+    for (int y = 0; y < caption.height(); ++y) {
+        for (int x = 0; x < caption.width(); ++x) {
+            if (caption.at(x, y).a >= 64) {
+                first = std::min(first, y);
+                last = std::max(last, y);
+            }
+        }
+    }
+    EXPECT_GT(first, plot.top + plot.height);
+    EXPECT_GT(last - first, 20);
+    // Full drive of a rated-drive 0.7 ERM gives 1.43 at any frequency: every number is reached.
+    for (std::size_t s = 0; s < clef.strings.size(); ++s) {
+        for (std::size_t n = 0; n < clef.numbers.size(); ++n) {
+            EXPECT_NEAR(picture.reached_strength(s, n), clef.numbers[n], 1e-9);
+        }
+    }
+}
+
+const std::vector<NamedLayer> kActuatorClefLayers{
+    {ClefPicture::title, "the title"},       {ClefPicture::frames, "the frames"},
+    {ClefPicture::axis_labels, "labels"},    {ClefPicture::strings, "the strings"},
+    {ClefPicture::numbers, "the numbers"},   {ClefPicture::notes, "the notes"},
+    {ClefPicture::points, "the points"},     {ClefPicture::table, "the table"},
+    {ClefPicture::response, "the response"}, {ClefPicture::reached, "the reached strengths"},
+    {ClefPicture::caption, "the caption"},
+};
+
+// The response and the reached bars cross the clef's lines and notes, as those cross each other.
+std::set<std::pair<Layers, Layers>> actuator_clef_may_meet() {
+    auto meet = kClefMayMeet;
+    for (const Layers layer :
+         {ClefPicture::frames, ClefPicture::strings, ClefPicture::numbers, ClefPicture::notes}) {
+        meet.insert({layer, ClefPicture::response});
+        meet.insert({layer, ClefPicture::reached});
+    }
+    meet.insert({ClefPicture::response, ClefPicture::reached});
+    return meet;
+}
+
+TEST(ClefPicture, KeepsEveryMarkApartOverAnActuator) {
+    const auto meet = actuator_clef_may_meet();
+    Layers inked = 0;
+    for (const char* example : {"lra.conf", "erm.conf"}) {
+        const auto declared = declared_in(example);
+        for (const char* name : {"lra-phone", "shaker-sine-low", "soft-shapes", "erm-rough"}) {
+            SCOPED_TRACE(std::string(name) + " on " + example);
+            inked |= expect_apart(ClefPicture(shipped_clef(name), name, declared),
+                                  kActuatorClefLayers, meet);
+        }
+    }
+    expect_every_layer_checked(inked, kActuatorClefLayers);
+}
+
+TEST(ClefPicture, ShowDrawsAClefOverTheActuatorItIsGiven) {
+    TempDir dir;
+    const auto vibscore = testing::required_env("VIBSCORE");
+    const auto lra_file = shipped("../examples/actuator/lra.conf").string();
+    const auto png = (dir.path() / "clef.png").string();
+    auto result = testing::run_command({vibscore, "show", shipped("lra-phone.clef.xml").string(),
+                                        "--actuator", lra_file, "--png", png});
+    ASSERT_EQ(result.exit_code, 0) << result.err;
+    const auto clef = shipped_clef("lra-phone");
+    const ClefPicture picture(clef, "lra-phone.clef.xml", declared_in("lra.conf"));
+    EXPECT_EQ(testing::GoldenCheck(picture).differences(Image::of(picture), Image::read_png(png)),
+              "");
+
+    // A score has no strings to draw a response behind: render --actuator is the way.
+    result =
+        testing::run_command({vibscore, "show", shipped("notification-message.score.xml").string(),
+                              "--actuator", lra_file, "--png", png});
+    EXPECT_EQ(result.exit_code, 2);
+    EXPECT_NE(result.err.find("is a score (vibscore render"), std::string::npos) << result.err;
+    // --actuator draws a picture only.
+    result = testing::run_command(
+        {vibscore, "show", shipped("lra-phone.clef.xml").string(), "--actuator", lra_file});
+    EXPECT_EQ(result.exit_code, 2);
+    EXPECT_NE(result.err.find("give --svg FILE or --png FILE"), std::string::npos) << result.err;
+    // A file declaring no actuator, or a bad one, is named.
+    const auto bad = (dir.path() / "bad.conf").string();
+    std::ofstream(bad) << "[actuator]\nkind = lra\nq = 0\n";
+    result = testing::run_command({vibscore, "show", shipped("lra-phone.clef.xml").string(),
+                                   "--actuator", bad, "--png", png});
+    EXPECT_EQ(result.exit_code, 2);
+    EXPECT_NE(result.err.find("bad.conf:3"), std::string::npos) << result.err;
+}
+
+// The fitted clef the docs draw is what its documented command writes.
+TEST(Pictures, TheFittedClefInTheDocsIsWhatItsCommandWrites) {
+    TempDir dir;
+    const auto root = shipped("..");
+    std::istringstream text(testing::read_file(root / "docs/clefs.md"));
+    int found = 0;
+    for (std::string line; std::getline(text, line);) {
+        const auto at = line.find("build/client/vibscore clef fit ");
+        if (at == std::string::npos || line.find("-o docs/pictures/") == std::string::npos) {
+            continue;
+        }
+        SCOPED_TRACE(line);
+        ++found;
+        std::vector<std::string> argv{testing::required_env("VIBSCORE")};
+        std::istringstream words(line.substr(at + std::string("build/client/vibscore ").size()));
+        std::string committed;
+        for (std::string word; words >> word && word != "#";) {
+            if (!argv.empty() && argv.back() == "-o") {
+                committed = word;
+                word = (dir.path() / "fitted.clef.xml").string();
+            } else if (std::filesystem::exists(root / word)) {
+                word = (root / word).string();
+            }
+            argv.push_back(word);
+        }
+        const auto result = testing::run_command(argv);
+        ASSERT_EQ(result.exit_code, 0) << result.err;
+        const auto written = load_clef_file(dir.path() / "fitted.clef.xml");
+        const auto shown = load_clef_file(root / committed);
+        // Equal within rounding: another libm may differ in the last digit.
+        ASSERT_EQ(written.type, shown.type);
+        EXPECT_NEAR(written.tempo, shown.tempo, 1e-12);
+        ASSERT_EQ(written.numbers.size(), shown.numbers.size());
+        for (std::size_t n = 0; n < written.numbers.size(); ++n) {
+            EXPECT_NEAR(written.numbers[n], shown.numbers[n], 1e-12);
+        }
+        ASSERT_EQ(written.strings.size(), shown.strings.size());
+        for (std::size_t s = 0; s < written.strings.size(); ++s) {
+            EXPECT_NEAR(written.strings[s].frequency, shown.strings[s].frequency, 1e-9);
+            ASSERT_EQ(written.strings[s].points.size(), shown.strings[s].points.size());
+            for (std::size_t p = 0; p < written.strings[s].points.size(); ++p) {
+                EXPECT_NEAR(written.strings[s].points[p].time, shown.strings[s].points[p].time,
+                            1e-9);
+                EXPECT_NEAR(written.strings[s].points[p].level, shown.strings[s].points[p].level,
+                            1e-9);
+            }
+        }
+    }
+    EXPECT_EQ(found, 1);
 }
 
 TEST(Pictures, TheFileFormatComesFromTheExtension) {
