@@ -96,7 +96,7 @@ _vibscore() {
             play) options+=" --usage --repeat --clef --intensity --wait --clefs" ;;
             stop) options+=" --all" ;;
             compose) options+=" --clefs" ;;
-            show) options+=" --width --colour --color --svg --png --clefs" ;;
+            show) options+=" --width --colour --color --svg --png --clefs --actuator" ;;
             convert) options+=" --from --to --clef --clefs --track --loop" ;;
             edit) options+=" --buttons --keymap --button-map --grab --clef" ;;
             assign) options+=" --default --list" ;;

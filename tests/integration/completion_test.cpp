@@ -126,6 +126,7 @@ TEST_F(Completion, OffersConvertItsOptionsFormatsAndPictureFiles) {
     EXPECT_EQ(complete("vibscore convert x.ahap --to android-"),
               "android-envelope\nandroid-json\nandroid-xml\n");
     EXPECT_EQ(complete("vibscore show ringtone --s"), "--svg\n");
+    EXPECT_EQ(complete("vibscore show lra-phone --png x.png --ac"), "--actuator\n");
     EXPECT_EQ(complete("vibscore render x.xml --p"), "--plot\n--png\n");
     // Pictures are offered by their extension.
     testing::TempDir dir;
