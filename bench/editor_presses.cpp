@@ -22,7 +22,7 @@
 #include "bench/report.hpp"
 #include "client/editor/editor.hpp"
 #include "client/editor/phrase_book.hpp"
-#include "client/editor/press_planner.hpp"
+#include "client/editor/planner/press_planner.hpp"
 #include "score/bundle.hpp"
 #include "score/score_xml.hpp"
 

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "client/editor/actions.hpp"
+
 namespace vibscore::editor {
 
 namespace {
@@ -96,13 +98,13 @@ Request ButtonScheme::browse_choices(Button button, EditorModel& model) {
     mode_ = Mode::browse;
     switch (button) {
         case Button::up:
-            return perform(Action::play_from_start, model);
+            return perform({Action::play_from_start}, model);
         case Button::down:
-            return perform(Action::play_or_stop, model);
+            return perform({Action::play_or_stop}, model);
         case Button::left:
-            return perform(Action::to_first_bar, model);
+            return perform({Action::to_first_bar}, model);
         case Button::right:
-            return perform(Action::to_last_bar, model);
+            return perform({Action::to_last_bar}, model);
         case Button::select:
             mode_ = Mode::menu;
             return {};
@@ -167,7 +169,7 @@ Request ButtonScheme::main_menu_press(Button button, EditorModel& model) {
             break;
         case Button::select:
             mode_ = Mode::browse;
-            return perform(entries[static_cast<std::size_t>(main_.index())].action, model);
+            return perform({entries[static_cast<std::size_t>(main_.index())].action}, model);
     }
     return {};
 }
@@ -240,40 +242,30 @@ Request ButtonScheme::list_press(Button button, EditorModel& model) {
     }
 }
 
-Request ButtonScheme::perform(Action action, EditorModel& model) {
-    switch (action) {
-        case Action::choose_clef:
-            open_clef_menu(model);
-            return {};
-        case Action::open:
-            if (openable_->empty()) {
-                return {};
-            }
-            list_.set(last_open_, static_cast<int>(openable_->size()));
-            mode_ = Mode::open_menu;
-            return {};
-        case Action::quit:
-            if (model.modified()) {
-                list_.set(0, 3);
-                mode_ = Mode::quit_menu;
-                return {};
-            }
-            return {Request::Kind::quit};
-        case Action::play_or_stop:
-            return {Request::Kind::play, {}, model.cursor().bar};
-        case Action::play_from_start:
-            return {Request::Kind::play, {}, 0};
-        case Action::save:
-            return save_under(destination_, false);
-        case Action::save_as:
-            begin_name_entry(false);
-            return {};
-        case Action::new_score:
-            return {Request::Kind::new_score};
-        default:
-            model.apply({action});
-            return {};
+Request ButtonScheme::perform(const Command& command, EditorModel& model) {
+    const auto& record = record_of(command.action);
+    if (record.session != nullptr) {
+        return record.session(*this, model);
     }
+    model.apply(command);
+    return {};
+}
+
+void ButtonScheme::open_score_list() {
+    if (openable_->empty()) {
+        return;
+    }
+    list_.set(last_open_, static_cast<int>(openable_->size()));
+    mode_ = Mode::open_menu;
+}
+
+Request ButtonScheme::ask_quit(const EditorModel& model) {
+    if (!model.modified()) {
+        return {Request::Kind::quit};
+    }
+    list_.set(0, 3);
+    mode_ = Mode::quit_menu;
+    return {};
 }
 
 Request ButtonScheme::save_under(const std::string& name, bool then_quit) {
@@ -366,20 +358,7 @@ Request ButtonScheme::command(const Command& command, EditorModel& model) {
         return {Request::Kind::stop};
     }
     leave_layers(model);
-    switch (command.action) {
-        case Action::choose_clef:
-        case Action::open:
-        case Action::quit:
-        case Action::play_or_stop:
-        case Action::play_from_start:
-        case Action::save:
-        case Action::save_as:
-        case Action::new_score:
-            return perform(command.action, model);
-        default:
-            model.apply(command);
-            return {};
-    }
+    return perform(command, model);
 }
 
 ButtonScheme::MenuView ButtonScheme::menu_view(const EditorModel& model) const {
@@ -391,9 +370,10 @@ ButtonScheme::MenuView ButtonScheme::menu_view(const EditorModel& model) const {
                 view.lines.push_back(entry.label);
             }
             view.highlighted = main_.index();
-            const int group = entries[static_cast<std::size_t>(view.highlighted)].group;
+            const MenuGroup group = entries[static_cast<std::size_t>(view.highlighted)].group;
             view.title = "menu: " + std::string(group_name(group)) + " " +
-                         std::to_string(group + 1) + "/" + std::to_string(entries.back().group + 1);
+                         std::to_string(static_cast<int>(group) + 1) + "/" +
+                         std::to_string(menu_group_count);
         } break;
         case Mode::clef_menu:
             view.title = "clef of bar " + std::to_string(model.cursor().bar + 1);
@@ -454,13 +434,6 @@ std::string ButtonScheme::hint(const EditorModel& model) const {
             return "playing: any button stops";
     }
     return {};
-}
-
-std::string ButtonScheme::fingerprint() const {
-    return std::to_string(static_cast<int>(mode_)) + ',' +
-           std::to_string(static_cast<int>(steps_.step())) + ',' + std::to_string(main_.index()) +
-           ',' + std::to_string(list_.index()) + (enter_after_list_ ? ",e" : "") +
-           (mode_ == Mode::name_entry ? ',' + name_.shown() + (name_.more() ? "+" : "") : "");
 }
 
 }  // namespace vibscore::editor

@@ -11,6 +11,7 @@
 #include "client/editor/entry_steps.hpp"
 #include "client/editor/menu.hpp"
 #include "client/editor/name_entry.hpp"
+#include "client/editor/shared_value.hpp"
 
 namespace vibscore::editor {
 
@@ -78,14 +79,10 @@ class ButtonScheme {
     // Playback started or ended (the editor is read-only in between).
     void set_playing(bool playing);
     // The scores "open..." offers.
-    void set_openable(std::vector<std::string> names) {
-        openable_ = std::make_shared<const std::vector<std::string>>(std::move(names));
-    }
+    void set_openable(std::vector<std::string> names) { openable_ = std::move(names); }
     // The names a score is saved under already (the registry's, or the score files beside a
     // file): saving under one asks first.
-    void set_taken(std::vector<TakenName> names) {
-        taken_ = std::make_shared<const std::vector<TakenName>>(std::move(names));
-    }
+    void set_taken(std::vector<TakenName> names) { taken_ = std::move(names); }
     // Where "save" stores the score; `ours` when this session made it or already replaced it
     // (saving there again asks nothing).
     void set_destination(std::string name, bool ours) {
@@ -103,16 +100,22 @@ class ButtonScheme {
     // One line saying what the buttons do now.
     std::string hint(const EditorModel& model) const;
 
-    std::string fingerprint() const;
+    // Every part of the state, compared by value (as EditorModel's).
+    bool operator==(const ButtonScheme&) const = default;
 
   private:
+    friend struct SessionActions;  // the session's part of the action table (actions.cpp)
+
     Request browse(Button button, EditorModel& model);
     Request browse_choices(Button button, EditorModel& model);
     Request entry(Button button, EditorModel& model);
     Request main_menu_press(Button button, EditorModel& model);
     Request list_press(Button button, EditorModel& model);
-    Request perform(Action action, EditorModel& model);
+    // An action from the menu or a key: the session's own, or the model's (actions.hpp).
+    Request perform(const Command& command, EditorModel& model);
     void open_clef_menu(const EditorModel& model);
+    void open_score_list();
+    Request ask_quit(const EditorModel& model);
     void leave_layers(EditorModel& model);
     Request name_press(Button button);
     Request replace_press(Button button);
@@ -128,10 +131,8 @@ class ButtonScheme {
     MenuCursor main_;
     MenuCursor list_;  // the open list menu's highlight
     int last_open_ = 0;
-    std::shared_ptr<const std::vector<std::string>> openable_ =
-        std::make_shared<const std::vector<std::string>>();
-    std::shared_ptr<const std::vector<TakenName>> taken_ =
-        std::make_shared<const std::vector<TakenName>>();
+    Shared<std::vector<std::string>> openable_;
+    Shared<std::vector<TakenName>> taken_;
     std::string destination_;
     bool destination_ours_ = true;
     NameEntry name_;

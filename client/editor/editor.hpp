@@ -13,6 +13,7 @@ struct Editor {
     ButtonScheme scheme;
 
     Request press(Button button) { return scheme.press(button, model); }
+    bool operator==(const Editor&) const = default;
     // An ncurses key code; keys that mean nothing are ignored.
     Request key(int code) {
         const auto input = key_input(code);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <set>
 
+#include "client/editor/actions.hpp"
 #include "client/editor/recurrence.hpp"
 
 namespace vibscore::editor {
@@ -32,13 +33,10 @@ void drop_clefs_no_longer_used(Score& score, const std::set<std::string>& used_b
 }  // namespace
 
 EditorModel::EditorModel(Score score, std::vector<ClefDeclaration> available_clefs)
-    : score_(std::make_shared<const Score>(std::move(score))),
-      saved_(score_),
-      available_clefs_(
-          std::make_shared<const std::vector<ClefDeclaration>>(std::move(available_clefs))) {
+    : score_(std::move(score)), saved_(score_), available_clefs_(std::move(available_clefs)) {
     if (score_->bars.empty()) {
         // The editor needs a bar to stand in; a score with none gets one with its first clef.
-        auto fresh = std::make_shared<Score>(*score_);
+        auto fresh = score_.copy();
         const auto& available = *available_clefs_;
         const std::string clef = !fresh->clefs.empty() ? fresh->clefs.front().id
                                  : !available.empty()  ? available.front().id
@@ -187,7 +185,7 @@ Score& EditorModel::edit() {
     if (!in_entry_) {
         history_.record(snapshot());
     }
-    auto copy = std::make_shared<Score>(*score_);
+    auto copy = score_.copy();
     Score& score = *copy;
     score_ = std::move(copy);
     return score;
@@ -656,6 +654,13 @@ bool EditorModel::set_length(Length length) {
     return done("block length " + length_name(length));
 }
 
+bool EditorModel::set_length_value(int value) {
+    if (value < 0 || value >= length_count) {
+        return refuse("no such length");
+    }
+    return set_length(static_cast<Length>(value));
+}
+
 bool EditorModel::toggle_dot() {
     const auto symbols = targets();
     if (symbols.empty()) {
@@ -822,151 +827,14 @@ bool EditorModel::set_bar_clef(const std::string& id) {
 // --- keyboard commands --------------------------------------------------------------------
 
 bool EditorModel::apply(const Command& command) {
-    switch (command.action) {
-        case Action::to_first_bar:
-            to_first_bar();
-            return true;
-        case Action::to_last_bar:
-            to_last_bar();
-            return true;
-        case Action::move_left:
-            move_left();
-            return true;
-        case Action::move_right:
-            move_right();
-            return true;
-        case Action::move_up:
-            move_up();
-            return true;
-        case Action::move_down:
-            move_down();
-            return true;
-        case Action::extend_left:
-            extend(-1);
-            return true;
-        case Action::extend_right:
-            extend(+1);
-            return true;
-        case Action::insert_note:
-            return insert_note(command.value);
-        case Action::insert_rest:
-            return insert_rest();
-        case Action::insert_blank:
-            return insert_blank();
-        case Action::split_bar:
-            return split_bar();
-        case Action::delete_symbol:
-            return delete_at_cursor();
-        case Action::crescendo:
-            return set_dynamics(Dynamics::crescendo);
-        case Action::decrescendo:
-            return set_dynamics(Dynamics::decrescendo);
-        case Action::no_dynamics:
-            return set_dynamics(Dynamics::none);
-        case Action::legato:
-            return tie(Tie::legato);
-        case Action::remove_legato:
-            return untie(Tie::legato);
-        case Action::portamento:
-            return tie(Tie::portamento);
-        case Action::remove_portamento:
-            return untie(Tie::portamento);
-        case Action::set_length:
-            if (command.value < 0 || command.value >= length_count) {
-                return refuse("no such length");
-            }
-            return set_length(static_cast<Length>(command.value));
-        case Action::toggle_dot:
-            return toggle_dot();
-        case Action::strings_up:
-            return shift_strings(+1);
-        case Action::strings_down:
-            return shift_strings(-1);
-        case Action::numbers_up:
-            return shift_numbers(+1);
-        case Action::numbers_down:
-            return shift_numbers(-1);
-        case Action::mark_block:
-            mark_block();
-            return true;
-        case Action::clear_block:
-            clear_block();
-            return true;
-        case Action::copy:
-            return copy();
-        case Action::cut:
-            return cut();
-        case Action::paste:
-            return paste();
-        case Action::undo:
-            return undo();
-        case Action::redo:
-            return redo();
-        case Action::choose_clef:
-        case Action::play_or_stop:
-        case Action::play_from_start:
-        case Action::save:
-        case Action::save_as:
-        case Action::open:
-        case Action::new_score:
-        case Action::quit:
-            break;
+    if (static_cast<int>(command.action) < 0 || static_cast<int>(command.action) >= action_count) {
+        return refuse("no such editing function");
     }
-    return refuse(std::string(to_string(command.action)) + " is not an editing function");
-}
-
-std::string EditorModel::fingerprint() const {
-    std::string text;
-    const auto number = [&](long long value) {
-        text += std::to_string(value);
-        text += ',';
-    };
-    for (const auto& clef : score_->clefs) {
-        text += clef.id + '=' + clef.href + ';';
+    const auto& record = record_of(command.action);
+    if (record.model == nullptr) {
+        return refuse(std::string(record.name) + " is not an editing function");
     }
-    const auto add_symbols = [&](const std::vector<Symbol>& symbols) {
-        for (const auto& symbol : symbols) {
-            if (const auto* note = std::get_if<Note>(&symbol)) {
-                text += 'N';
-                number(static_cast<int>(note->length));
-                number(note->number);
-                number(note->string);
-                number(static_cast<int>(note->dynamics));
-                number(note->legato);
-                number(note->portamento);
-            } else if (const auto* rest = std::get_if<Rest>(&symbol)) {
-                text += 'R';
-                number(static_cast<int>(rest->length));
-            } else {
-                text += 'B';
-            }
-        }
-    };
-    text += score_->title + '/';
-    for (const auto& bar : score_->bars) {
-        text += '|' + bar.clef + ':';
-        add_symbols(bar.symbols);
-    }
-    text += '#';
-    number(static_cast<long long>(cursor_.bar));
-    number(static_cast<long long>(cursor_.symbol));
-    number(string_);
-    number(static_cast<int>(length_));
-    number(number_);
-    number(rest_length_ ? static_cast<int>(*rest_length_) : -1);
-    number(in_entry_);
-    if (anchor_) {
-        text += 'A';
-        number(static_cast<long long>(anchor_->bar));
-        number(static_cast<long long>(anchor_->symbol));
-        number(anchor_sticky_);
-    }
-    text += 'C';
-    for (const auto& bar : clipboard_.bars) {
-        text += '|' + bar.clef + ':';
-        add_symbols(bar.symbols);
-    }
-    return text;
+    return record.model(*this, command.value);
 }
 
 }  // namespace vibscore::editor

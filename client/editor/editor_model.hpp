@@ -8,6 +8,7 @@
 #include "client/editor/phrase_book.hpp"
 #include "client/editor/position.hpp"
 #include "client/editor/score_edits.hpp"
+#include "client/editor/shared_value.hpp"
 #include "client/editor/undo_history.hpp"
 #include "score/score.hpp"
 
@@ -16,7 +17,8 @@ namespace vibscore::editor {
 // The score being edited, the editing cursor (a position and the active string, thesis §4.2),
 // the block, the clipboard and undo. Every editing function of thesis Fig. 4.3 is a method here;
 // keys and buttons only choose which. A refused edit changes nothing and says why in message().
-// A value type: the press planner copies whole editors.
+// A value type, compared by value: the press planner copies whole editors and tells states
+// apart by ==.
 class EditorModel {
   public:
     // `available_clefs` are the clefs a bar may be given besides those the score declares.
@@ -85,6 +87,7 @@ class EditorModel {
     bool tie(Tie tie);
     bool untie(Tie tie);
     bool set_length(Length length);
+    bool set_length_value(int value);  // a Length by its index, as a key gives it
     bool toggle_dot();
     bool shift_strings(int delta);
     bool shift_numbers(int delta);
@@ -117,9 +120,9 @@ class EditorModel {
     void end_entry();
     void cancel_entry();
 
-    // A compact text of everything that decides what the next key or button does (not the
-    // undo history), for the press planner to recognise states it has seen.
-    std::string fingerprint() const;
+    // Every part of the state, compared by value: two editors that are equal answer every key
+    // and button alike (the press planner relies on it; tests/unit/editor_state_test.cpp).
+    bool operator==(const EditorModel&) const = default;
 
   private:
     Score& edit();  // records the state for undo, then gives the score to change
@@ -137,9 +140,9 @@ class EditorModel {
     bool refuse(std::string why);
     bool done(std::string what);
 
-    std::shared_ptr<const Score> score_;
-    std::shared_ptr<const Score> saved_;
-    std::shared_ptr<const std::vector<ClefDeclaration>> available_clefs_;
+    Shared<Score> score_;
+    Shared<Score> saved_;
+    Shared<std::vector<ClefDeclaration>> available_clefs_;
     std::shared_ptr<const PhraseBook> phrases_;
     UndoHistory history_;
     Position cursor_;

@@ -37,6 +37,8 @@ class EntrySteps {
     // symbol's own description before it).
     std::string hint(const EditorModel& model) const;
 
+    bool operator==(const EntrySteps&) const = default;
+
   private:
     Outcome string_step(Button button, EditorModel& model);
     Outcome string_more(Button button, EditorModel& model);

@@ -34,6 +34,8 @@ class NameEntry {
     // The name with the character under the cursor in brackets: "ringtone-[2]".
     std::string shown() const;
 
+    bool operator==(const NameEntry&) const = default;
+
   private:
     std::string name_;
     std::size_t cursor_ = 0;

@@ -12,7 +12,7 @@
 
 #include "client/editor/documents.hpp"
 #include "client/editor/editor.hpp"
-#include "client/editor/press_planner.hpp"
+#include "client/editor/planner/press_planner.hpp"
 #include "tests/support/daemon_fixture.hpp"
 
 namespace vibscore {

@@ -1,7 +1,7 @@
 // The six-button scheme: button presses in, score out.
 #include <gtest/gtest.h>
 
-#include "client/editor/press_planner.hpp"
+#include "client/editor/planner/press_planner.hpp"
 #include "tests/support/editor_support.hpp"
 
 namespace vibscore {

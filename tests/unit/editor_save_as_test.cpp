@@ -38,6 +38,27 @@ TEST(EditorNameEntry, AFreeNameFollowsTheNameAndItsNumber) {
     EXPECT_EQ(editor::free_name(longest, {longest}), std::string(62, 'a') + "-2");
 }
 
+TEST(EditorNameEntry, AFreeNameOfTheLongestNameStaysWithin64CharactersAtTwoDigits) {
+    // -2 ... -9 taken for a 64-character name: the next free one is -10, cut to fit 64, never
+    // a 65-character name that save-as would then refuse.
+    const std::string longest(64, 'a');
+    std::vector<std::string> taken{longest};
+    for (int n = 2; n <= 9; ++n) {
+        taken.push_back(std::string(62, 'a') + "-" + std::to_string(n));
+    }
+    const auto ten = editor::free_name(longest, taken);
+    EXPECT_EQ(ten, std::string(61, 'a') + "-10");
+    EXPECT_EQ(ten.size(), 64u);
+    EXPECT_TRUE(editor::is_registry_name(ten));
+    // One character shorter: -10 fits without cutting the name.
+    const std::string shorter(61, 'a');
+    std::vector<std::string> taken_shorter{shorter};
+    for (int n = 2; n <= 9; ++n) {
+        taken_shorter.push_back(shorter + "-" + std::to_string(n));
+    }
+    EXPECT_EQ(editor::free_name(shorter, taken_shorter), shorter + "-10");
+}
+
 TEST(EditorNameEntry, SelectKeepsTheProposedNameAtOnce) {
     NameEntry entry;
     entry.start("ringtone-2");
@@ -211,6 +232,19 @@ TEST(EditorSaveAs, TheQuestionSaysWhetherTheTakenNameIsShippedStoredOrAFile) {
               "buzz exists | replace buzz | \u2191\u2193choose Sel:ok (old one is lost)");
     EXPECT_EQ(asked({"buzz", editor::TakenName::What::file}),
               "buzz exists | replace buzz | \u2191\u2193choose Sel:ok (old file is lost)");
+}
+
+TEST(EditorSaveAs, BackInTheUnsavedChangesQuestionReturnsToBrowsing) {
+    auto editor = fresh_editor();
+    press(editor, {S, S, B, B});  // a change
+    to_menu_entry(editor, "quit");
+    press(editor, {S});
+    ASSERT_EQ(editor.scheme.mode(), ButtonScheme::Mode::quit_menu);
+    EXPECT_EQ(editor.scheme.menu_view(editor.model).title, "unsaved changes");
+    EXPECT_EQ(editor.press(B).kind, Request::Kind::none);
+    EXPECT_EQ(editor.scheme.mode(), ButtonScheme::Mode::browse);  // not the menu
+    EXPECT_TRUE(editor.scheme.menu_view(editor.model).lines.empty());
+    EXPECT_TRUE(editor.model.modified());  // nothing saved, nothing lost
 }
 
 TEST(EditorSaveAs, ANewScoreSavesWithoutAsking) {

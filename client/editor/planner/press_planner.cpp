@@ -1,9 +1,10 @@
-#include "client/editor/press_planner.hpp"
+#include "client/editor/planner/press_planner.hpp"
 
 #include <deque>
 #include <string>
 #include <unordered_set>
 
+#include "client/editor/planner/editor_hash.hpp"
 #include "client/editor/score_edits.hpp"
 
 namespace vibscore::editor {
@@ -55,10 +56,6 @@ std::vector<Token> tokens(const Score& score) {
 
 bool same_music(const Score& a, const Score& b) {
     return a.bars == b.bars && a.clefs == b.clefs;
-}
-
-std::string state_key(const Editor& editor) {
-    return editor.model.fingerprint() + '@' + editor.scheme.fingerprint();
 }
 
 }  // namespace
@@ -122,7 +119,7 @@ std::optional<Node> next_step(const Editor& from, const Score& target, Measure m
                               std::size_t state_limit, std::size_t& states_seen) {
     const int reached = measure(from, target);
     std::deque<Node> queue;
-    std::unordered_set<std::string> seen{state_key(from)};
+    std::unordered_set<Editor, EditorHash> seen{from};
     queue.push_back({from, {}});
     while (!queue.empty()) {
         Node node = std::move(queue.front());
@@ -133,7 +130,7 @@ std::optional<Node> next_step(const Editor& from, const Score& target, Measure m
                 continue;  // files, playback and quitting are not entering
             }
             next.presses.push_back(button);
-            if (!seen.insert(state_key(next.editor)).second) {
+            if (!seen.insert(next.editor).second) {
                 continue;
             }
             ++states_seen;

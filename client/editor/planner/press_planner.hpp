@@ -14,6 +14,7 @@ struct PressPlan {
     std::size_t states_seen = 0;  // editor states the search looked at
 };
 
+// Only tests and benchmarks link the planner (client/editor/meson.build: editor_planner_dep).
 // Finds six-button presses that turn the start editor's score into `target` (title aside), by
 // driving copies of the real editor: a breadth-first search over the editor's own transitions
 // to the nearest state that has entered more of the target, repeated from there. Each step is
