@@ -3,10 +3,14 @@
 #include <algorithm>
 
 #include "client/editor/actions.hpp"
+#include "client/editor/status_line.hpp"
 
 namespace vibscore::editor {
 
 namespace {
+
+// Every hint fits the narrowest screen the editor supports (40x12) whole.
+constexpr int kNarrowest = 40;
 
 const char* kQuitChoices[] = {"save and quit", "quit without saving", "cancel"};
 constexpr int kReplaceChoices = 3;  // another name, replace it, cancel
@@ -32,6 +36,25 @@ std::string replace_hint(const TakenName& taken) {
             break;
     }
     return "\u2191\u2193choose Sel:ok (old one is lost)";
+}
+
+// What Select and Back do while browsing, naming the symbol Select would change.
+std::string browse_hint(const EditorModel& model) {
+    const Symbol* symbol = symbol_at(model.score(), model.cursor());
+    if (symbol == nullptr) {
+        return "S:new note B:play,go to,menu";
+    }
+    std::string named;
+    if (const auto* note = std::get_if<Note>(symbol)) {
+        named = std::to_string(note->number) + " " + length_name(note->length) + " s" +
+                std::to_string(note->string);
+    } else if (const auto* rest = std::get_if<Rest>(symbol)) {
+        named = length_name(rest->length) + " rest";
+    } else {
+        named = "blank";
+    }
+    const std::string hint = "S:change " + named + " B:play,go to,menu";
+    return columns_of(hint) <= kNarrowest ? hint : "S:change " + named + " B:more";
 }
 
 }  // namespace
@@ -86,6 +109,9 @@ Request ButtonScheme::browse(Button button, EditorModel& model) {
             begin_entry(model);
             break;
         case Button::back:
+            // What the last action did is old news: the line now says what the choices are
+            // (a newcomer read "*crescendo" there, pressed Up to change the string and it played).
+            model.clear_message();
             mode_ = Mode::browse_choices;
             break;
     }
@@ -414,8 +440,7 @@ std::string ButtonScheme::hint(const EditorModel& model) const {
     // Short enough to share a 40-column status line with what is being entered.
     switch (mode_) {
         case Mode::browse:
-            return is_empty_position(model.score(), model.cursor()) ? "S:new note B:play,go to,menu"
-                                                                    : "S:change B:play,go to,menu";
+            return browse_hint(model);
         case Mode::browse_choices:
             return "\u2191play all \u2193play bar \u2190first \u2192last S:menu";
         case Mode::entry:

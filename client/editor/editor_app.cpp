@@ -136,7 +136,9 @@ class Session {
         }
         editor_ = std::move(editor);
         source_ = source;
-        message_ = is_new ? "new score " + source_.name : "";
+        // A new score says so in the title of a roomy screen; at 40x12 the status line's hint
+        // (what Select and Back do) is what a newcomer needs before the first press.
+        message_.clear();
     }
 
     // Every score the daemon lists (shipped, stored, composed before) teaches the proposals,
@@ -337,8 +339,7 @@ class Session {
         try {
             playback_ = daemon_->play(registry_document(editor_->model.score()), bar);
             editor_->scheme.set_playing(true);
-            playing_at_ = Position{bar, 0};
-            message_ = "playing bar " + std::to_string(bar + 1) + " on: any button stops";
+            playing_at_ = Position{bar, 0};  // the status line names the bar playing now
         } catch (const DaemonError& error) {
             message_ = "cannot play: " + std::string(error.what());
         }

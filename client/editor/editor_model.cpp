@@ -197,6 +197,7 @@ void EditorModel::restore(const Snapshot& snapshot) {
     string_ = snapshot.string;
     anchor_.reset();
     in_entry_ = false;
+    entry_proposed_ = false;
     land();
 }
 
@@ -364,7 +365,8 @@ bool EditorModel::begin_entry(Continuing continuing) {
         }
         cursor_ = {cursor_.bar + 1, 0};
     }
-    if (is_empty_position(*score_, cursor_)) {
+    entry_proposed_ = is_empty_position(*score_, cursor_);
+    if (entry_proposed_) {
         insert_symbol(edit(), cursor_, proposed_symbol());
         if (const Note* proposed = note_at(*score_, cursor_)) {
             const Note note = *proposed;  // edit() below may copy the score
@@ -502,6 +504,7 @@ void EditorModel::end_entry() {
         return;
     }
     in_entry_ = false;
+    entry_proposed_ = false;
     if (const Snapshot* before = history_.last(); before && *before->score == *score_) {
         history_.drop_last();  // opened and closed without a change
     }
@@ -744,6 +747,7 @@ bool EditorModel::copy() {
         return refuse("nothing here to copy");
     }
     clipboard_ = copy_block(*score_, Block{*at, {at->bar, at->symbol + 1}});
+    clipboard_.whole_bars = false;  // one symbol, even where it fills its bar
     return done("copied");
 }
 
@@ -771,6 +775,16 @@ bool EditorModel::paste() {
         cursor_ = marked->first;
     }
     anchor_.reset();
+    // Whole bars pasted at a bar line are bars again: bar 1 copied to the end of the score is
+    // a new last bar, not more beats in the last one.
+    const auto& bar = score.bars.at(cursor_.bar);
+    const bool at_bar_line =
+        !bar.symbols.empty() && (cursor_.symbol == 0 || cursor_.symbol == bar.symbols.size());
+    if (clipboard_.whole_bars && at_bar_line) {
+        cursor_ = paste_bars(score, cursor_, clipboard_);
+        land();
+        return done(clipboard_.bars.size() == 1 ? "bar pasted" : "bars pasted");
+    }
     cursor_ = paste_clip(score, cursor_, clipboard_);
     land();
     return done("pasted");

@@ -39,6 +39,8 @@ class EditorModel {
     // Every clef a bar may use: the declared ones, then the available ones not declared.
     std::vector<ClefDeclaration> clef_choices() const;
     const std::string& message() const { return message_; }
+    // What was done is old news once the buttons turn to something else.
+    void clear_message() { message_.clear(); }
     bool modified() const { return *score_ != *saved_; }
     void mark_saved() { saved_ = score_; }
     void set_title(std::string title);
@@ -119,6 +121,9 @@ class EditorModel {
     void entry_tie(Tie tie);                 // tied to the note before, or untied if it was
     void end_entry();
     void cancel_entry();
+    // While entering: whether the symbol open is one the score had (being changed), not a
+    // proposal for an empty position.
+    bool changing() const { return in_entry_ && !entry_proposed_; }
 
     // Every part of the state, compared by value: two editors that are equal answer every key
     // and button alike (the press planner relies on it; tests/unit/editor_state_test.cpp).
@@ -154,6 +159,7 @@ class EditorModel {
     bool anchor_sticky_ = false;  // marked from a menu: moving grows the block
     Clip clipboard_;
     bool in_entry_ = false;
+    bool entry_proposed_ = false;  // the open symbol is a proposal, not one the score had
     std::string message_;
 };
 
