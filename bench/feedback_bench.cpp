@@ -15,6 +15,7 @@
 
 #include "bench/report.hpp"
 #include "bench/summary.hpp"
+#include "dbus/sdbus_compat.hpp"
 #include "tests/support/feedback_fixture.hpp"
 
 using namespace vibscore;
@@ -75,7 +76,7 @@ int main(int argc, char** argv) {
     testing::FeedbackClient ours_client(ours_bus), theirs_client(theirs_bus);
     auto ping_connection = sdbus::createSessionBusConnectionWithAddress(ours_bus.address());
     auto ping =
-        sdbus::createProxy(*ping_connection, testing::kFeedbackName, testing::kFeedbackPath);
+        dbus::create_proxy(*ping_connection, testing::kFeedbackName, testing::kFeedbackPath);
 
     // No sound step in feedbackd (and the same entry in both themes): the quiet profile.
     const std::map<std::string, sdbus::Variant> hints{{"profile", sdbus::Variant("quiet")}};

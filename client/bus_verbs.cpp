@@ -19,6 +19,7 @@
 #include "client/editor/documents.hpp"
 #include "client/offline_verbs.hpp"
 #include "dbus/haptics1_names.hpp"
+#include "dbus/sdbus_compat.hpp"
 #include "haptics1-proxy.h"
 #include "score/bundle.hpp"
 #include "score/clef_xml.hpp"
@@ -35,7 +36,8 @@ std::atomic<bool> g_interrupted{false};
 class Haptics : public sdbus::ProxyInterfaces<org::vibscore::Haptics1_proxy> {
   public:
     explicit Haptics(std::unique_ptr<sdbus::IConnection> connection)
-        : ProxyInterfaces(*connection, haptics1::kBusName, haptics1::kObjectPath),
+        : ProxyInterfaces(*connection, dbus::service_name(haptics1::kBusName),
+                          dbus::object_path(haptics1::kObjectPath)),
           connection_(std::move(connection)) {
         registerProxy();
     }
@@ -47,7 +49,7 @@ class Haptics : public sdbus::ProxyInterfaces<org::vibscore::Haptics1_proxy> {
     // Handles the signals that came in before the last call's reply, in this thread: the daemon
     // sends a playback's end before it answers the Stop that ended it.
     void take_signals() {
-        while (connection_->processPendingRequest()) {
+        while (dbus::process_pending(*connection_)) {
         }
     }
     bool any_stopped() {
@@ -395,7 +397,7 @@ std::function<std::optional<std::string>(const std::string& name)> registry_clef
             if (!link->tried) {
                 link->tried = true;
                 link->connection = sdbus::createSystemBusConnection();
-                link->proxy = sdbus::createProxy(*link->connection, haptics1::kBusName,
+                link->proxy = dbus::create_proxy(*link->connection, haptics1::kBusName,
                                                  haptics1::kObjectPath);
             }
             if (!link->proxy) {

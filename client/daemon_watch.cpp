@@ -2,6 +2,7 @@
 
 #include "dbus/haptics1_names.hpp"
 #include "dbus/name_owner_watch.hpp"
+#include "dbus/sdbus_compat.hpp"
 
 namespace vibscore::client {
 
@@ -22,7 +23,7 @@ void DaemonWatch::follow() {
     std::string owner;
     try {
         const auto bus =
-            sdbus::createProxy(connection_, "org.freedesktop.DBus", "/org/freedesktop/DBus");
+            dbus::create_proxy(connection_, "org.freedesktop.DBus", "/org/freedesktop/DBus");
         bus->callMethod("GetNameOwner")
             .onInterface("org.freedesktop.DBus")
             .withArguments(std::string(haptics1::kBusName))

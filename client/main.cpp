@@ -193,17 +193,24 @@ int main(int argc, char** argv) {
     driver_verb->add_option("NAME", driver_name, "backend to switch to (see 'vibscore drivers')");
 
     vibscore::editor::ShowRequest show_request;
-    auto* show_verb =
-        app.add_subcommand("show", "Draw a registry score or a score file as staff notation.");
-    show_verb->add_option("SCORE", show_request.score, "registry name or VibScore file")
+    auto* show_verb = app.add_subcommand(
+        "show",
+        "Draw a registry score or a score file as staff notation; with --svg or --png, a clef's "
+        "strings and numbers too.");
+    show_verb
+        ->add_option("SCORE", show_request.score,
+                     "registry name or VibScore file (with --svg/--png: or a clef, by file "
+                     "or name)")
         ->required();
     show_verb->add_option("--width", show_request.width, "columns (default: the terminal's)")
         ->check(number_between(20, 10000, NumberKind::whole));
     show_verb->add_flag("--colour,--color", show_request.colour,
                         "ANSI colours even when not writing to a terminal");
     std::string show_svg, show_png;
-    show_verb->add_option("--svg", show_svg, "draw the staff as an SVG picture instead");
-    show_verb->add_option("--png", show_png, "draw the staff as a PNG image instead");
+    show_verb->add_option("--svg", show_svg,
+                          "draw the staff (or the clef) as an SVG picture instead");
+    show_verb->add_option("--png", show_png, "draw the staff (or the clef) as a PNG image instead");
+    add_clefs_option(show_verb, clef_search);
 
     vibscore::editor::EditOptions edit_options;
     auto* edit_verb = app.add_subcommand(
@@ -268,7 +275,8 @@ int main(int argc, char** argv) {
         return driver(driver_name, std::cout, std::cerr);
     }
     if (show_verb->parsed() && (!show_svg.empty() || !show_png.empty())) {
-        return show_picture(show_request.score, show_svg, show_png, std::cout, std::cerr);
+        return show_picture(show_request.score, show_svg, show_png, clef_search, std::cout,
+                            std::cerr);
     }
     if (show_verb->parsed()) {
         return vibscore::editor::show_score(show_request, std::cout, std::cerr);

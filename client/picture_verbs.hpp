@@ -3,10 +3,14 @@
 #include <ostream>
 #include <string>
 
+#include "client/clef_search.hpp"
+
 namespace vibscore::client {
 
-// vibscore show SCORE --svg FILE | --png FILE: the staff as a picture. Returns an exit code.
-int show_picture(const std::string& score, const std::string& svg, const std::string& png,
-                 std::ostream& out, std::ostream& err);
+// vibscore show DOCUMENT --svg FILE | --png FILE: a score's staff, or a clef's strings and
+// numbers. DOCUMENT is a VibScore or VibClef file, or a registry name: a score of vibscored's
+// registry, else a clef found by the clef rule (`clefs`). Returns an exit code.
+int show_picture(const std::string& document, const std::string& svg, const std::string& png,
+                 const ClefSearch& clefs, std::ostream& out, std::ostream& err);
 
 }  // namespace vibscore::client

@@ -2,10 +2,12 @@
 
 #include <cstdint>
 
+#include "dbus/sdbus_compat.hpp"
+
 namespace vibscore::daemon {
 
 BusCredentials::BusCredentials(sdbus::IConnection& connection)
-    : proxy_(sdbus::createProxy(connection, "org.freedesktop.DBus", "/org/freedesktop/DBus")) {}
+    : proxy_(dbus::create_proxy(connection, "org.freedesktop.DBus", "/org/freedesktop/DBus")) {}
 
 uid_t BusCredentials::uid_of(const std::string& sender) {
     std::uint32_t uid = 0;

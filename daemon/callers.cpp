@@ -3,11 +3,11 @@
 #include <grp.h>
 #include <pwd.h>
 
-#include <sdbus-c++/Message.h>
-
 #include <algorithm>
 #include <utility>
 #include <vector>
+
+#include "dbus/sdbus_compat.hpp"
 
 namespace vibscore::daemon {
 
@@ -44,7 +44,7 @@ CallerDirectory::CallerDirectory(double requests_per_second, double burst,
     : uid_of_sender_(std::move(uid_of_sender)), rate_(requests_per_second), burst_(burst) {}
 
 const Caller& CallerDirectory::identify(const sdbus::Message& message) {
-    const std::string sender = message.getSender();
+    const std::string sender = dbus::sender_of(message);
     const auto found = callers_.find(sender);
     if (found != callers_.end()) {
         return found->second;

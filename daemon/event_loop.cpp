@@ -1,10 +1,10 @@
 #include "daemon/event_loop.hpp"
 
 #include <signal.h>
+#include <sys/epoll.h>
 #include <time.h>
 
-#include <sdbus-c++/Error.h>
-#include <sdbus-c++/IConnection.h>
+#include "dbus/sdbus_compat.hpp"
 
 #include <cstring>
 #include <limits>
@@ -103,7 +103,7 @@ EventSourcePtr EventLoop::on_signal(int signo, std::function<void()> handler) {
 
 BusLoopBinding::BusLoopBinding(EventLoop& loop, sdbus::IConnection& connection)
     : connection_(connection) {
-    const auto poll = connection_.getEventLoopPollData();
+    const auto poll = dbus::poll_data(connection_);
     sd_event_source* io = nullptr;
     check(sd_event_add_io(loop.get(), &io, poll.fd, static_cast<std::uint32_t>(poll.events),
                           &BusLoopBinding::on_io, this),
@@ -117,11 +117,20 @@ BusLoopBinding::BusLoopBinding(EventLoop& loop, sdbus::IConnection& connection)
           "sd_event_add_time for the bus");
     timer_.reset(timer);
     sd_event_source_set_enabled(timer, SD_EVENT_OFF);
+    // sdbus-c++ 2 signals this fd when work was queued from another thread; reading the bus
+    // clears it.
+    if (poll.event_fd >= 0) {
+        sd_event_source* wake = nullptr;
+        check(sd_event_add_io(loop.get(), &wake, poll.event_fd, EPOLLIN, &BusLoopBinding::on_io,
+                              this),
+              "sd_event_add_io for the bus's wake-up fd");
+        wake_.reset(wake);
+    }
 }
 
 void BusLoopBinding::process() {
     try {
-        while (connection_.processPendingRequest()) {
+        while (dbus::process_pending(connection_)) {
         }
     } catch (const sdbus::Error& error) {
         // The bus went away (its daemon stopped): nothing is left to serve. An exception must
@@ -144,12 +153,12 @@ int BusLoopBinding::on_time(sd_event_source*, std::uint64_t, void* self) {
 // sd-bus changes what it waits for as messages queue up; ask it again before every wait.
 int BusLoopBinding::on_prepare(sd_event_source*, void* self) {
     auto* binding = static_cast<BusLoopBinding*>(self);
-    const auto poll = binding->connection_.getEventLoopPollData();
+    const auto poll = dbus::poll_data(binding->connection_);
     sd_event_source_set_io_events(binding->io_.get(), static_cast<std::uint32_t>(poll.events));
-    if (poll.timeout_usec == std::numeric_limits<std::uint64_t>::max()) {
+    if (!poll.deadline_us) {
         sd_event_source_set_enabled(binding->timer_.get(), SD_EVENT_OFF);
     } else {
-        sd_event_source_set_time(binding->timer_.get(), poll.timeout_usec);
+        sd_event_source_set_time(binding->timer_.get(), *poll.deadline_us);
         sd_event_source_set_enabled(binding->timer_.get(), SD_EVENT_ONESHOT);
     }
     return 0;

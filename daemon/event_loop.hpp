@@ -78,6 +78,7 @@ class BusLoopBinding {
     sdbus::IConnection& connection_;
     EventSourcePtr io_;
     EventSourcePtr timer_;
+    EventSourcePtr wake_;  // sdbus-c++ 2's event fd; none with 1.x
 };
 
 }  // namespace vibscore::daemon

@@ -10,6 +10,7 @@
 #include "daemon/request_error.hpp"
 #include "dbus/haptics1_names.hpp"
 #include "dbus/name_owner_watch.hpp"
+#include "dbus/sdbus_compat.hpp"
 #include "score/document_error.hpp"
 
 namespace vibscore::daemon {
@@ -56,18 +57,18 @@ auto guarded(const char* method, Body&& body) -> decltype(body()) {
     } catch (const sdbus::Error&) {
         throw;
     } catch (const RequestError& error) {
-        throw sdbus::Error(error_name(error.code()), error.what());
+        throw dbus::bus_error(error_name(error.code()), error.what());
     } catch (const RegistryError& error) {
-        throw sdbus::Error(error_name(error.code()), error.what());
+        throw dbus::bus_error(error_name(error.code()), error.what());
     } catch (const DocumentError& error) {
-        throw sdbus::Error(kInvalidDocument, error.what());
+        throw dbus::bus_error(kInvalidDocument, error.what());
     } catch (const PlayerBusy& error) {
-        throw sdbus::Error(kBusy, error.what());
+        throw dbus::bus_error(kBusy, error.what());
     } catch (const drivers::DeviceError& error) {
-        throw sdbus::Error(kDevice, error.what());
+        throw dbus::bus_error(kDevice, error.what());
     } catch (const std::exception& error) {
         log::error(std::string(method) + " failed unexpectedly: " + error.what());
-        throw sdbus::Error(kFailed, std::string(method) + " failed: " + error.what());
+        throw dbus::bus_error(kFailed, std::string(method) + " failed: " + error.what());
     }
 }
 
@@ -86,7 +87,7 @@ HapticsService::HapticsService(sdbus::IConnection& connection, const DaemonConfi
                                Registry& registry, PlaybackThread& playback,
                                CallerDirectory& callers, ActuatorHost& host,
                                const Authorizer& authorizer)
-    : AdaptorInterfaces(connection, haptics1::kObjectPath),
+    : AdaptorInterfaces(connection, dbus::object_path(haptics1::kObjectPath)),
       config_(config),
       registry_(registry),
       playback_(playback),
@@ -131,12 +132,13 @@ void HapticsService::driver_switched() {
     }
     announced_driver_ = std::move(driver);
     announced_capabilities_ = std::move(capabilities);
-    getObject().emitPropertiesChangedSignal(INTERFACE_NAME, {"Driver", "Capabilities"});
+    dbus::emit_properties_changed(getObject(), INTERFACE_NAME, {"Driver", "Capabilities"});
 }
 
 const Caller& HapticsService::admit_caller() {
-    const auto* message = getObject().getCurrentlyProcessedMessage();
-    const Caller& caller = callers_.identify(*message);
+    const Caller& caller = dbus::with_current_message(
+        getObject(),
+        [&](const sdbus::Message& message) -> const Caller& { return callers_.identify(message); });
     if (!callers_.admit(caller.sender, monotonic_now_us())) {
         throw RequestError(RequestError::Code::limit_exceeded,
                            "too many requests from " + caller.sender + "; the limit is " +

@@ -24,6 +24,7 @@
 #include "daemon/reload.hpp"
 #include "daemon/virtual_vibra/virtual_vibra.hpp"
 #include "dbus/haptics1_names.hpp"
+#include "dbus/sdbus_compat.hpp"
 
 using namespace vibscore;
 using namespace vibscore::daemon;
@@ -99,7 +100,7 @@ int serve(const CommandLine& command_line) {
             [&playback](const auto& work) { playback.call([&](Player& player) { work(player); }); },
             vibra_settings, config.separation_ms / 1000.0);
     }
-    connection->requestName(haptics1::kBusName);
+    dbus::request_name(*connection, haptics1::kBusName);
     BusLoopBinding binding(loop, *connection);
 
     const auto stop_playback = [&] {
@@ -130,7 +131,7 @@ int serve(const CommandLine& command_line) {
     sd_notify(0, "READY=1\nSTATUS=serving");
     const int code = loop.run();
     stop_playback();
-    connection->releaseName(haptics1::kBusName);
+    dbus::release_name(*connection, haptics1::kBusName);
     return code;
 }
 

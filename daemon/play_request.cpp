@@ -7,6 +7,7 @@
 #include "daemon/render/cue_schedule.hpp"
 #include "daemon/render/performance.hpp"
 #include "daemon/request_error.hpp"
+#include "dbus/sdbus_compat.hpp"
 
 namespace vibscore::daemon {
 
@@ -19,9 +20,10 @@ RequestError invalid(const std::string& message) {
 template <typename T>
 T option_value(const std::string& key, const sdbus::Variant& value, const char* signature,
                const char* type_name) {
-    if (value.peekValueType() != signature) {
+    const std::string held = dbus::variant_signature(value);
+    if (held != signature) {
         throw invalid("option \"" + key + "\" must be " + type_name + " (" + signature + "), not " +
-                      value.peekValueType());
+                      held);
     }
     return value.get<T>();
 }

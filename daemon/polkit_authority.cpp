@@ -8,6 +8,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "dbus/sdbus_compat.hpp"
+
 namespace vibscore::daemon {
 
 namespace {
@@ -26,7 +28,7 @@ bool means_not_on_the_bus(const std::string& error_name) {
 }  // namespace
 
 BusPolkitAuthority::BusPolkitAuthority(sdbus::IConnection& connection)
-    : proxy_(sdbus::createProxy(connection, kPolkitName, kAuthorityPath)) {}
+    : proxy_(dbus::create_proxy(connection, kPolkitName, kAuthorityPath)) {}
 
 PolkitAnswer BusPolkitAuthority::check(const std::string& sender, std::string_view action_id) {
     using Subject = sdbus::Struct<std::string, std::map<std::string, sdbus::Variant>>;
@@ -43,10 +45,10 @@ PolkitAnswer BusPolkitAuthority::check(const std::string& sender, std::string_vi
             .withArguments(subject, std::string(action_id), details, flags, std::string())
             .storeResultsTo(result);
     } catch (const sdbus::Error& error) {
-        if (means_not_on_the_bus(error.getName())) {
+        if (means_not_on_the_bus(dbus::error_name(error))) {
             return PolkitAnswer::unavailable;
         }
-        throw std::runtime_error(error.getName() + ": " + error.getMessage());
+        throw std::runtime_error(dbus::error_name(error) + ": " + error.getMessage());
     }
     return result.get<0>() ? PolkitAnswer::authorized : PolkitAnswer::not_authorized;
 }

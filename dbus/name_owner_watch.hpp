@@ -1,6 +1,6 @@
 #pragma once
 
-#include <sdbus-c++/sdbus-c++.h>
+#include "dbus/sdbus_compat.hpp"
 
 #include <functional>
 #include <string>
@@ -27,7 +27,7 @@ struct NameOwnerChange {
     if (!name.empty()) {
         rule += ",arg0='" + name + "'";
     }
-    return connection.addMatch(rule, [changed = std::move(changed)](sdbus::Message& message) {
+    return add_match(connection, rule, [changed = std::move(changed)](sdbus::Message& message) {
         NameOwnerChange change;
         message >> change.name >> change.old_owner >> change.new_owner;
         changed(change);

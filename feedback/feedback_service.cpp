@@ -1,4 +1,5 @@
 #include "feedback/feedback_service.hpp"
+#include "dbus/sdbus_compat.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -20,7 +21,7 @@ constexpr std::size_t kMaxPatternSteps = 10;
 constexpr std::uint32_t kMaxStepMs = 10'000;
 
 sdbus::Error invalid_args(const std::string& message) {
-    return sdbus::Error(kInvalidArgs, message);
+    return dbus::bus_error(kInvalidArgs, message);
 }
 
 // The level TriggerFeedback's hints ask for: "profile" may only lower it.
@@ -29,9 +30,9 @@ Profile hinted_level(const std::map<std::string, sdbus::Variant>& hints, Profile
     if (hint == hints.end()) {
         return level;
     }
-    if (hint->second.peekValueType() != "s") {
-        throw invalid_args("hint \"profile\" must be a string (s), not " +
-                           hint->second.peekValueType());
+    const std::string held = dbus::variant_signature(hint->second);
+    if (held != "s") {
+        throw invalid_args("hint \"profile\" must be a string (s), not " + held);
     }
     const auto name = hint->second.get<std::string>();
     const auto hinted = parse_profile(name);
@@ -46,7 +47,7 @@ Profile hinted_level(const std::map<std::string, sdbus::Variant>& hints, Profile
 
 FeedbackService::FeedbackService(sdbus::IConnection& session_bus, sdbus::IConnection& system_bus,
                                  daemon::EventLoop& loop, Theme theme, ServiceSettings settings)
-    : AdaptorInterfaces(session_bus, kObjectPath),
+    : AdaptorInterfaces(session_bus, dbus::object_path(kObjectPath)),
       haptics_(system_bus, {[this](std::uint64_t playback, const std::string& reason) {
                                 playback_finished(playback, reason);
                             },
@@ -127,7 +128,8 @@ void FeedbackService::TriggerFeedback(sdbus::Result<std::uint32_t>&& result, std
     if (next_id_ == 0) {
         next_id_ = 1;
     }
-    const std::string sender = getObject().getCurrentlyProcessedMessage()->getSender();
+    const std::string sender = dbus::with_current_message(
+        getObject(), [](const sdbus::Message& message) { return dbus::sender_of(message); });
     // The caller has its id before anything plays, as with feedbackd.
     result.returnResults(id);
 
@@ -247,8 +249,8 @@ void FeedbackService::Profile(const std::string& value) {
     }
     profile_ = *profile;
     log::info("profile " + value);
-    getObject().emitPropertiesChangedSignal(org::sigxcpu::Feedback_adaptor::INTERFACE_NAME,
-                                            {"Profile"});
+    dbus::emit_properties_changed(getObject(), org::sigxcpu::Feedback_adaptor::INTERFACE_NAME,
+                                  {"Profile"});
     // Feedback the new profile would not give ends now, as feedbackd ends it.
     end_where([&](const Event& event) { return event.level > profile_; }, end_reason::explicit_end);
     if (profile_ < feedback::Profile::quiet && haptic_playback_) {

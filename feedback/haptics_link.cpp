@@ -2,12 +2,14 @@
 
 #include "dbus/haptics1_names.hpp"
 #include "dbus/name_owner_watch.hpp"
+#include "dbus/sdbus_compat.hpp"
 #include "score/clef_xml.hpp"
 
 namespace vibscore::feedback {
 
 HapticsLink::HapticsLink(sdbus::IConnection& system_bus, Callbacks callbacks)
-    : ProxyInterfaces(system_bus, haptics1::kBusName, haptics1::kObjectPath),
+    : ProxyInterfaces(system_bus, dbus::service_name(haptics1::kBusName),
+                      dbus::object_path(haptics1::kObjectPath)),
       callbacks_(std::move(callbacks)) {
     owner_watch_ = dbus::watch_name_owner(system_bus, haptics1::kBusName,
                                           [this](const dbus::NameOwnerChange& change) {

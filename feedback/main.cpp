@@ -12,6 +12,7 @@
 #include "daemon/event_loop.hpp"
 #include "daemon/log.hpp"
 #include "daemon/usage.hpp"
+#include "dbus/sdbus_compat.hpp"
 #include "feedback/feedback_service.hpp"
 #include "feedback/theme.hpp"
 
@@ -40,7 +41,7 @@ int serve(const Options& options) {
 
     FeedbackService service(*session_bus, *system_bus, loop, theme,
                             {*parse_profile(options.profile), options.haptic_usage});
-    session_bus->requestName(kBusName);
+    dbus::request_name(*session_bus, kBusName);
     daemon::BusLoopBinding session_binding(loop, *session_bus);
     daemon::BusLoopBinding system_binding(loop, *system_bus);
 
@@ -49,7 +50,7 @@ int serve(const Options& options) {
     log::info("vibscore-feedback " VIBSCORE_VERSION " ready on " + std::string(kBusName) +
               ", profile " + options.profile);
     const int code = loop.run();
-    session_bus->releaseName(kBusName);
+    dbus::release_name(*session_bus, kBusName);
     return code;
 }
 

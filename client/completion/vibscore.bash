@@ -81,7 +81,7 @@ _vibscore() {
             render) options+=" --rate --out --plot --width --svg --png --clefs" ;;
             play) options+=" --usage --repeat --clef --intensity --wait --clefs" ;;
             compose) options+=" --clefs" ;;
-            show) options+=" --width --colour --color --svg --png" ;;
+            show) options+=" --width --colour --color --svg --png --clefs" ;;
             convert) options+=" --from --to --clef --track --loop" ;;
             edit) options+=" --buttons --keymap --button-map --grab --clef" ;;
         esac

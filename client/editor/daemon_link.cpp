@@ -9,6 +9,7 @@
 #include "client/daemon_errors.hpp"
 #include "client/daemon_watch.hpp"
 #include "dbus/haptics1_names.hpp"
+#include "dbus/sdbus_compat.hpp"
 #include "haptics1-proxy.h"
 
 namespace vibscore::editor {
@@ -37,7 +38,8 @@ bool DaemonError::not_found() const {
 class DaemonLink::Proxy : public sdbus::ProxyInterfaces<org::vibscore::Haptics1_proxy> {
   public:
     explicit Proxy(std::unique_ptr<sdbus::IConnection> connection)
-        : ProxyInterfaces(*connection, haptics1::kBusName, haptics1::kObjectPath),
+        : ProxyInterfaces(*connection, dbus::service_name(haptics1::kBusName),
+                          dbus::object_path(haptics1::kObjectPath)),
           connection_(std::move(connection)),
           watch_(*connection_) {
         registerProxy();
@@ -141,15 +143,15 @@ std::vector<std::string> DaemonLink::list(const std::string& kind) {
 }
 
 int DaemonLink::fd() const {
-    return proxy_->connection().getEventLoopPollData().fd;
+    return dbus::poll_data(proxy_->connection()).fd;
 }
 
 short DaemonLink::events() const {
-    return proxy_->connection().getEventLoopPollData().events;
+    return dbus::poll_data(proxy_->connection()).events;
 }
 
 int DaemonLink::timeout_ms() const {
-    const auto relative = proxy_->connection().getEventLoopPollData().getRelativeTimeout();
+    const auto relative = dbus::poll_data(proxy_->connection()).relative_timeout;
     if (!relative) {
         return -1;
     }
@@ -160,7 +162,7 @@ int DaemonLink::timeout_ms() const {
 
 std::vector<PlaybackEvent> DaemonLink::process() {
     try {
-        while (proxy_->connection().processPendingRequest()) {
+        while (dbus::process_pending(proxy_->connection())) {
         }
     } catch (const sdbus::Error& error) {
         throw explain(error);

@@ -16,11 +16,13 @@ void check(cairo_status_t status, const std::filesystem::path& path) {
     }
 }
 
-void paint(const Drawing& drawing, cairo_surface_t* surface) {
+void paint(const Drawing& drawing, cairo_surface_t* surface, Layers layers, Background background) {
     const CairoPtr cairo(cairo_create(surface), &cairo_destroy);
-    cairo_set_source_rgb(cairo.get(), 1, 1, 1);
-    cairo_paint(cairo.get());
-    drawing.draw(cairo.get());
+    if (background == Background::white) {
+        cairo_set_source_rgb(cairo.get(), 1, 1, 1);
+        cairo_paint(cairo.get());
+    }
+    drawing.draw(cairo.get(), layers);
     cairo_surface_flush(surface);
 }
 
@@ -38,13 +40,13 @@ PictureFormat picture_format_for(const std::filesystem::path& path) {
                                 "\": name it .svg or .png");
 }
 
-SurfacePtr render_image(const Drawing& drawing) {
+SurfacePtr render_image(const Drawing& drawing, Layers layers, Background background) {
     SurfacePtr surface(cairo_image_surface_create(CAIRO_FORMAT_ARGB32,
                                                   static_cast<int>(std::ceil(drawing.width())),
                                                   static_cast<int>(std::ceil(drawing.height()))),
                        &cairo_surface_destroy);
     check(cairo_surface_status(surface.get()), "picture");
-    paint(drawing, surface.get());
+    paint(drawing, surface.get(), layers, background);
     return surface;
 }
 
@@ -59,7 +61,7 @@ void write_picture(const Drawing& drawing, const std::filesystem::path& path) {
                 &cairo_surface_destroy);
             check(cairo_surface_status(surface.get()), path);
             cairo_svg_surface_restrict_to_version(surface.get(), CAIRO_SVG_VERSION_1_1);
-            paint(drawing, surface.get());
+            paint(drawing, surface.get(), all_layers, Background::white);
             cairo_surface_finish(surface.get());
             check(cairo_surface_status(surface.get()), path);
         } else {

@@ -5,38 +5,19 @@
 #include <cstdio>
 #include <vector>
 
+#include "client/pictures/axis_ticks.hpp"
+#include "client/pictures/picture_text.hpp"
 #include "daemon/render/sampler.hpp"
 
 namespace vibscore::pictures {
 
 namespace {
 
-constexpr double kLeft = 58.0, kRight = 16.0, kTop = 34.0, kBottom = 42.0;
+// The plot's frame inside the picture; above it, the title and legend, then the bar labels.
+constexpr double kLeft = 58.0, kRight = 16.0, kTop = 48.0, kBottom = 42.0;
+constexpr double kBarLabelBaseline = kTop - 4;
+constexpr double kLegendWidth = 230.0;
 constexpr int kSamplesPerPixel = 8;
-
-std::string seconds_label(double t, double step) {
-    char text[32];
-    std::snprintf(text, sizeof text, step < 0.1 ? "%.2f" : step < 1 ? "%.1f" : "%.0f", t);
-    return text;
-}
-
-// A round step for about `count` ticks over `span`: 1, 2 or 5 times a power of ten.
-double tick_step(double span, int count) {
-    const double rough = span / count;
-    const double power = std::pow(10.0, std::floor(std::log10(rough)));
-    for (const double factor : {1.0, 2.0, 5.0, 10.0}) {
-        if (factor * power >= rough) {
-            return factor * power;
-        }
-    }
-    return 10 * power;
-}
-
-void font(cairo_t* cairo, double size, bool bold) {
-    cairo_select_font_face(cairo, "DejaVu Sans", CAIRO_FONT_SLANT_NORMAL,
-                           bold ? CAIRO_FONT_WEIGHT_BOLD : CAIRO_FONT_WEIGHT_NORMAL);
-    cairo_set_font_size(cairo, size);
-}
 
 }  // namespace
 
@@ -44,6 +25,17 @@ SignalPicture::SignalPicture(const render::Performance& performance, std::string
                              const Options& options)
     : performance_(performance), title_(std::move(title)), options_(options) {
     peak_ = performance.peak_amplitude() > 0.0 ? performance.peak_amplitude() : 1.0;
+    // Sampled once, for every layer and file drawn from it.
+    const double duration = performance_.duration();
+    if (duration > 0.0) {
+        const auto columns = static_cast<std::size_t>(options_.width - kLeft - kRight);
+        rate_ = columns * kSamplesPerPixel / duration;
+        const auto count = render::sample_index_at(duration, rate_);
+        samples_.resize(count);
+        strengths_.resize(count);
+        render::render_signal(performance_, rate_, 0, samples_);
+        render::render_envelope(performance_, rate_, 0, strengths_);
+    }
 }
 
 double SignalPicture::x_of(double t) const {
@@ -57,122 +49,145 @@ double SignalPicture::y_of(double y) const {
     return middle - y / peak_ * half;
 }
 
-void SignalPicture::draw(cairo_t* cairo) const {
-    cairo_set_source_rgb(cairo, 0, 0, 0);
-    font(cairo, 14, true);
-    cairo_move_to(cairo, kLeft, 20);
-    cairo_show_text(cairo, title_.c_str());
-    draw_boundaries(cairo);
-    draw_signal(cairo);
-    draw_axes(cairo);
+void SignalPicture::draw(cairo_t* cairo, Layers layers) const {
+    draw_title_and_legend(cairo, layers);
+    draw_boundaries(cairo, layers);
+    draw_signal(cairo, layers);
+    draw_axes(cairo, layers);
 }
 
-void SignalPicture::draw_axes(cairo_t* cairo) const {
+void SignalPicture::draw_title_and_legend(cairo_t* cairo, Layers layers) const {
+    const double right = options_.width - kRight;
+    if (layers & title) {
+        cairo_set_source_rgb(cairo, 0, 0, 0);
+        select_font(cairo, 14, true);
+        // A long title is cut short before the legend.
+        show_text_at(cairo, kLeft, 20,
+                     elided_text(cairo, title_, right - kLegendWidth - 12 - kLeft));
+    }
+    struct Entry {
+        double x;
+        double rgb[3];
+        const char* text;
+    };
+    for (const Entry& entry : {Entry{right - kLegendWidth, {0.25, 0.4, 0.75}, "signal y(t)"},
+                               Entry{right - 120, {0.85, 0.2, 0.1}, "envelope"}}) {
+        if (layers & legend) {
+            cairo_set_line_width(cairo, 2.0);
+            cairo_set_source_rgb(cairo, entry.rgb[0], entry.rgb[1], entry.rgb[2]);
+            cairo_move_to(cairo, entry.x, 16);
+            cairo_line_to(cairo, entry.x + 20, 16);
+            cairo_stroke(cairo);
+        }
+        if (layers & legend_text) {
+            select_font(cairo, 10, false);
+            cairo_set_source_rgb(cairo, 0, 0, 0);
+            show_text_at(cairo, entry.x + 25, 20, entry.text);
+        }
+    }
+}
+
+void SignalPicture::draw_axes(cairo_t* cairo, Layers layers) const {
     const double bottom = options_.height - kBottom;
     const double right = options_.width - kRight;
     cairo_set_source_rgb(cairo, 0, 0, 0);
     cairo_set_line_width(cairo, 1.0);
-    cairo_rectangle(cairo, kLeft + 0.5, kTop + 0.5, right - kLeft, bottom - kTop);
-    cairo_stroke(cairo);
-    font(cairo, 10, false);
+    if (layers & frame) {
+        cairo_rectangle(cairo, kLeft + 0.5, kTop + 0.5, right - kLeft, bottom - kTop);
+        cairo_stroke(cairo);
+    }
+    select_font(cairo, 10, false);
     const double duration = performance_.duration();
     const double step = tick_step(std::max(duration, 1e-3), 10);
     for (double t = 0.0; t <= duration + step * 1e-6; t += step) {
         const double x = std::round(x_of(t)) + 0.5;
-        cairo_move_to(cairo, x, bottom);
-        cairo_line_to(cairo, x, bottom + 5);
-        cairo_stroke(cairo);
-        const auto label = seconds_label(t, step);
-        cairo_text_extents_t extents;
-        cairo_text_extents(cairo, label.c_str(), &extents);
-        cairo_move_to(cairo, x - extents.width / 2, bottom + 17);
-        cairo_show_text(cairo, label.c_str());
+        if (layers & frame) {
+            cairo_move_to(cairo, x, bottom);
+            cairo_line_to(cairo, x, bottom + 5);
+            cairo_stroke(cairo);
+        }
+        if (layers & axis_labels) {
+            const auto label = tick_label(t, step);
+            show_text_at(cairo, x - text_width(cairo, label) / 2, bottom + 17, label);
+        }
     }
-    cairo_move_to(cairo, right - 40, bottom + 33);
-    cairo_show_text(cairo, "t (s)");
+    if (!(layers & axis_labels)) {
+        return;
+    }
+    show_text_at(cairo, right - 40, bottom + 33, "t (s)");
     char peak[32];
     std::snprintf(peak, sizeof peak, "%.3g", peak_);
     for (const double level : {1.0, 0.0, -1.0}) {
         const std::string label =
             level == 0.0 ? "0" : (level > 0 ? std::string(peak) : "-" + std::string(peak));
-        cairo_move_to(cairo, 6, y_of(level * peak_) + 4);
-        cairo_show_text(cairo, label.c_str());
+        // Right-aligned against the frame, however long the number.
+        show_text_at(cairo, kLeft - 6 - text_width(cairo, label), y_of(level * peak_) + 4, label);
     }
-    // Legend.
-    cairo_set_line_width(cairo, 2.0);
-    cairo_set_source_rgb(cairo, 0.25, 0.4, 0.75);
-    cairo_move_to(cairo, right - 230, 16);
-    cairo_line_to(cairo, right - 210, 16);
-    cairo_stroke(cairo);
-    cairo_set_source_rgb(cairo, 0.85, 0.2, 0.1);
-    cairo_move_to(cairo, right - 120, 16);
-    cairo_line_to(cairo, right - 100, 16);
-    cairo_stroke(cairo);
-    cairo_set_source_rgb(cairo, 0, 0, 0);
-    cairo_move_to(cairo, right - 205, 20);
-    cairo_show_text(cairo, "signal y(t)");
-    cairo_move_to(cairo, right - 95, 20);
-    cairo_show_text(cairo, "envelope");
 }
 
-void SignalPicture::draw_boundaries(cairo_t* cairo) const {
+void SignalPicture::draw_boundaries(cairo_t* cairo, Layers layers) const {
     const double bottom = options_.height - kBottom;
-    std::size_t bar = static_cast<std::size_t>(-1);
-    font(cairo, 9, false);
+    // Where each bar begins, to give each label the room before the next.
+    std::vector<std::pair<std::size_t, double>> bar_starts;
     for (const auto& timing : performance_.timeline()) {
         const double x = std::round(x_of(timing.onset)) + 0.5;
-        if (timing.bar != bar) {
-            bar = timing.bar;
-            const double dashes[] = {4.0, 3.0};
-            cairo_set_dash(cairo, dashes, 2, 0);
-            cairo_set_source_rgb(cairo, 0.3, 0.3, 0.3);
+        if (bar_starts.empty() || timing.bar != bar_starts.back().first) {
+            bar_starts.emplace_back(timing.bar, x);
+            if (layers & bar_boundaries) {
+                const double dashes[] = {4.0, 3.0};
+                cairo_set_dash(cairo, dashes, 2, 0);
+                cairo_set_source_rgb(cairo, 0.3, 0.3, 0.3);
+                cairo_set_line_width(cairo, 1.0);
+                cairo_move_to(cairo, x, kTop);
+                cairo_line_to(cairo, x, bottom);
+                cairo_stroke(cairo);
+                cairo_set_dash(cairo, nullptr, 0, 0);
+            }
+        } else if (layers & note_boundaries) {
+            cairo_set_source_rgb(cairo, 0.78, 0.78, 0.78);
             cairo_set_line_width(cairo, 1.0);
             cairo_move_to(cairo, x, kTop);
             cairo_line_to(cairo, x, bottom);
             cairo_stroke(cairo);
-            cairo_set_dash(cairo, nullptr, 0, 0);
-            cairo_move_to(cairo, x + 3, kTop + 11);
-            cairo_show_text(cairo, ("bar " + std::to_string(bar + 1)).c_str());
-        } else {
-            cairo_set_source_rgb(cairo, 0.78, 0.78, 0.78);
-            cairo_set_line_width(cairo, 1.0);
-            cairo_move_to(cairo, x, kTop + 14);
-            cairo_line_to(cairo, x, bottom);
-            cairo_stroke(cairo);
         }
+    }
+    if (!(layers & bar_labels)) {
+        return;
+    }
+    // Above the frame, each label within its bar: "bar 12", or "12" where bars are narrow, or
+    // none where not even that fits.
+    select_font(cairo, 9, false);
+    cairo_set_source_rgb(cairo, 0.3, 0.3, 0.3);
+    for (std::size_t i = 0; i < bar_starts.size(); ++i) {
+        const auto [bar, x] = bar_starts[i];
+        const double end =
+            i + 1 < bar_starts.size() ? bar_starts[i + 1].second : x_of(performance_.duration());
+        const auto number = std::to_string(bar + 1);
+        const auto label = fitted_text(cairo, {"bar " + number, number}, end - x - 6);
+        show_text_at(cairo, x + 3, kBarLabelBaseline, label);
     }
 }
 
-void SignalPicture::draw_signal(cairo_t* cairo) const {
-    const double duration = performance_.duration();
-    if (duration <= 0.0) {
-        return;
-    }
-    const auto columns = static_cast<std::size_t>(options_.width - kLeft - kRight);
-    const double rate = columns * kSamplesPerPixel / duration;
-    const auto count = render::sample_index_at(duration, rate);
-    std::vector<double> signal(count), envelope(count);
-    render::render_signal(performance_, rate, 0, signal);
-    render::render_envelope(performance_, rate, 0, envelope);
-
-    cairo_set_line_join(cairo, CAIRO_LINE_JOIN_ROUND);
-    cairo_set_source_rgb(cairo, 0.25, 0.4, 0.75);
-    cairo_set_line_width(cairo, 0.8);
-    for (std::size_t k = 0; k < count; ++k) {
-        const double x = x_of(static_cast<double>(k) / rate);
-        k == 0 ? cairo_move_to(cairo, x, y_of(signal[k]))
-               : cairo_line_to(cairo, x, y_of(signal[k]));
-    }
-    cairo_stroke(cairo);
-    cairo_set_source_rgb(cairo, 0.85, 0.2, 0.1);
-    cairo_set_line_width(cairo, 1.4);
-    for (const double sign : {1.0, -1.0}) {
-        for (std::size_t k = 0; k < count; ++k) {
-            const double x = x_of(static_cast<double>(k) / rate);
-            const double y = y_of(sign * envelope[k]);
+void SignalPicture::draw_signal(cairo_t* cairo, Layers layers) const {
+    const auto curve = [&](const std::vector<double>& values, double sign) {
+        for (std::size_t k = 0; k < values.size(); ++k) {
+            const double x = x_of(static_cast<double>(k) / rate_);
+            const double y = y_of(sign * values[k]);
             k == 0 ? cairo_move_to(cairo, x, y) : cairo_line_to(cairo, x, y);
         }
         cairo_stroke(cairo);
+    };
+    cairo_set_line_join(cairo, CAIRO_LINE_JOIN_BEVEL);  // half the time of round joins
+    if ((layers & signal) && !samples_.empty()) {
+        cairo_set_source_rgb(cairo, 0.25, 0.4, 0.75);
+        cairo_set_line_width(cairo, 0.8);
+        curve(samples_, 1.0);
+    }
+    if ((layers & envelope) && !strengths_.empty()) {
+        cairo_set_source_rgb(cairo, 0.85, 0.2, 0.1);
+        cairo_set_line_width(cairo, 1.4);
+        curve(strengths_, 1.0);
+        curve(strengths_, -1.0);
     }
 }
 

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "client/editor/score_edits.hpp"
+#include "client/pictures/picture_text.hpp"
 
 namespace vibscore::pictures {
 
@@ -17,12 +18,21 @@ constexpr double kColumn = 9.0;  // pixels per layout column
 constexpr double kLine = 12.0;   // between two strings
 constexpr double kMargin = 14.0;
 constexpr double kTitle = 30.0;
-constexpr double kClefRow = 18.0;
-constexpr double kDynamicsRow = 20.0;  // between the clef row and the top string
-constexpr double kBelowStaff = 34.0;   // room for legato arcs and the gap to the next system
-constexpr double kSystemHeight = kClefRow + kDynamicsRow + 5 * kLine + kBelowStaff;
-constexpr double kHeadRx = 7.0, kHeadRy = 5.5;
 constexpr double kStem = 3.2 * kLine;
+// A system's rows from its top: the clef boxes, the hairpins, room for the stems of notes on
+// string 6, the strings, then the ties and the gap to the next system.
+constexpr double kClefRow = 18.0;
+constexpr double kClefBoxHeight = kClefRow - 3;
+constexpr double kDynamicsRow = 16.0;
+constexpr double kHairpinOpen = 4.5;  // half a hairpin's open end
+constexpr double kStemRoom = 42.0;    // a stem over string 6 ends below the hairpins
+constexpr double kBelowStaff = 34.0;  // room for legato arcs and the gap to the next system
+constexpr double kSystemHeight = kClefRow + kDynamicsRow + kStemRoom + 5 * kLine + kBelowStaff;
+constexpr double kHeadRx = 7.0, kHeadRy = 5.5;
+// A head sits this far right of its column's middle, clear of the bar line before it.
+constexpr double kHeadShift = 2.5;
+static_assert(kStemRoom - kStem > kDynamicsRow / 2 - kHairpinOpen,
+              "a stem over string 6 must end below the hairpin row");
 
 void set_rgb(cairo_t* cairo, const double (&rgb)[3]) {
     cairo_set_source_rgb(cairo, rgb[0], rgb[1], rgb[2]);
@@ -35,20 +45,6 @@ void ellipse(cairo_t* cairo, double x, double y, double rx, double ry) {
     cairo_new_path(cairo);
     cairo_arc(cairo, 0, 0, 1, 0, 2 * M_PI);
     cairo_restore(cairo);
-}
-
-void centred_text(cairo_t* cairo, double x, double y, const std::string& text) {
-    cairo_text_extents_t extents;
-    cairo_text_extents(cairo, text.c_str(), &extents);
-    cairo_move_to(cairo, x - extents.width / 2 - extents.x_bearing,
-                  y - extents.height / 2 - extents.y_bearing);
-    cairo_show_text(cairo, text.c_str());
-}
-
-void font(cairo_t* cairo, double size, bool bold) {
-    cairo_select_font_face(cairo, "DejaVu Sans", CAIRO_FONT_SLANT_NORMAL,
-                           bold ? CAIRO_FONT_WEIGHT_BOLD : CAIRO_FONT_WEIGHT_NORMAL);
-    cairo_set_font_size(cairo, size);
 }
 
 bool hollow(Length length) {
@@ -94,11 +90,12 @@ StaffPicture::StaffPicture(const Score& score, const Options& options)
     const SurfacePtr scratch(cairo_image_surface_create(CAIRO_FORMAT_ARGB32, 1, 1),
                              &cairo_surface_destroy);
     const CairoPtr measure(cairo_create(scratch.get()), &cairo_destroy);
-    font(measure.get(), 14, true);
+    select_font(measure.get(), 14, true);
     cairo_text_extents_t title;
     cairo_text_extents(measure.get(), title_text().c_str(), &title);
     width_ = std::ceil(2 * kMargin + std::max(widest * kColumn, title.x_advance));
     height_ = std::ceil(top + kMargin / 2);
+    place_clef_boxes(measure.get());
 }
 
 std::string StaffPicture::title_text() const {
@@ -109,8 +106,44 @@ double StaffPicture::column_x(const System& system, double column) const {
     return kMargin + (column - system.begin) * kColumn;
 }
 
+double StaffPicture::head_x(const System& system, int column) const {
+    return column_x(system, column + 0.5) + kHeadShift;
+}
+
 double StaffPicture::string_y(const System& system, int string) const {
-    return system.top + kClefRow + kDynamicsRow + (6 - std::clamp(string, 1, 6)) * kLine;
+    return system.top + kClefRow + kDynamicsRow + kStemRoom +
+           (6 - std::clamp(string, 1, 6)) * kLine;
+}
+
+void StaffPicture::place_clef_boxes(cairo_t* cairo) {
+    select_font(cairo, 10, false);
+    for (const auto& system : systems_) {
+        for (std::size_t i = 0; i < layout_.spans.size(); ++i) {
+            const auto& span = layout_.spans[i];
+            // The bar line closing a system opens the next bar, whose clef box heads the next
+            // system.
+            if (span.kind != Span::Kind::bar_line || span.bar >= score_.bars.size() ||
+                span.x < system.begin || span.x + 1 >= system.end) {
+                continue;
+            }
+            const auto next =
+                std::find_if(layout_.spans.begin() + static_cast<long>(i) + 1, layout_.spans.end(),
+                             [](const Span& later) { return later.kind == Span::Kind::bar_line; });
+            const double x = std::round(column_x(system, span.x + 1)) + 0.5;
+            // Up to a gap before the next bar's box.
+            const double room = column_x(system, next->x + 1) - 6 - x;
+            const Bar& bar = score_.bars[span.bar];
+            const std::string beats = editor::beat_label(Score::beat_count(bar));
+            const std::string label =
+                fitted_text(cairo,
+                            {bar.clef + "  " + beats + (beats == "1" ? " beat" : " beats"),
+                             bar.clef + "  " + beats},
+                            room - 8);
+            clef_boxes_.push_back({span.bar, x, system.top + 0.5,
+                                   std::min(text_width(cairo, label) + 8, room), kClefBoxHeight,
+                                   label});
+        }
+    }
 }
 
 std::vector<StaffPicture::Point> StaffPicture::head_centres() const {
@@ -121,48 +154,51 @@ std::vector<StaffPicture::Point> StaffPicture::head_centres() const {
                 continue;
             }
             if (const auto* note = std::get_if<Note>(&score_.bars[span.bar].symbols[span.symbol])) {
-                centres.push_back({column_x(system, span.x + 0.5), string_y(system, note->string)});
+                centres.push_back({head_x(system, span.x), string_y(system, note->string)});
             }
         }
     }
     return centres;
 }
 
-void StaffPicture::draw(cairo_t* cairo) const {
-    cairo_set_source_rgb(cairo, 0, 0, 0);
-    font(cairo, 14, true);
-    cairo_move_to(cairo, kMargin, 20);
-    cairo_show_text(cairo, title_text().c_str());
+void StaffPicture::draw(cairo_t* cairo, Layers layers) const {
+    if (layers & title) {
+        cairo_set_source_rgb(cairo, 0, 0, 0);
+        select_font(cairo, 14, true);
+        show_text_at(cairo, kMargin, 20, title_text());
+    }
     for (const auto& system : systems_) {
-        draw_system(cairo, system);
+        draw_system(cairo, system, layers);
+    }
+    for (const auto& box : clef_boxes_) {
+        draw_clef_box(cairo, box, layers);
     }
 }
 
-void StaffPicture::draw_system(cairo_t* cairo, const System& system) const {
+void StaffPicture::draw_system(cairo_t* cairo, const System& system, Layers layers) const {
     const double left = column_x(system, system.begin);
     const double right = column_x(system, system.end - 1) + 1;
-    cairo_set_line_width(cairo, 1.0);
-    cairo_set_source_rgb(cairo, 0.45, 0.45, 0.45);
-    for (int string = 1; string <= 6; ++string) {
-        cairo_move_to(cairo, left, string_y(system, string) + 0.5);
-        cairo_line_to(cairo, right, string_y(system, string) + 0.5);
+    if (layers & staff_lines) {
+        cairo_set_line_width(cairo, 1.0);
+        cairo_set_source_rgb(cairo, 0.45, 0.45, 0.45);
+        for (int string = 1; string <= 6; ++string) {
+            cairo_move_to(cairo, left, string_y(system, string) + 0.5);
+            cairo_line_to(cairo, right, string_y(system, string) + 0.5);
+        }
+        cairo_stroke(cairo);
     }
-    cairo_stroke(cairo);
     for (const auto& span : layout_.spans) {
         if (span.x < system.begin || span.x >= system.end) {
             continue;
         }
         if (span.kind == Span::Kind::bar_line) {
-            const double x = std::round(column_x(system, span.x + 0.5)) + 0.5;
-            cairo_set_source_rgb(cairo, 0, 0, 0);
-            cairo_set_line_width(cairo, 1.2);
-            cairo_move_to(cairo, x, string_y(system, 6));
-            cairo_line_to(cairo, x, string_y(system, 1) + 1);
-            cairo_stroke(cairo);
-            // The bar line closing a system opens the next bar, whose clef box heads the next
-            // system.
-            if (span.bar < score_.bars.size() && span.x + 1 < system.end) {
-                draw_clef_box(cairo, system, span);
+            if (layers & bar_lines) {
+                const double x = std::round(column_x(system, span.x + 0.5)) + 0.5;
+                cairo_set_source_rgb(cairo, 0, 0, 0);
+                cairo_set_line_width(cairo, 1.2);
+                cairo_move_to(cairo, x, string_y(system, 6));
+                cairo_line_to(cairo, x, string_y(system, 1) + 1);
+                cairo_stroke(cairo);
             }
             continue;
         }
@@ -171,8 +207,8 @@ void StaffPicture::draw_system(cairo_t* cairo, const System& system) const {
         }
         const Symbol& symbol = score_.bars[span.bar].symbols[span.symbol];
         if (const auto* note = std::get_if<Note>(&symbol)) {
-            draw_note(cairo, system, span, *note);
-        } else if (const auto* rest = std::get_if<Rest>(&symbol)) {
+            draw_note(cairo, system, span, *note, layers);
+        } else if (const auto* rest = std::get_if<Rest>(&symbol); rest && (layers & rests)) {
             draw_rest(cairo, system, span, *rest);
         }
     }
@@ -180,38 +216,49 @@ void StaffPicture::draw_system(cairo_t* cairo, const System& system) const {
     cairo_save(cairo);
     cairo_rectangle(cairo, left - kColumn / 2, system.top, right - left + kColumn, kSystemHeight);
     cairo_clip(cairo);
-    draw_hairpins(cairo, system);
-    draw_ties(cairo, system);
+    if (layers & hairpins) {
+        draw_hairpins(cairo, system);
+    }
+    if (layers & ties) {
+        draw_ties(cairo, system);
+    }
     cairo_restore(cairo);
 }
 
 void StaffPicture::draw_note(cairo_t* cairo, const System& system, const Span& span,
-                             const Note& note) const {
-    const double x = column_x(system, span.x + 0.5);
+                             const Note& note, Layers layers) const {
+    const double x = head_x(system, span.x);
     const double y = string_y(system, note.string);
     const bool open = hollow(note.length);
-    ellipse(cairo, x, y, kHeadRx, kHeadRy);
-    if (open) {
-        cairo_set_source_rgb(cairo, 1, 1, 1);
-    } else {
+    if (layers & heads) {
+        ellipse(cairo, x, y, kHeadRx, kHeadRy);
+        if (open) {
+            cairo_set_source_rgb(cairo, 1, 1, 1);
+        } else {
+            set_rgb(cairo, head_ink);
+        }
+        cairo_fill_preserve(cairo);
         set_rgb(cairo, head_ink);
+        cairo_set_line_width(cairo, 1.4);
+        cairo_stroke(cairo);
+        if (editor::is_dotted(note.length)) {
+            cairo_set_source_rgb(cairo, 0, 0, 0);
+            cairo_arc(cairo, x + kHeadRx + 4.5, y - 2.5, 1.7, 0, 2 * M_PI);
+            cairo_fill(cairo);
+        }
     }
-    cairo_fill_preserve(cairo);
-    set_rgb(cairo, head_ink);
-    cairo_set_line_width(cairo, 1.4);
-    cairo_stroke(cairo);
-
-    font(cairo, 9, true);
-    if (open) {
+    if (layers & numbers) {
+        select_font(cairo, 9, true);
+        if (open) {
+            cairo_set_source_rgb(cairo, 0, 0, 0);
+        } else {
+            cairo_set_source_rgb(cairo, 1, 1, 1);
+        }
+        show_centred(cairo, x, y, std::to_string(note.number));
+    }
+    if ((layers & stems) && note.length != Length::whole) {
         cairo_set_source_rgb(cairo, 0, 0, 0);
-    } else {
-        cairo_set_source_rgb(cairo, 1, 1, 1);
-    }
-    centred_text(cairo, x, y, std::to_string(note.number));
-
-    cairo_set_source_rgb(cairo, 0, 0, 0);
-    cairo_set_line_width(cairo, 1.2);
-    if (note.length != Length::whole) {
+        cairo_set_line_width(cairo, 1.2);
         const double stem_x = x + kHeadRx - 0.6;
         cairo_move_to(cairo, stem_x, y - 1);
         cairo_line_to(cairo, stem_x, y - kStem);
@@ -222,10 +269,6 @@ void StaffPicture::draw_note(cairo_t* cairo, const System& system, const Span& s
             cairo_curve_to(cairo, stem_x + 2, top + 4, stem_x + 8, top + 5, stem_x + 6, top + 12);
             cairo_stroke(cairo);
         }
-    }
-    if (editor::is_dotted(note.length)) {
-        cairo_arc(cairo, x + kHeadRx + 4.5, y - 2.5, 1.7, 0, 2 * M_PI);
-        cairo_fill(cairo);
     }
 }
 
@@ -278,41 +321,38 @@ void StaffPicture::draw_rest(cairo_t* cairo, const System& system, const Span& s
     }
 }
 
-void StaffPicture::draw_clef_box(cairo_t* cairo, const System& system, const Span& bar_line) const {
-    const Bar& bar = score_.bars[bar_line.bar];
-    const double beats = Score::beat_count(bar);
-    const std::string label = bar.clef + "  " + editor::beat_label(beats);
-    font(cairo, 10, false);
-    cairo_text_extents_t extents;
-    cairo_text_extents(cairo, label.c_str(), &extents);
-    const double x = std::round(column_x(system, bar_line.x + 1)) + 0.5;
-    const double y = system.top + 0.5;
-    cairo_rectangle(cairo, x, y, extents.x_advance + 8, kClefRow - 3);
-    if (beats < editor::beats_in_a_full_bar) {
-        cairo_set_source_rgb(cairo, 0.55, 0.93, 0.96);  // cyan: fewer beats than four
-    } else if (beats > editor::beats_in_a_full_bar) {
-        cairo_set_source_rgb(cairo, 0.96, 0.62, 0.96);  // magenta: more
-    } else {
-        cairo_set_source_rgb(cairo, 1, 1, 1);  // white: exactly four
+void StaffPicture::draw_clef_box(cairo_t* cairo, const ClefBox& box, Layers layers) const {
+    if (layers & clef_boxes) {
+        const double beats = Score::beat_count(score_.bars[box.bar]);
+        cairo_rectangle(cairo, box.x, box.y, box.width, box.height);
+        if (beats < editor::beats_in_a_full_bar) {
+            cairo_set_source_rgb(cairo, 0.55, 0.93, 0.96);  // cyan: fewer beats than four
+        } else if (beats > editor::beats_in_a_full_bar) {
+            cairo_set_source_rgb(cairo, 0.96, 0.62, 0.96);  // magenta: more
+        } else {
+            cairo_set_source_rgb(cairo, 1, 1, 1);  // white: exactly four
+        }
+        cairo_fill_preserve(cairo);
+        cairo_set_source_rgb(cairo, 0.35, 0.35, 0.35);
+        cairo_set_line_width(cairo, 1.0);
+        cairo_stroke(cairo);
     }
-    cairo_fill_preserve(cairo);
-    cairo_set_source_rgb(cairo, 0.35, 0.35, 0.35);
-    cairo_set_line_width(cairo, 1.0);
-    cairo_stroke(cairo);
-    cairo_set_source_rgb(cairo, 0, 0, 0);
-    cairo_move_to(cairo, x + 4, y + kClefRow - 7);
-    cairo_show_text(cairo, label.c_str());
+    if (layers & clef_labels) {
+        select_font(cairo, 10, false);
+        cairo_set_source_rgb(cairo, 0, 0, 0);
+        show_text_at(cairo, box.x + 4, box.y + box.height - 4, box.label);
+    }
 }
 
 void StaffPicture::draw_hairpins(cairo_t* cairo, const System& system) const {
-    const double y = system.top + kClefRow + kDynamicsRow / 2 - 2;
+    const double y = system.top + kClefRow + kDynamicsRow / 2;
     const auto wedge = [&](std::size_t first_bar, std::size_t first, std::size_t last_bar,
                            std::size_t last, Dynamics dynamics) {
         const Span* from = symbol_span(layout_, first_bar, first);
         const Span* to = symbol_span(layout_, last_bar, last);
         const double x0 = column_x(system, from->x + 0.2);
         const double x1 = column_x(system, to->x + std::max(to->width - 1, 1));
-        const double open = 4.5;
+        const double open = kHairpinOpen;
         cairo_set_source_rgb(cairo, 0.55, 0.35, 0.0);
         cairo_set_line_width(cairo, 1.2);
         if (dynamics == Dynamics::crescendo) {
@@ -365,8 +405,8 @@ void StaffPicture::draw_ties(cairo_t* cairo, const System& system) const {
             if (note == nullptr || next == nullptr) {
                 continue;
             }
-            const double x0 = column_x(system, layout_.x_of(at) + 0.5);
-            const double x1 = column_x(system, layout_.x_of(*next_at) + 0.5);
+            const double x0 = head_x(system, layout_.x_of(at));
+            const double x1 = head_x(system, layout_.x_of(*next_at));
             if (note->legato != 0 && note->legato == next->legato) {
                 // A slur under the staff.
                 cairo_set_source_rgb(cairo, 0.0, 0.45, 0.15);

@@ -1,4 +1,5 @@
 #include "tests/support/daemon_fixture.hpp"
+#include "dbus/sdbus_compat.hpp"
 
 #include <fcntl.h>
 #include <signal.h>
@@ -86,7 +87,8 @@ bool Process::running() {
 }
 
 HapticsClient::HapticsClient(std::unique_ptr<sdbus::IConnection> connection)
-    : ProxyInterfaces(*connection, "org.vibscore.Haptics1", "/org/vibscore/Haptics1"),
+    : ProxyInterfaces(*connection, dbus::service_name("org.vibscore.Haptics1"),
+                      dbus::object_path("/org/vibscore/Haptics1")),
       connection_(std::move(connection)) {
     registerProxy();
     connection_->enterEventLoopAsync();

@@ -77,8 +77,8 @@ bool SessionBus::wait_for_owner(const std::string& name, std::chrono::millisecon
 
 // The proxy owns its connection and serves it from its own thread, where signals arrive.
 FeedbackClient::FeedbackClient(const SessionBus& bus)
-    : ProxyInterfaces(sdbus::createSessionBusConnectionWithAddress(bus.address()), kFeedbackName,
-                      kFeedbackPath) {
+    : ProxyInterfaces(sdbus::createSessionBusConnectionWithAddress(bus.address()),
+                      dbus::service_name(kFeedbackName), dbus::object_path(kFeedbackPath)) {
     registerProxy();
 }
 
@@ -91,10 +91,10 @@ void FeedbackClient::onFeedbackEnded(const std::uint32_t& id, const std::uint32_
     ended_.push_back({id, reason, std::chrono::steady_clock::now()});
 }
 
-void FeedbackClient::onPropertiesChanged(const std::string& interface,
-                                         const std::map<std::string, sdbus::Variant>& changed,
-                                         const std::vector<std::string>&) {
-    const auto profile = changed.find("Profile");
+void FeedbackClient::onPropertiesChanged(const dbus::InterfaceName& interface,
+                                         const dbus::ChangedProperties& changed,
+                                         const std::vector<dbus::PropertyName>&) {
+    const auto profile = changed.find(dbus::PropertyName("Profile"));
     if (interface == "org.sigxcpu.Feedback" && profile != changed.end()) {
         std::lock_guard lock(mutex_);
         profile_changes_.push_back(profile->second.get<std::string>());

@@ -13,6 +13,7 @@
 #include <utility>
 #include <vector>
 
+#include "dbus/sdbus_compat.hpp"
 #include "feedback-proxy.h"
 #include "tests/support/daemon_fixture.hpp"
 #include "tests/support/run_command.hpp"
@@ -73,9 +74,9 @@ class FeedbackClient
 
   private:
     void onFeedbackEnded(const std::uint32_t& id, const std::uint32_t& reason) override;
-    void onPropertiesChanged(const std::string& interface,
-                             const std::map<std::string, sdbus::Variant>& changed,
-                             const std::vector<std::string>& invalidated) override;
+    void onPropertiesChanged(const dbus::InterfaceName& interface,
+                             const dbus::ChangedProperties& changed,
+                             const std::vector<dbus::PropertyName>& invalidated) override;
 
     std::mutex mutex_;
     std::vector<EndedFeedback> ended_;
