@@ -27,8 +27,8 @@ struct SessionActions {
     static Request save(ButtonScheme& scheme, EditorModel&) {
         return scheme.save_under(scheme.destination_, false);
     }
-    static Request save_as(ButtonScheme& scheme, EditorModel&) {
-        scheme.begin_name_entry(false);
+    static Request save_as(ButtonScheme& scheme, EditorModel& model) {
+        scheme.begin_name_entry(model, false);
         return {};
     }
     static Request open(ButtonScheme& scheme, EditorModel&) {

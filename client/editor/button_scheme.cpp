@@ -84,7 +84,7 @@ Request ButtonScheme::press(Button button, EditorModel& model) {
         case Mode::name_entry:
             return name_press(button);
         case Mode::replace_menu:
-            return replace_press(button);
+            return replace_press(button, model);
         case Mode::playing:
             return {Request::Kind::stop};
     }
@@ -311,12 +311,12 @@ Request ButtonScheme::save_under(const std::string& name, bool then_quit) {
     return {Request::Kind::save_as, name, 0, then_quit};
 }
 
-void ButtonScheme::begin_name_entry(bool then_quit) {
+void ButtonScheme::begin_name_entry(const EditorModel& model, bool then_quit) {
     std::vector<std::string> names;
     for (const auto& taken : *taken_) {
         names.push_back(taken.name);
     }
-    name_.start(free_name(destination_, names));
+    name_.start(name_proposals(destination_, model.score().title, "", names));
     then_quit_ = then_quit;
     mode_ = Mode::name_entry;
 }
@@ -335,7 +335,7 @@ Request ButtonScheme::name_press(Button button) {
     return save_under(name_.name(), then_quit_);
 }
 
-Request ButtonScheme::replace_press(Button button) {
+Request ButtonScheme::replace_press(Button button, const EditorModel& model) {
     switch (button) {
         case Button::up:
             list_.step(-1, kReplaceChoices);
@@ -354,7 +354,7 @@ Request ButtonScheme::replace_press(Button button) {
     }
     switch (list_.index()) {
         case 0:
-            begin_name_entry(then_quit_);
+            begin_name_entry(model, then_quit_);
             return {};
         case 1: {
             mode_ = Mode::browse;
@@ -420,10 +420,8 @@ ButtonScheme::MenuView ButtonScheme::menu_view(const EditorModel& model) const {
             break;
         case Mode::name_entry:
             view.title = "save as";
-            view.lines.push_back(name_.shown());
-            if (const auto problem = name_.problem(); !problem.empty()) {
-                view.lines.push_back(problem);
-            }
+            view.lines = name_.lines();
+            view.highlighted = name_.highlighted();
             break;
         case Mode::replace_menu:
             view.title = replace_title(replacing_);

@@ -50,7 +50,8 @@ struct TakenName {
 // Back, Back leaves.
 // In a menu: Up/Down choose (wrapping), Left/Right jump between groups, Select does it,
 // Back closes. Menus reopen on the last choice. While playing, any button stops.
-// Save as: a name typed with the buttons (NameEntry), opening on a free one. Saving under a
+// Save as: a name typed with the buttons (NameEntry), opening on names proposed first (the
+// score's title, a free "<name>-2"): one Select takes one. Saving under a
 // name that is taken (a shipped score, another stored one) asks first: another name, replace
 // it, or cancel. A shipped file never changes: the stored score shadows it.
 // Keyboard commands (thesis Fig. 4.3) go through command(): they drop the symbol being
@@ -118,10 +119,10 @@ class ButtonScheme {
     Request ask_quit(const EditorModel& model);
     void leave_layers(EditorModel& model);
     Request name_press(Button button);
-    Request replace_press(Button button);
+    Request replace_press(Button button, const EditorModel& model);
     // Saves under `name`, or asks first when it is taken.
     Request save_under(const std::string& name, bool then_quit);
-    void begin_name_entry(bool then_quit);
+    void begin_name_entry(const EditorModel& model, bool then_quit);
     void begin_entry(EditorModel& model,
                      EditorModel::Continuing continuing = EditorModel::Continuing::no);
 

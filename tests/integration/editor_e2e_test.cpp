@@ -316,7 +316,7 @@ TEST_F(EditorEndToEnd, ATwoBarRingtoneFromTheShippedOneIsSavedAsANewNameAndTheSh
 
     // Save as: the free name is proposed, and one Select saves under it.
     send(pane, menu_presses(copy, "save as..."));
-    ASSERT_TRUE(pane.wait_for_text("ringtone-[2]")) << pane.screen();
+    ASSERT_TRUE(pane.wait_for_text("[ringtone-2]")) << pane.screen();
     EXPECT_NE(pane.screen().find("S:save B:more"), std::string::npos) << pane.screen();
     send(pane, {Button::select});
     EXPECT_EQ(copy.press(Button::select),
@@ -394,8 +394,11 @@ TEST_F(EditorEndToEnd, AFileOpenedSavesWithoutAskingAndSaveAsWritesANewFileBesid
     EXPECT_NE(testing::read_file(file), testing::read_file(shipped_file));
 
     send(pane, menu_presses(copy, "save as..."));
-    ASSERT_TRUE(pane.wait_for_text("buzz-[2]")) << pane.screen();
-    send(pane, {Button::select});
+    // The score's title first, then a free name made from the file's.
+    ASSERT_TRUE(pane.wait_for_text("buzz-2")) << pane.screen();
+    EXPECT_NE(pane.screen().find(">success"), std::string::npos) << pane.screen();
+    EXPECT_NE(pane.screen().find("\u2191\u2193choose S:save"), std::string::npos) << pane.screen();
+    send(pane, {Button::down, Button::select});
     const auto beside = dir.path() / "buzz-2.score.xml";
     for (int i = 0; i < 500 && !std::filesystem::exists(beside); ++i) {
         std::this_thread::sleep_for(std::chrono::milliseconds(20));

@@ -67,20 +67,24 @@ TEST(StatusLine, EveryHintFitsFortyColumns) {
 
 TEST(StatusLine, SaveAsHintsFitFortyColumnsAndHideTheLastAction) {
     auto editor = fresh_editor();
+    editor.model.set_title("My Ringtone");  // proposed too: a list of names first
     editor.scheme.set_taken({{"ringtone", editor::TakenName::What::shipped}});
     editor.scheme.set_destination("ringtone", false);
     testing::to_menu_entry(editor, "save as...");
-    press(editor, {S});  // the name entry
-    for (const bool more : {false, true}) {
-        if (more) {
-            press(editor, {B});  // delete, insert, cancel
+    press(editor, {S});  // the proposals, then every level of typing
+    for (const auto& presses : std::vector<std::vector<Button>>{
+             {}, {R}, {U}, {U}, {B}, {U}, {B}, {R}, {B}, {L}, {B}, {B}, {D}}) {
+        for (const auto button : presses) {
+            editor.press(button);
         }
+        ASSERT_EQ(editor.scheme.mode(), editor::ButtonScheme::Mode::name_entry);
         const auto parts = status_of(editor.model, editor.scheme, "undone");
         EXPECT_EQ(parts.message, "");
         const auto line = status_line(parts, kSmallWidth);
         EXPECT_NE(line.find(parts.hint), std::string::npos) << "cut: " << line;
     }
-    press(editor, {B});  // cancelled
+    press(editor, {B, B, B, B});  // back to letters, more, the proposals; cancelled
+    ASSERT_EQ(editor.scheme.mode(), editor::ButtonScheme::Mode::browse);
     testing::to_menu_entry(editor, "save");
     press(editor, {S});  // ringtone is shipped: another name, store yours over it, cancel
     const auto parts = status_of(editor.model, editor.scheme, "undone");

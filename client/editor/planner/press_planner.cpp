@@ -1,5 +1,6 @@
 #include "client/editor/planner/press_planner.hpp"
 
+#include <algorithm>
 #include <deque>
 #include <string>
 #include <unordered_set>
@@ -164,6 +165,53 @@ int progress(const Editor& editor, const Score& target) {
     }
     without_open.bars.pop_back();
     return entered_prefix(without_open, target);
+}
+
+PressPlan plan_name(const NameEntry& start, const std::string& name) {
+    PressPlan plan;
+    struct Step {
+        NameEntry entry;
+        std::vector<Button> presses;
+    };
+    const auto on_the_way = [&](const NameEntry& entry) {
+        const std::string& now = entry.name();
+        if (entry.untouched() || name.starts_with(now)) {
+            return true;
+        }
+        for (const auto& line : start.lines()) {
+            if (line.starts_with(now) || line.starts_with("[" + now)) {
+                return true;
+            }
+        }
+        return false;
+    };
+    std::vector<NameEntry> seen{start};
+    std::deque<Step> queue{{start, {}}};
+    while (!queue.empty()) {
+        const Step from = std::move(queue.front());
+        queue.pop_front();
+        for (const Button button : all_buttons) {
+            Step next{from.entry, from.presses};
+            const auto outcome = next.entry.press(button);
+            next.presses.push_back(button);
+            ++plan.states_seen;
+            if (outcome == NameEntry::Outcome::done) {
+                if (next.entry.name() == name) {
+                    plan.presses = std::move(next.presses);
+                    plan.reached = true;
+                    return plan;
+                }
+                continue;
+            }
+            if (outcome == NameEntry::Outcome::cancelled || !on_the_way(next.entry) ||
+                std::find(seen.begin(), seen.end(), next.entry) != seen.end()) {
+                continue;
+            }
+            seen.push_back(next.entry);
+            queue.push_back(std::move(next));
+        }
+    }
+    return plan;
 }
 
 PressPlan plan_presses(const Editor& start, const Score& target, std::size_t state_limit) {

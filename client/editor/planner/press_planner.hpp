@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "client/editor/editor.hpp"
+#include "client/editor/name_entry.hpp"
 #include "score/score.hpp"
 
 namespace vibscore::editor {
@@ -22,6 +23,11 @@ struct PressPlan {
 // step would look at more than `state_limit` states.
 PressPlan plan_presses(const Editor& start, const Score& target,
                        std::size_t state_limit = 2'000'000);
+
+// The fewest presses that save a name entry (opened on its proposals) under `name`: a
+// breadth-first search of its presses that never types a character off the way to `name` or
+// to a proposal (typing one and deleting it again is never the shorter way).
+PressPlan plan_name(const NameEntry& start, const std::string& name);
 
 // How much of `target` the score has entered: the number of leading bars-and-symbols that
 // agree (ties compared as which neighbours they join), or -1 when the score holds something
