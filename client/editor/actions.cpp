@@ -36,6 +36,12 @@ struct SessionActions {
         return {};
     }
     static Request new_score(ButtonScheme&, EditorModel&) { return {Request::Kind::new_score}; }
+    static Request tap_rhythm(ButtonScheme& scheme, EditorModel& model) {
+        scheme.taps_ = {};
+        scheme.mode_ = ButtonScheme::Mode::tapping;
+        model.clear_message();
+        return {};
+    }
     static Request quit(ButtonScheme& scheme, EditorModel& model) { return scheme.ask_quit(model); }
 };
 
@@ -145,6 +151,8 @@ constexpr ActionRecord kActions[] = {
     model(Action::insert_blank, "insert blank", key(KEY_IC), none, "",
           call<&EditorModel::insert_blank>()),
     model(Action::set_length, "set length", shifted_digit_keys(), none, "", set_length),
+    session(Action::tap_rhythm, "tap a rhythm", key('t'), enter, "tap a rhythm",
+            &SessionActions::tap_rhythm),
 
     model(Action::decrescendo, "decrescendo", key('d'), hairpins, "decrescendo  >",
           set_dynamics<Dynamics::decrescendo>),
@@ -278,6 +286,8 @@ std::string_view group_name(MenuGroup group) {
     switch (group) {
         case MenuGroup::none:
             return "";
+        case MenuGroup::enter:
+            return "enter";
         case MenuGroup::hairpins:
             return "hairpins";
         case MenuGroup::ties:

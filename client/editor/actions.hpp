@@ -17,6 +17,7 @@ struct Request;
 // The groups of the menu Back, Select opens, in their order; Left/Right jump between them.
 enum class MenuGroup : std::int8_t {
     none = -1,  // not in the menu
+    enter,
     hairpins,
     ties,
     symbol_bar,

@@ -1,6 +1,7 @@
 #include "client/editor/button_scheme.hpp"
 
 #include <algorithm>
+#include <cstdio>
 
 #include "client/editor/actions.hpp"
 #include "client/editor/status_line.hpp"
@@ -67,8 +68,10 @@ void ButtonScheme::set_playing(bool playing) {
     }
 }
 
-Request ButtonScheme::press(Button button, EditorModel& model) {
+Request ButtonScheme::press(Button button, EditorModel& model, std::optional<Time> at) {
     switch (mode_) {
+        case Mode::tapping:
+            return tap(button, model, at);
         case Mode::browse:
             return browse(button, model);
         case Mode::browse_choices:
@@ -89,6 +92,68 @@ Request ButtonScheme::press(Button button, EditorModel& model) {
             return {Request::Kind::stop};
     }
     return {};
+}
+
+void ButtonScheme::release(Button button, Time at) {
+    if (mode_ == Mode::tapping && button == Button::select) {
+        taps_.release_select(at);
+    }
+}
+
+// Select taps a note, Down a rest; Up or Back ends tapping and writes the rhythm, Left drops
+// it. Presses without a time (the press planner's) tap nothing.
+Request ButtonScheme::tap(Button button, EditorModel& model, std::optional<Time> at) {
+    switch (button) {
+        case Button::select:
+            if (at) {
+                taps_.press_select(*at);
+            }
+            return {};
+        case Button::down:
+            if (at) {
+                taps_.press_rest(*at);
+            }
+            return {};
+        case Button::up:
+        case Button::back:
+            if (at) {
+                taps_.finish(*at);
+            }
+            end_tapping(model);
+            return {};
+        case Button::left:
+            taps_ = {};
+            mode_ = Mode::browse;
+            model.say("tapping dropped");
+            return {};
+        case Button::right:
+            return {};
+    }
+    return {};
+}
+
+void ButtonScheme::end_tapping(EditorModel& model) {
+    mode_ = Mode::browse;
+    const auto sounds = taps_.sounds();
+    taps_ = {};
+    if (sounds.empty()) {
+        model.say("nothing tapped");
+        return;
+    }
+    const std::string& clef = model.score().bars.at(model.cursor().bar).clef;
+    const KnownClef* known = clef_book_->find(clef);
+    const double clef_tempo = known ? known->clef.tempo : 0.0;
+    const Note proposed = model.proposed_note();
+    try {
+        const auto rhythm =
+            tapped_rhythm(sounds, clef_tempo, clef, proposed.string, proposed.number);
+        model.insert_bars(rhythm.bars);
+        char tempo[32];
+        std::snprintf(tempo, sizeof tempo, "%.2f", rhythm.tempo);
+        model.say(std::to_string(rhythm.notes) + " notes at " + tempo + " s a beat: S changes");
+    } catch (const std::exception& error) {
+        model.say(std::string("not tapped: ") + error.what());
+    }
 }
 
 Request ButtonScheme::browse(Button button, EditorModel& model) {
@@ -377,6 +442,7 @@ void ButtonScheme::leave_layers(EditorModel& model) {
     }
     mode_ = Mode::browse;
     enter_after_list_ = false;
+    taps_ = {};
 }
 
 Request ButtonScheme::command(const Command& command, EditorModel& model) {
@@ -453,6 +519,8 @@ std::string ButtonScheme::hint(const EditorModel& model) const {
             return name_.hint();
         case Mode::replace_menu:
             return replace_hint(replacing_);
+        case Mode::tapping:
+            return "tap S:note \u2193rest \u2191 B:done \u2190drop";
         case Mode::playing:
             return "playing: any button stops";
     }

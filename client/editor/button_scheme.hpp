@@ -2,16 +2,20 @@
 
 #include <cstddef>
 #include <memory>
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "client/editor/buttons.hpp"
+#include "client/editor/clef_book.hpp"
 #include "client/editor/commands.hpp"
 #include "client/editor/editor_model.hpp"
 #include "client/editor/entry_steps.hpp"
 #include "client/editor/menu.hpp"
 #include "client/editor/name_entry.hpp"
 #include "client/editor/shared_value.hpp"
+#include "client/editor/tap_rhythm.hpp"
 
 namespace vibscore::editor {
 
@@ -68,10 +72,17 @@ class ButtonScheme {
         quit_menu,
         name_entry,    // save as: typing the name
         replace_menu,  // the name is taken: another name, replace it, cancel
+        tapping,       // a rhythm tapped on Select (tap_rhythm.hpp)
         playing
     };
 
-    Request press(Button button, EditorModel& model);
+    using Time = TapRecorder::Time;
+
+    // `at`: when the button went down, on the clock key events are stamped with; tapping a
+    // rhythm needs it (a press without it taps nothing).
+    Request press(Button button, EditorModel& model, std::optional<Time> at = std::nullopt);
+    // A button let go (buttons that say so: evdev keys). Only tapping listens.
+    void release(Button button, Time at);
     Request command(const Command& command, EditorModel& model);
 
     Mode mode() const { return mode_; }
@@ -90,6 +101,12 @@ class ButtonScheme {
         destination_ = std::move(name);
         destination_ours_ = ours;
     }
+    // The clefs the session could read, by id: a rhythm tapped at a clef's own pace is
+    // written at its tempo; "clefs..." edits them.
+    void set_clef_book(ClefBook book) { clef_book_ = std::move(book); }
+    const ClefBook& clef_book() const { return *clef_book_; }
+    // The notes tapped so far while tapping.
+    int taps() const { return taps_.notes(); }
 
     // What to draw for an open menu: its title, lines and the highlighted one.
     struct MenuView {
@@ -125,6 +142,8 @@ class ButtonScheme {
     void begin_name_entry(const EditorModel& model, bool then_quit);
     void begin_entry(EditorModel& model,
                      EditorModel::Continuing continuing = EditorModel::Continuing::no);
+    Request tap(Button button, EditorModel& model, std::optional<Time> at);
+    void end_tapping(EditorModel& model);
 
     Mode mode_ = Mode::browse;
     EntrySteps steps_;
@@ -137,7 +156,9 @@ class ButtonScheme {
     std::string destination_;
     bool destination_ours_ = true;
     NameEntry name_;
-    TakenName replacing_;     // the taken name the replace menu asks about
+    TakenName replacing_;  // the taken name the replace menu asks about
+    TapRecorder taps_;
+    Shared<ClefBook> clef_book_;
     bool then_quit_ = false;  // quit once the pending save is done
 };
 

@@ -20,6 +20,7 @@ enum class Action {
     insert_rest,
     insert_blank,
     set_length,  // value: a Length
+    tap_rhythm,  // Select taps the notes of a rhythm (tap_rhythm.hpp)
     decrescendo,
     crescendo,
     no_dynamics,

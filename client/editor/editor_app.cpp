@@ -18,7 +18,10 @@
 #include "client/editor/phrase_book.hpp"
 #include "common/device_error.hpp"
 #include "common/monotonic_clock.hpp"
+#include "score/bundle.hpp"
+#include "score/clef_xml.hpp"
 #include "score/document_error.hpp"
+#include "score/registry_names.hpp"
 #include "score/score_xml.hpp"
 
 namespace vibscore::editor {
@@ -78,7 +81,8 @@ class Session {
             screen.draw(editor_->model, editor_->scheme, {source_.name, message_, playing_at_});
             wait_for_input();
             while (const auto code = screen.key()) {
-                handle(editor_->key(*code));
+                // A terminal's keys carry no time: now is when the key was read.
+                handle(editor_->key(*code, monotonic_now()));
             }
             read_buttons();
             serve_bus();
@@ -128,6 +132,7 @@ class Session {
         editor->model.learn_from(std::move(phrases));
         editor->scheme.set_openable(registry_scores_);
         editor->scheme.set_taken(taken_names(source));
+        editor->scheme.set_clef_book(read_clef_book(editor->model, source));
         // A file opened is the user's to save over; a registry name may be a shipped score.
         editor->scheme.set_destination(name_of(source),
                                        is_new || source.kind == ScoreSource::Kind::file);
@@ -151,6 +156,37 @@ class Session {
                 continue;  // `vibscore check` is where a broken score is reported
             }
         }
+    }
+
+    // The clefs the score may use, read where they are: the registry's through the daemon
+    // (Origin says which are shipped), a file score's beside it. One that does not read is left
+    // out: the daemon says what is wrong with it when it plays.
+    ClefBook read_clef_book(const EditorModel& model, const ScoreSource& source) const {
+        std::vector<KnownClef> known;
+        for (const auto& declaration : model.clef_choices()) {
+            try {
+                const auto beside =
+                    std::filesystem::path(source.name).parent_path() / declaration.href;
+                std::string text;
+                bool shipped = false;
+                if (source.kind == ScoreSource::Kind::file && std::filesystem::exists(beside)) {
+                    text = read_document_file(beside);
+                } else if (daemon_) {
+                    std::string name = std::filesystem::path(declaration.href).filename().string();
+                    if (name.ends_with(kClefSuffix)) {
+                        name.resize(name.size() - kClefSuffix.size());
+                    }
+                    text = daemon_->get("clef", name);
+                    shipped = daemon_->origin("clef", name) == "shipped";
+                } else {
+                    continue;
+                }
+                known.push_back({declaration, read_clef(text, declaration.href), shipped});
+            } catch (const std::exception&) {
+                continue;
+            }
+        }
+        return ClefBook(std::move(known));
     }
 
     // The names save-as asks about before saving under them, with what each is: the registry's
@@ -254,11 +290,16 @@ class Session {
     void read_buttons() {
         for (auto it = buttons_.begin(); it != buttons_.end();) {
             try {
-                for (const Button button : it->reader->read()) {
-                    handle(editor_->press(button));
+                it->reader->set_tapping(editor_->scheme.mode() == ButtonScheme::Mode::tapping);
+                for (const auto& event : it->reader->read_events()) {
+                    if (event.released) {
+                        editor_->release_at(event.button, event.at);
+                    } else {
+                        handle(editor_->press_at(event.button, event.at));
+                    }
                 }
                 if (const auto held = it->reader->expire(monotonic_now())) {
-                    handle(editor_->press(*held));
+                    handle(editor_->press_at(*held, monotonic_now()));
                 }
                 ++it;
             } catch (const DeviceError& error) {

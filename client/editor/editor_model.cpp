@@ -838,6 +838,29 @@ bool EditorModel::set_bar_clef(const std::string& id) {
     return done("clef " + id);
 }
 
+bool EditorModel::insert_bars(const std::vector<Bar>& bars) {
+    if (bars.empty()) {
+        return refuse("no bars to put in");
+    }
+    anchor_.reset();
+    Score& score = edit();
+    std::size_t first = cursor_.bar;
+    const auto& here = score.bars.at(cursor_.bar);
+    if (here.symbols.empty()) {
+        score.bars.erase(score.bars.begin() + static_cast<std::ptrdiff_t>(first));
+    } else if (cursor_.symbol == here.symbols.size()) {
+        first = cursor_.bar + 1;
+    } else if (cursor_.symbol > 0) {
+        split_bar_at(score, cursor_);
+        first = cursor_.bar + 1;
+    }
+    score.bars.insert(score.bars.begin() + static_cast<std::ptrdiff_t>(first), bars.begin(),
+                      bars.end());
+    cursor_ = {first, 0};
+    land();
+    return true;
+}
+
 // --- keyboard commands --------------------------------------------------------------------
 
 bool EditorModel::apply(const Command& command) {

@@ -41,6 +41,8 @@ class EditorModel {
     const std::string& message() const { return message_; }
     // What was done is old news once the buttons turn to something else.
     void clear_message() { message_.clear(); }
+    // News from around the model (a rhythm tapped, a clef chosen) on the same line.
+    void say(std::string news) { message_ = std::move(news); }
     bool modified() const { return *score_ != *saved_; }
     void mark_saved() { saved_ = score_; }
     void set_title(std::string title);
@@ -101,6 +103,10 @@ class EditorModel {
     bool undo();
     bool redo();
     bool set_bar_clef(const std::string& id);
+    // Whole bars (a tapped rhythm) put in as bars at the cursor, one undo step: an empty bar is
+    // replaced by them, at a bar line they go in before or after the bar, inside a bar it is
+    // split there. The cursor goes to their first symbol.
+    bool insert_bars(const std::vector<Bar>& bars);
 
     // The six-button entry of one symbol, undone as one step: begin_entry puts the proposed
     // symbol on an empty position (or takes the symbol under the cursor); the entry_ functions

@@ -412,6 +412,48 @@ TEST_F(EditorEndToEnd, AFileOpenedSavesWithoutAskingAndSaveAsWritesANewFileBesid
     EXPECT_EQ(pane.wait_exit(), "0") << pane.screen();
 }
 
+TEST_F(EditorEndToEnd, ARhythmTappedOnEnterBecomesNotesOnTheGridAndIsSaved) {
+    // A new score, the menu's first line, eight taps 0.4 s apart, Back: two bars of quarter
+    // notes at 0.4 s a beat (lra-phone plays 0.2 s: another tempo than the clef's).
+    const ClefDeclaration lra{"lra-phone", "lra-phone.clef.xml"};
+    editor::Editor copy{
+        editor::EditorModel(editor::EditorModel::blank_score("my-taps", lra), {lra}), {}};
+    TmuxPane pane(edit_command("my-taps"), 40, 12);
+    ASSERT_TRUE(pane.wait_for_text("S:new note")) << pane.screen();
+    send(pane, {Button::back, Button::select});
+    ASSERT_TRUE(pane.wait_for_text(">tap a rhythm")) << pane.screen();
+    send(pane, {Button::select});
+    ASSERT_TRUE(pane.wait_for_text("tap S:note")) << pane.screen();
+    for (const Button button : {Button::back, Button::select, Button::select}) {
+        copy.press(button);
+    }
+    const auto began = std::chrono::steady_clock::now();
+    for (int k = 0; k < 8; ++k) {
+        std::this_thread::sleep_until(began + std::chrono::milliseconds(400 * k));
+        pane.key("Enter");
+        copy.press_at(Button::select, std::chrono::milliseconds(400 * k));
+    }
+    std::this_thread::sleep_until(began + std::chrono::milliseconds(400 * 8));
+    send(pane, {Button::back});
+    copy.press_at(Button::back, std::chrono::milliseconds(400 * 8));
+    ASSERT_TRUE(pane.wait_for_text("8 notes at 0.40 s a beat: S changes")) << pane.screen();
+    EXPECT_EQ(copy.model.message(), "8 notes at 0.40 s a beat: S changes");
+    ASSERT_EQ(copy.model.score().bars.size(), 2u);
+
+    send(pane, menu_presses(copy, "save"));
+    ASSERT_TRUE(pane.wait_for_text("saved as my-taps")) << pane.screen();
+    const auto stored = read_score(client->Get("score", "my-taps"), "my-taps").score;
+    EXPECT_EQ(stored.bars, copy.model.score().bars);
+    for (const auto& bar : stored.bars) {
+        ASSERT_EQ(bar.symbols.size(), 4u);
+        for (const auto& symbol : bar.symbols) {
+            EXPECT_EQ(std::get<Note>(symbol), (Note{Length::quarter, 5, 3}));
+        }
+    }
+    send(pane, menu_presses(copy, "quit"));
+    EXPECT_EQ(pane.wait_exit(), "0") << pane.screen();
+}
+
 TEST_F(EditorEndToEnd, ShowDrawsARegistryScore) {
     const auto shown =
         run_command({testing::required_env("VIBSCORE"), "show", "success", "--width", "40"});

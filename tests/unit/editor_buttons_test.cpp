@@ -292,6 +292,8 @@ TEST(EditorButtons, TheMenuActsOnTheSymbolJustEnteredAndRemembersTheChoice) {
     auto editor = fresh_editor();
     press(editor, {S, S, B, B, B, S});  // a note, leave; the other choices, the menu
     EXPECT_EQ(editor.scheme.mode(), ButtonScheme::Mode::menu);
+    EXPECT_EQ(highlighted(editor), "tap a rhythm");  // the first line, a newcomer's first look
+    press(editor, {D});
     EXPECT_EQ(highlighted(editor), "decrescendo  >");
     press(editor, {D, S});
     EXPECT_EQ(std::get<Note>(editor.model.score().bars[0].symbols[0]).dynamics,
@@ -304,20 +306,20 @@ TEST(EditorButtons, TheMenuActsOnTheSymbolJustEnteredAndRemembersTheChoice) {
 
 TEST(EditorButtons, LeftAndRightJumpBetweenMenuGroupsAndTheListWraps) {
     auto editor = fresh_editor();
-    press(editor, {B, S, R});
+    press(editor, {B, S, R, R});
     EXPECT_EQ(highlighted(editor), "legato with previous");
     press(editor, {R});
     EXPECT_EQ(highlighted(editor), "dotted / not dotted");
     press(editor, {L});
     EXPECT_EQ(highlighted(editor), "legato with previous");
-    press(editor, {L, U});
+    press(editor, {L, L, U});
     EXPECT_EQ(highlighted(editor), "quit");
 }
 
 TEST(EditorButtons, TiesFromTheMenu) {
     auto editor = fresh_editor();
     press(editor, {S, S, B, S, U, S, B, B});  // two notes
-    press(editor, {B, S, R, S});              // legato with previous
+    press(editor, {B, S, R, R, S});           // legato with previous
     press(editor, {S, S, B, B});              // the proposal continues the tie
     press(editor, {B, S, D, S});              // the menu reopens on legato: portamento is next
     const auto& symbols = editor.model.score().bars[0].symbols;
@@ -332,14 +334,15 @@ TEST(EditorButtons, LeftFromInsideAGroupGoesToThePreviousGroupAndTheTitleNamesIt
     // A newcomer pressed Left three times from "bar clef..." and landed on a hairpin.
     auto editor = fresh_editor();
     to_menu_entry(editor, "bar clef...");
-    EXPECT_EQ(editor.scheme.menu_view(editor.model).title, "menu: symbol, bar 3/7");
+    EXPECT_EQ(editor.scheme.menu_view(editor.model).title, "menu: symbol, bar 4/8");
     press(editor, {L});
     EXPECT_EQ(highlighted(editor), "legato with previous");
-    EXPECT_EQ(editor.scheme.menu_view(editor.model).title, "menu: ties 2/7");
-    press(editor, {L, L});
+    EXPECT_EQ(editor.scheme.menu_view(editor.model).title, "menu: ties 3/8");
+    press(editor, {L, L, L});
     EXPECT_EQ(highlighted(editor), "save");
     press(editor, {R});
-    EXPECT_EQ(highlighted(editor), "decrescendo  >");
+    EXPECT_EQ(highlighted(editor), "tap a rhythm");
+    EXPECT_EQ(editor.scheme.menu_view(editor.model).title, "menu: enter 1/8");
 }
 
 TEST(EditorButtons, ABlockMarkedWithButtonsIsCopiedPastedAndRaised) {
@@ -463,7 +466,7 @@ TEST(EditorButtons, TheMenuGoesToTheFirstAndLastBarAndPlaysFromTheStart) {
     press(editor, {S, S, S, S, S, S, S, S, S, S, B, B});  // nine quarters: three bars
     ASSERT_EQ(editor.model.score().bars.size(), 3u);
     to_menu_entry(editor, "to the first bar");
-    EXPECT_EQ(editor.scheme.menu_view(editor.model).title, "menu: play, go to, undo 6/7");
+    EXPECT_EQ(editor.scheme.menu_view(editor.model).title, "menu: play, go to, undo 7/8");
     EXPECT_EQ(editor.press(S).kind, Request::Kind::none);
     EXPECT_EQ(editor.model.cursor(), (Position{0, 0}));
     to_menu_entry(editor, "to the last bar");

@@ -167,6 +167,39 @@ int progress(const Editor& editor, const Score& target) {
     return entered_prefix(without_open, target);
 }
 
+namespace {
+
+int agreeing_prefix(const Editor& editor, const Score& target) {
+    const auto have = tokens(editor.model.score());
+    const auto want = tokens(target);
+    int agree = 0;
+    while (static_cast<std::size_t>(agree) < have.size() &&
+           static_cast<std::size_t>(agree) < want.size() &&
+           have[static_cast<std::size_t>(agree)] == want[static_cast<std::size_t>(agree)]) {
+        ++agree;
+    }
+    // Only changes count: a symbol or bar line more or less (a proposal opened past the end,
+    // a bar split) is no nearer.
+    return have.size() == want.size() ? agree : -1;
+}
+
+}  // namespace
+
+PressPlan plan_changes(const Editor& start, const Score& target, std::size_t state_limit) {
+    PressPlan plan;
+    Editor current = start;
+    while (!finished(current, target)) {
+        auto step = next_step(current, target, agreeing_prefix, state_limit, plan.states_seen);
+        if (!step) {
+            return plan;
+        }
+        current = std::move(step->editor);
+        plan.presses.insert(plan.presses.end(), step->presses.begin(), step->presses.end());
+    }
+    plan.reached = true;
+    return plan;
+}
+
 PressPlan plan_name(const NameEntry& start, const std::string& name) {
     PressPlan plan;
     struct Step {

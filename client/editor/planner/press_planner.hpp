@@ -24,6 +24,12 @@ struct PressPlan {
 PressPlan plan_presses(const Editor& start, const Score& target,
                        std::size_t state_limit = 2'000'000);
 
+// Like plan_presses, for a score that holds every symbol already but some of them wrong (a
+// rhythm tapped, then strengths to set): progress is how many leading bars and symbols agree
+// with `target`, whatever follows them.
+PressPlan plan_changes(const Editor& start, const Score& target,
+                       std::size_t state_limit = 2'000'000);
+
 // The fewest presses that save a name entry (opened on its proposals) under `name`: a
 // breadth-first search of its presses that never types a character off the way to `name` or
 // to a proposal (typing one and deleting it again is never the shorter way).
