@@ -287,6 +287,15 @@ int stop(std::uint64_t id, std::ostream& out, std::ostream& err) {
     });
 }
 
+int stop_all(std::ostream& out, std::ostream& err) {
+    return with_daemon(err, [&](Haptics& haptics) {
+        haptics.StopAll();
+        haptics.take_signals();
+        out << (haptics.any_stopped() ? "stopped every playback" : "nothing was playing") << "\n";
+        return exit_ok;
+    });
+}
+
 int list(const std::string& kind, std::ostream& out, std::ostream& err) {
     return with_daemon(err, [&](Haptics& haptics) {
         for (const auto& entry : haptics.List(kind)) {

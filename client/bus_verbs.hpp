@@ -25,6 +25,8 @@ struct PlayRequest {
 // as files are sent along with it, registry clefs go by name.
 int play(const PlayRequest& request, const ClefSearch& clefs, std::ostream& out, std::ostream& err);
 int stop(std::uint64_t id, std::ostream& out, std::ostream& err);
+// Every playback, whoever started it (StopAll: polkit org.vibscore.manage).
+int stop_all(std::ostream& out, std::ostream& err);
 int list(const std::string& kind, std::ostream& out, std::ostream& err);
 int get(const std::string& kind, const std::string& name, std::ostream& out, std::ostream& err);
 // A score's clefs must be registry clefs in the store: each href that names a clef file is

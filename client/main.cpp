@@ -5,6 +5,7 @@
 #include <iterator>
 #include <limits>
 
+#include "client/assign_verb.hpp"
 #include "client/bus_verbs.hpp"
 #include "client/convert_verb.hpp"
 #include "client/editor/documents.hpp"
@@ -162,9 +163,15 @@ int main(int argc, char** argv) {
                         "stay until it ends, showing each bar; Ctrl-C stops it");
 
     std::uint64_t stop_id = 0;
+    bool stop_everyone = false;
     auto* stop_verb = app.add_subcommand("stop", "Stop a playback (default: all of yours).");
-    stop_verb->add_option("ID", stop_id, "playback id printed by play")
-        ->check(number_between(1, std::numeric_limits<double>::infinity(), NumberKind::whole));
+    auto* stop_id_option =
+        stop_verb->add_option("ID", stop_id, "playback id printed by play")
+            ->check(number_between(1, std::numeric_limits<double>::infinity(), NumberKind::whole));
+    stop_verb
+        ->add_flag("--all", stop_everyone,
+                   "every playback, whoever started it (polkit: org.vibscore.manage)")
+        ->excludes(stop_id_option);
 
     std::string kind = "score";
     std::string name;
@@ -212,6 +219,18 @@ int main(int argc, char** argv) {
     show_verb->add_option("--png", show_png, "draw the staff (or the clef) as a PNG image instead");
     add_clefs_option(show_verb, clef_search);
 
+    AssignRequest assign_request;
+    auto* assign_verb = app.add_subcommand(
+        "assign",
+        "Choose the registry score a feedback event plays for you (vibscore-feedback; "
+        "docs/feedbackd.md): EVENT SCORE, EVENT --default, or --list.");
+    assign_verb->add_option("EVENT", assign_request.event, "event name, e.g. phone-incoming-call");
+    assign_verb->add_option("SCORE", assign_request.score, "registry score to play for it");
+    assign_verb->add_flag("--default", assign_request.to_default,
+                          "play the theme's score for EVENT again");
+    assign_verb->add_flag("--list", assign_request.list,
+                          "list the events and the score each plays");
+
     vibscore::editor::EditOptions edit_options;
     auto* edit_verb = app.add_subcommand(
         "edit", "Compose in the terminal, by keyboard or six buttons (docs/editor.md).");
@@ -254,7 +273,7 @@ int main(int argc, char** argv) {
         return play(play_request, clef_search, std::cout, std::cerr);
     }
     if (stop_verb->parsed()) {
-        return stop(stop_id, std::cout, std::cerr);
+        return stop_everyone ? stop_all(std::cout, std::cerr) : stop(stop_id, std::cout, std::cerr);
     }
     if (list_verb->parsed()) {
         return list(kind, std::cout, std::cerr);
@@ -280,6 +299,9 @@ int main(int argc, char** argv) {
     }
     if (show_verb->parsed()) {
         return vibscore::editor::show_score(show_request, std::cout, std::cerr);
+    }
+    if (assign_verb->parsed()) {
+        return assign(assign_request, std::cout, std::cerr);
     }
     if (edit_verb->parsed()) {
         return vibscore::editor::run_editor(edit_options, std::cerr);

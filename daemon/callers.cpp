@@ -56,8 +56,11 @@ const Caller& CallerDirectory::identify(const sdbus::Message& message) {
     return callers_.emplace(sender, std::move(caller)).first->second;
 }
 
-bool CallerDirectory::admit(const std::string& sender, std::uint64_t now_us) {
-    auto [bucket, fresh] = buckets_.try_emplace(sender, Bucket{burst_, now_us});
+bool CallerDirectory::admit(uid_t uid, std::uint64_t now_us) {
+    if (uid == 0) {
+        return true;
+    }
+    auto [bucket, fresh] = buckets_.try_emplace(uid, Bucket{burst_, now_us});
     auto& state = bucket->second;
     if (!fresh) {
         const double elapsed = static_cast<double>(now_us - state.updated_us) / 1e6;
@@ -73,7 +76,6 @@ bool CallerDirectory::admit(const std::string& sender, std::uint64_t now_us) {
 
 void CallerDirectory::forget(const std::string& sender) {
     callers_.erase(sender);
-    buckets_.erase(sender);
 }
 
 void CallerDirectory::set_rate(double requests_per_second, double burst) {

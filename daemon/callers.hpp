@@ -20,7 +20,9 @@ struct Caller {
 };
 
 // Who is calling, from the bus's credentials for the sender (not from anything the caller says),
-// cached per connection; and a token bucket per connection so one caller cannot flood the daemon.
+// cached per connection; and a token bucket per user, so that no user floods the daemon, however
+// many connections it opens (twenty connections of one uid are one caller). Root is not limited:
+// it could stop the daemon anyway, and the system's own services must not be refused.
 class CallerDirectory {
   public:
     // Where a sender's user id comes from: the bus driver in the daemon (BusCredentials);
@@ -30,8 +32,11 @@ class CallerDirectory {
     CallerDirectory(double requests_per_second, double burst, UidOfSender uid_of_sender = {});
 
     const Caller& identify(const sdbus::Message& message);
-    // True if the sender may make another request now; spends one token.
-    bool admit(const std::string& sender, std::uint64_t now_us);
+    // True if `uid` may make another request now; spends one token. A request needs a whole
+    // token: half of one is not enough.
+    bool admit(uid_t uid, std::uint64_t now_us);
+    // The connection left the bus. Its user's bucket stays: leaving and coming back must not
+    // refill it.
     void forget(const std::string& sender);
     void set_rate(double requests_per_second, double burst);
     double requests_per_second() const { return rate_; }
@@ -43,7 +48,7 @@ class CallerDirectory {
     };
     UidOfSender uid_of_sender_;
     std::unordered_map<std::string, Caller> callers_;
-    std::unordered_map<std::string, Bucket> buckets_;
+    std::unordered_map<uid_t, Bucket> buckets_;
     double rate_;
     double burst_;
 };

@@ -25,13 +25,8 @@ void check(int result, const char* what) {
 
 }  // namespace
 
-EventLoop::EventLoop(Watchdog watchdog) {
+EventLoop::EventLoop() {
     check(sd_event_new(&event_), "sd_event_new");
-    // Pings the service manager only when it asked for a watchdog (WATCHDOG_USEC); otherwise an
-    // idle loop stays asleep.
-    if (watchdog == Watchdog::pinged) {
-        check(sd_event_set_watchdog(event_, 1), "sd_event_set_watchdog");
-    }
 }
 
 EventLoop::~EventLoop() {

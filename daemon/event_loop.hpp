@@ -24,10 +24,9 @@ using EventSourcePtr = std::unique_ptr<sd_event_source, EventSourceUnref>;
 // thread has its own for the player's timer (PlaybackThread). A loop is used by one thread only.
 class EventLoop {
   public:
-    // Whether the loop pings the service manager's watchdog when it asks for one
-    // (WATCHDOG_USEC): only one loop of the process should, the bus thread's.
-    enum class Watchdog { pinged, not_pinged };
-    explicit EventLoop(Watchdog watchdog = Watchdog::pinged);
+    // The service manager's watchdog is pinged by daemon/watchdog.*, which knows whether both
+    // threads are alive; a loop never pings by itself.
+    EventLoop();
     ~EventLoop();
     EventLoop(const EventLoop&) = delete;
     EventLoop& operator=(const EventLoop&) = delete;

@@ -5,72 +5,16 @@
 #include "common/monotonic_clock.hpp"
 #include "common/number_text.hpp"
 #include "config.h"
+#include "daemon/bus_errors.hpp"
 #include "daemon/log.hpp"
-#include "daemon/play_request.hpp"
 #include "daemon/request_error.hpp"
 #include "dbus/haptics1_names.hpp"
 #include "dbus/name_owner_watch.hpp"
 #include "dbus/sdbus_compat.hpp"
-#include "score/document_error.hpp"
 
 namespace vibscore::daemon {
 
 namespace {
-
-using namespace haptics1::errors;
-
-const char* error_name(RegistryError::Code code) {
-    switch (code) {
-        case RegistryError::Code::invalid_document:
-            return kInvalidDocument;
-        case RegistryError::Code::not_found:
-            return kNotFound;
-        case RegistryError::Code::permission_denied:
-            return kPermissionDenied;
-        case RegistryError::Code::limit_exceeded:
-            return kLimitExceeded;
-        case RegistryError::Code::in_use:
-            return kBusy;
-    }
-    return kInvalidDocument;
-}
-
-const char* error_name(RequestError::Code code) {
-    switch (code) {
-        case RequestError::Code::invalid:
-            return kInvalidDocument;
-        case RequestError::Code::not_found:
-            return kNotFound;
-        case RequestError::Code::permission_denied:
-            return kPermissionDenied;
-        case RequestError::Code::limit_exceeded:
-            return kLimitExceeded;
-    }
-    return kInvalidDocument;
-}
-
-// Runs a method body; whatever it throws leaves as a named D-Bus error.
-template <typename Body>
-auto guarded(const char* method, Body&& body) -> decltype(body()) {
-    try {
-        return body();
-    } catch (const sdbus::Error&) {
-        throw;
-    } catch (const RequestError& error) {
-        throw dbus::bus_error(error_name(error.code()), error.what());
-    } catch (const RegistryError& error) {
-        throw dbus::bus_error(error_name(error.code()), error.what());
-    } catch (const DocumentError& error) {
-        throw dbus::bus_error(kInvalidDocument, error.what());
-    } catch (const PlayerBusy& error) {
-        throw dbus::bus_error(kBusy, error.what());
-    } catch (const drivers::DeviceError& error) {
-        throw dbus::bus_error(kDevice, error.what());
-    } catch (const std::exception& error) {
-        log::error(std::string(method) + " failed unexpectedly: " + error.what());
-        throw dbus::bus_error(kFailed, std::string(method) + " failed: " + error.what());
-    }
-}
 
 DocumentKind kind_named(const std::string& kind) {
     const auto parsed = parse_document_kind(kind);
@@ -85,8 +29,7 @@ DocumentKind kind_named(const std::string& kind) {
 
 HapticsService::HapticsService(sdbus::IConnection& connection, const DaemonConfig& config,
                                Registry& registry, PlaybackThread& playback,
-                               CallerDirectory& callers, ActuatorHost& host,
-                               const Authorizer& authorizer)
+                               CallerDirectory& callers, ActuatorHost& host, Authorizer& authorizer)
     : AdaptorInterfaces(connection, dbus::object_path(haptics1::kObjectPath)),
       config_(config),
       registry_(registry),
@@ -97,8 +40,13 @@ HapticsService::HapticsService(sdbus::IConnection& connection, const DaemonConfi
       announced_driver_(Driver()),
       announced_capabilities_(Capabilities()) {
     vanish_watch_ = dbus::watch_connections_leaving(connection, [this](const std::string& name) {
-        playback_.call([&](Player& player) { player.sender_vanished(name); });
         callers_.forget(name);
+        authorizer_.forget(name);
+        try {
+            playback_.call([name](Player& player) { player.sender_vanished(name); });
+        } catch (const PlaybackStuck& stuck) {
+            log::error("could not end the playbacks of " + name + ": " + stuck.what());
+        }
     });
     playback_.set_listener(this);
     // A switch happens on the playback thread; the bus hears of it on the bus thread.
@@ -113,20 +61,33 @@ HapticsService::~HapticsService() {
 }
 
 std::string HapticsService::Driver() {
-    return playback_.call([&](Player&) { return host_.driver(); });
+    return guarded("Driver", [&] {
+        return playback_.call([&host = host_](Player&) { return host.driver(); });
+    });
 }
 
 std::vector<std::string> HapticsService::Capabilities() {
-    return playback_.call([&](Player&) { return host_.capabilities().names(); });
+    return guarded("Capabilities", [&] {
+        return playback_.call([&host = host_](Player&) { return host.capabilities().names(); });
+    });
 }
 
 double HapticsService::Intensity() {
-    return playback_.call([](Player& player) { return player.master_intensity(); });
+    return guarded("Intensity", [&] {
+        return playback_.call([](Player& player) { return player.master_intensity(); });
+    });
 }
 
 void HapticsService::driver_switched() {
-    auto driver = Driver();
-    auto capabilities = Capabilities();
+    std::string driver;
+    std::vector<std::string> capabilities;
+    try {
+        driver = Driver();
+        capabilities = Capabilities();
+    } catch (const sdbus::Error& error) {
+        log::error("after a driver switch: " + error.getMessage());
+        return;
+    }
     if (driver == announced_driver_ && capabilities == announced_capabilities_) {
         return;
     }
@@ -135,95 +96,160 @@ void HapticsService::driver_switched() {
     dbus::emit_properties_changed(getObject(), INTERFACE_NAME, {"Driver", "Capabilities"});
 }
 
-const Caller& HapticsService::admit_caller() {
+Caller HapticsService::admit_caller() {
     const Caller& caller = dbus::with_current_message(
         getObject(),
         [&](const sdbus::Message& message) -> const Caller& { return callers_.identify(message); });
-    if (!callers_.admit(caller.sender, monotonic_now_us())) {
+    if (!callers_.admit(caller.uid, monotonic_now_us())) {
         throw RequestError(RequestError::Code::limit_exceeded,
-                           "too many requests from " + caller.sender + "; the limit is " +
-                               number_text(callers_.requests_per_second()) + " per second");
+                           "too many requests from uid " + std::to_string(caller.uid) +
+                               "; the limit is " + number_text(callers_.requests_per_second()) +
+                               " per second for each user");
     }
     return caller;
 }
 
-std::uint64_t HapticsService::Play(const std::string& score,
-                                   const std::map<std::string, sdbus::Variant>& options) {
-    return guarded("Play", [&] {
-        const Caller& caller = admit_caller();
-        const PlayOptions play_options = parse_play_options(options);
-        if (needs_urgent_usage(play_options.usage)) {
-            authorizer_.require(caller, Action::urgent_usage,
-                                "Playing with usage " + std::string(to_string(play_options.usage)));
-        }
-        // A request that would be refused is refused before its score is read or rendered.
-        playback_.call([&](Player& player) {
-            player.check_admission(play_options.usage, play_options.repeat);
+template <typename Reply, typename Then>
+void HapticsService::when_allowed(const std::shared_ptr<Reply>& reply, const Caller& caller,
+                                  std::optional<Action> action, std::string what, Then then) {
+    if (!action) {
+        reply->finish(then);
+        return;
+    }
+    authorizer_.decide(
+        caller, *action,
+        [reply, what = std::move(what), then = std::move(then)](const Decision& decision) mutable {
+            reply->finish([&] {
+                decision.require(what);
+                return then();
+            });
         });
-        PlaybackRequest request = make_playback_request(
-            find_score_to_play(registry_, score, play_options, config_.device_clefs), play_options,
-            config_.separation_ms / 1000.0);
-        request.owner = caller.uid;
-        request.sender = caller.sender;
-        const auto label = request.label;
-        const auto id =
-            playback_.call([&](Player& player) { return player.play(std::move(request)); });
-        log::debug("playback " + std::to_string(id) + ": " + label + " (" +
-                   std::string(to_string(play_options.usage)) + ") for uid " +
-                   std::to_string(caller.uid));
-        return id;
+}
+
+void HapticsService::Play(sdbus::Result<std::uint64_t>&& result, std::string score,
+                          std::map<std::string, sdbus::Variant> options) {
+    const auto reply = DeferredReply<std::uint64_t>::make(std::move(result), "Play");
+    reply->start([&] {
+        const Caller caller = admit_caller();
+        const PlayOptions play_options = parse_play_options(options);
+        std::optional<Action> action;
+        if (needs_urgent_usage(play_options.usage)) {
+            action = Action::urgent_usage;
+        }
+        when_allowed(reply, caller, action,
+                     "Playing with usage " + std::string(to_string(play_options.usage)),
+                     [this, caller, score = std::move(score), play_options] {
+                         return play(caller, score, play_options);
+                     });
     });
 }
 
-void HapticsService::Stop(const std::uint64_t& playback_id) {
-    guarded("Stop", [&] {
-        const Caller& caller = admit_caller();
-        const auto stop_as = [&](bool privileged) {
-            return playback_.call(
-                [&](Player& player) { return player.stop(playback_id, caller.uid, privileged); });
-        };
-        auto result = stop_as(false);
+std::uint64_t HapticsService::play(const Caller& caller, const std::string& score,
+                                   const PlayOptions& options) {
+    // A request that would be refused is refused before its score is read or rendered.
+    playback_.call([usage = options.usage, repeat = options.repeat](Player& player) {
+        player.check_admission(usage, repeat);
+    });
+    PlaybackRequest request =
+        make_playback_request(find_score_to_play(registry_, score, options, config_.device_clefs),
+                              options, config_.separation_ms / 1000.0);
+    request.owner = caller.uid;
+    request.sender = caller.sender;
+    const auto label = request.label;
+    const auto id = playback_.call([request = std::move(request)](Player& player) mutable {
+        return player.play(std::move(request));
+    });
+    log::debug("playback " + std::to_string(id) + ": " + label + " (" +
+               std::string(to_string(options.usage)) + ") for uid " + std::to_string(caller.uid));
+    return id;
+}
+
+namespace {
+
+// What a stop's result means to its caller: nothing, or the error it gets.
+void answer_stop(Player::StopResult result, std::uint64_t playback_id) {
+    switch (result) {
+        case Player::StopResult::stopped:
+        case Player::StopResult::not_playing:
+            return;
+        case Player::StopResult::not_found:
+            throw RequestError(RequestError::Code::not_found,
+                               "no playback " + std::to_string(playback_id) + " was started");
+        case Player::StopResult::not_permitted:
+            throw RequestError(RequestError::Code::permission_denied,
+                               "playback " + std::to_string(playback_id) +
+                                   " belongs to another user; stopping it needs "
+                                   "org.vibscore.manage");
+    }
+}
+
+}  // namespace
+
+Player::StopResult HapticsService::stop(const Caller& caller, std::uint64_t playback_id,
+                                        bool privileged) {
+    return playback_.call([playback_id, uid = caller.uid, privileged](Player& player) {
+        return player.stop(playback_id, uid, privileged);
+    });
+}
+
+void HapticsService::Stop(sdbus::Result<>&& result, std::uint64_t playback_id) {
+    const auto reply = DeferredReply<>::make(std::move(result), "Stop");
+    reply->start([&] {
+        const Caller caller = admit_caller();
+        const auto first = stop(caller, playback_id, false);
         // Only a stop that would be refused asks polkit: a caller's own playbacks need no action.
-        if (result == Player::StopResult::not_permitted &&
-            authorizer_.allowed(caller, Action::manage)) {
-            result = stop_as(true);
+        if (first != Player::StopResult::not_permitted) {
+            reply->finish([&] { answer_stop(first, playback_id); });
+            return;
         }
-        switch (result) {
-            case Player::StopResult::stopped:
-            case Player::StopResult::not_playing:
-                return;
-            case Player::StopResult::not_found:
-                throw RequestError(RequestError::Code::not_found,
-                                   "no playback " + std::to_string(playback_id) + " was started");
-            case Player::StopResult::not_permitted:
-                throw RequestError(
-                    RequestError::Code::permission_denied,
-                    "playback " + std::to_string(playback_id) +
-                        " belongs to another user; stopping it needs org.vibscore.manage");
-        }
+        authorizer_.decide(
+            caller, Action::manage, [this, reply, caller, playback_id](const Decision& decision) {
+                reply->finish([&] {
+                    answer_stop(decision.allowed() ? stop(caller, playback_id, true)
+                                                   : Player::StopResult::not_permitted,
+                                playback_id);
+                });
+            });
     });
 }
 
-void HapticsService::Compose(const std::string& name, const std::string& document) {
-    guarded("Compose", [&] {
-        const Caller& caller = admit_caller();
-        authorizer_.require(caller, Action::compose, "Compose");
-        const auto stored = registry_.compose(name, document);
-        log::info("uid " + std::to_string(caller.uid) + " composed " +
-                  std::string(to_string(stored)) + " \"" + name + "\"");
-        emitRegistryChanged(std::string(to_string(stored)), name);
+void HapticsService::StopAll(sdbus::Result<>&& result) {
+    const auto reply = DeferredReply<>::make(std::move(result), "StopAll");
+    reply->start([&] {
+        const Caller caller = admit_caller();
+        when_allowed(reply, caller, Action::manage, "Stopping every user's playback",
+                     [this, caller] {
+                         playback_.call([](Player& player) { player.stop_all(kStopped); });
+                         log::info("uid " + std::to_string(caller.uid) + " stopped every playback");
+                     });
     });
 }
 
-void HapticsService::Delete(const std::string& kind, const std::string& name) {
-    guarded("Delete", [&] {
-        const Caller& caller = admit_caller();
-        authorizer_.require(caller, Action::compose, "Delete");
+void HapticsService::Compose(sdbus::Result<>&& result, std::string name, std::string document) {
+    const auto reply = DeferredReply<>::make(std::move(result), "Compose");
+    reply->start([&] {
+        const Caller caller = admit_caller();
+        when_allowed(reply, caller, Action::compose, "Compose",
+                     [this, caller, name = std::move(name), document = std::move(document)] {
+                         const auto stored = registry_.compose(name, document);
+                         log::info("uid " + std::to_string(caller.uid) + " composed " +
+                                   std::string(to_string(stored)) + " \"" + name + "\"");
+                         emitRegistryChanged(std::string(to_string(stored)), name);
+                     });
+    });
+}
+
+void HapticsService::Delete(sdbus::Result<>&& result, std::string kind, std::string name) {
+    const auto reply = DeferredReply<>::make(std::move(result), "Delete");
+    reply->start([&] {
+        const Caller caller = admit_caller();
         const auto which = kind_named(kind);
-        registry_.remove(which, name);
-        log::info("uid " + std::to_string(caller.uid) + " deleted " +
-                  std::string(to_string(which)) + " \"" + name + "\"");
-        emitRegistryChanged(std::string(to_string(which)), name);
+        when_allowed(reply, caller, Action::compose, "Delete", [this, caller, which, name] {
+            registry_.remove(which, name);
+            log::info("uid " + std::to_string(caller.uid) + " deleted " +
+                      std::string(to_string(which)) + " \"" + name + "\"");
+            emitRegistryChanged(std::string(to_string(which)), name);
+        });
     });
 }
 
@@ -276,39 +302,66 @@ std::vector<sdbus::Struct<std::string, std::string>> HapticsService::ListDrivers
     });
 }
 
-void HapticsService::SwitchDriver(const std::string& driver) {
-    guarded("SwitchDriver", [&] {
-        const Caller& caller = admit_caller();
-        authorizer_.require(caller, Action::manage, "Switching the driver");
-        const auto known = host_.drivers();
-        if (std::none_of(known.begin(), known.end(),
-                         [&](const drivers::DriverInfo& info) { return info.name == driver; })) {
-            std::string names;
-            for (const auto& info : known) {
-                names += (names.empty() ? "" : ", ") + info.name;
+void HapticsService::SwitchDriver(sdbus::Result<>&& result, std::string driver) {
+    const auto reply = DeferredReply<>::make(std::move(result), "SwitchDriver");
+    reply->start([&] {
+        const Caller caller = admit_caller();
+        when_allowed(reply, caller, Action::manage, "Switching the driver", [this, caller, driver] {
+            const auto known = host_.drivers();
+            if (std::none_of(known.begin(), known.end(), [&](const drivers::DriverInfo& info) {
+                    return info.name == driver;
+                })) {
+                std::string names;
+                for (const auto& info : known) {
+                    names += (names.empty() ? "" : ", ") + info.name;
+                }
+                throw RequestError(RequestError::Code::not_found,
+                                   "no driver \"" + driver + "\" (available: " + names + ")");
             }
-            throw RequestError(RequestError::Code::not_found,
-                               "no driver \"" + driver + "\" (available: " + names + ")");
-        }
-        log::info("uid " + std::to_string(caller.uid) + " switches the driver to " + driver);
-        try {
-            playback_.call([&](Player&) { host_.switch_to(driver); });
-        } catch (const std::invalid_argument& error) {
-            throw RequestError(RequestError::Code::invalid, error.what());
-        }
+            log::info("uid " + std::to_string(caller.uid) + " switches the driver to " + driver);
+            try {
+                playback_.call([&host = host_, driver](Player&) { host.switch_to(driver); });
+            } catch (const std::invalid_argument& error) {
+                throw RequestError(RequestError::Code::invalid, error.what());
+            }
+        });
     });
 }
 
+void HapticsService::set_intensity(const Caller& caller, double value) {
+    if (!(value >= 0.0 && value <= 1.0)) {
+        throw RequestError(RequestError::Code::invalid,
+                           "Intensity " + number_text(value) + " is outside 0..1");
+    }
+    playback_.call([value](Player& player) { player.set_master_intensity(value); });
+    log::info("uid " + std::to_string(caller.uid) + " set Intensity to " + number_text(value));
+}
+
+void HapticsService::SetIntensity(sdbus::Result<>&& result, double value) {
+    const auto reply = DeferredReply<>::make(std::move(result), "SetIntensity");
+    reply->start([&] {
+        const Caller caller = admit_caller();
+        when_allowed(reply, caller, Action::manage, "Setting Intensity",
+                     [this, caller, value] { set_intensity(caller, value); });
+    });
+}
+
+// A property setter has no deferred reply: it decides from what is known at once (root, or
+// polkit's answer kept for this connection). Otherwise it asks polkit for next time and
+// refuses now, pointing at SetIntensity, which waits for the answer.
 void HapticsService::Intensity(const double& value) {
     guarded("Intensity", [&] {
-        const Caller& caller = admit_caller();
-        authorizer_.require(caller, Action::manage, "Setting Intensity");
-        if (!(value >= 0.0 && value <= 1.0)) {
-            throw RequestError(RequestError::Code::invalid,
-                               "Intensity " + number_text(value) + " is outside 0..1");
+        const Caller caller = admit_caller();
+        const auto decision = authorizer_.known(caller, Action::manage);
+        if (!decision) {
+            authorizer_.decide(caller, Action::manage, [](const Decision&) {});
+            throw RequestError(RequestError::Code::permission_denied,
+                               "setting Intensity needs org.vibscore.manage, which polkit has not "
+                               "yet answered for this connection; call SetIntensity, which waits "
+                               "for polkit's answer");
         }
-        playback_.call([&](Player& player) { player.set_master_intensity(value); });
-        log::info("uid " + std::to_string(caller.uid) + " set Intensity to " + number_text(value));
+        decision->require("Setting Intensity");
+        set_intensity(caller, value);
     });
 }
 

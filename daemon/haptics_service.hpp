@@ -2,7 +2,9 @@
 
 #include <sdbus-c++/sdbus-c++.h>
 
+#include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -10,6 +12,8 @@
 #include "daemon/authority.hpp"
 #include "daemon/callers.hpp"
 #include "daemon/config.hpp"
+#include "daemon/deferred_reply.hpp"
+#include "daemon/play_request.hpp"
 #include "daemon/playback_thread.hpp"
 #include "daemon/registry/registry.hpp"
 #include "haptics1-adaptor.h"
@@ -19,7 +23,9 @@ namespace vibscore::daemon {
 // The org.vibscore.Haptics1 object: the bus adaptor, on the bus thread. It finds out who calls
 // and admits them, then hands the work to the registry, play_request, and (on the playback
 // thread) the player and the actuator host, and turns what they report into signals. Every
-// failure leaves here as a named D-Bus error; nothing a caller sends can stop the daemon.
+// failure leaves as a named D-Bus error (bus_errors.hpp); nothing a caller sends can stop the
+// daemon. Methods that may need polkit's answer reply when it comes (DeferredReply), so the bus
+// thread never waits for one caller's authorization while others call.
 class HapticsService final : public sdbus::AdaptorInterfaces<org::vibscore::Haptics1_adaptor>,
                              public PlayerListener {
   public:
@@ -27,7 +33,7 @@ class HapticsService final : public sdbus::AdaptorInterfaces<org::vibscore::Hapt
     // listens to the player and the host, and watches callers leave the bus, until destroyed.
     HapticsService(sdbus::IConnection& connection, const DaemonConfig& config, Registry& registry,
                    PlaybackThread& playback, CallerDirectory& callers, ActuatorHost& host,
-                   const Authorizer& authorizer);
+                   Authorizer& authorizer);
     ~HapticsService() override;
 
     // PlayerListener: playback events become signals.
@@ -36,26 +42,38 @@ class HapticsService final : public sdbus::AdaptorInterfaces<org::vibscore::Hapt
     void playback_finished(std::uint64_t id, const std::string& reason) override;
 
   private:
-    std::uint64_t Play(const std::string& score,
-                       const std::map<std::string, sdbus::Variant>& options) override;
-    void Stop(const std::uint64_t& playback_id) override;
-    void Compose(const std::string& name, const std::string& document) override;
-    void Delete(const std::string& kind, const std::string& name) override;
+    void Play(sdbus::Result<std::uint64_t>&& result, std::string score,
+              std::map<std::string, sdbus::Variant> options) override;
+    void Stop(sdbus::Result<>&& result, std::uint64_t playback_id) override;
+    void StopAll(sdbus::Result<>&& result) override;
+    void Compose(sdbus::Result<>&& result, std::string name, std::string document) override;
+    void Delete(sdbus::Result<>&& result, std::string kind, std::string name) override;
     std::vector<sdbus::Struct<std::string, std::string>> List(const std::string& kind) override;
     std::string Get(const std::string& kind, const std::string& name) override;
     std::string Origin(const std::string& kind, const std::string& name) override;
     std::vector<sdbus::Struct<std::string, std::string>> BarClefs(
         const std::string& score) override;
     std::vector<sdbus::Struct<std::string, std::string>> ListDrivers() override;
-    void SwitchDriver(const std::string& driver) override;
+    void SwitchDriver(sdbus::Result<>&& result, std::string driver) override;
+    void SetIntensity(sdbus::Result<>&& result, double value) override;
     std::string Driver() override;
     std::vector<std::string> Capabilities() override;
     double Intensity() override;
     void Intensity(const double& value) override;
     std::string Version() override;
 
-    // The caller of the method being handled; counts the request against its rate.
-    const Caller& admit_caller();
+    // The caller of the method being handled; counts the request against its user's rate.
+    Caller admit_caller();
+    // Runs `then` under `reply` once `caller` may do `action` (at once when no action is needed
+    // or the answer is known; when polkit answers otherwise); a refusal is the reply instead.
+    // `then` runs later, so it owns what it uses.
+    template <typename Reply, typename Then>
+    void when_allowed(const std::shared_ptr<Reply>& reply, const Caller& caller,
+                      std::optional<Action> action, std::string what, Then then);
+
+    std::uint64_t play(const Caller& caller, const std::string& score, const PlayOptions& options);
+    Player::StopResult stop(const Caller& caller, std::uint64_t playback_id, bool privileged);
+    void set_intensity(const Caller& caller, double value);
     // Driver and Capabilities changed with a switch: announced with PropertiesChanged.
     void driver_switched();
 
@@ -64,7 +82,7 @@ class HapticsService final : public sdbus::AdaptorInterfaces<org::vibscore::Hapt
     PlaybackThread& playback_;
     CallerDirectory& callers_;
     ActuatorHost& host_;
-    const Authorizer& authorizer_;
+    Authorizer& authorizer_;
     std::string announced_driver_;
     std::vector<std::string> announced_capabilities_;
     sdbus::Slot vanish_watch_;  // NameOwnerChanged: a caller left the bus

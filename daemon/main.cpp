@@ -23,6 +23,7 @@
 #include "daemon/registry/registry.hpp"
 #include "daemon/reload.hpp"
 #include "daemon/virtual_vibra/virtual_vibra.hpp"
+#include "daemon/watchdog.hpp"
 #include "dbus/haptics1_names.hpp"
 #include "dbus/sdbus_compat.hpp"
 
@@ -82,14 +83,14 @@ int serve(const CommandLine& command_line) {
     // From here on every actuator call happens on the playback thread.
     PlaybackThread playback(loop, host.actuator(),
                             {first_playback_id(config.store), config.rt_priority});
-    playback.call([&](Player& player) { host.attach(player); });
+    playback.call([&host](Player& player) { host.attach(player); });
 
     auto connection = sdbus::createSystemBusConnection();
     BusCredentials credentials(*connection);
     CallerDirectory callers(config.requests_per_second, config.request_burst,
                             [&](const std::string& sender) { return credentials.uid_of(sender); });
     BusPolkitAuthority polkit(*connection);
-    const Authorizer authorizer(polkit);
+    Authorizer authorizer(polkit);
     HapticsService service(*connection, config, registry, playback, callers, host, authorizer);
     // The kernel's vibra for programs that only know force feedback (feedbackd, games, fftest).
     const auto vibra_settings = parse_virtual_vibra_settings(config.settings_of("virtual-vibra"));
@@ -97,14 +98,22 @@ int serve(const CommandLine& command_line) {
     if (vibra_settings.enabled) {
         vibra.emplace(
             loop,
-            [&playback](const auto& work) { playback.call([&](Player& player) { work(player); }); },
+            [&playback](const auto& work) {
+                playback.call([work](Player& player) { work(player); });
+            },
             vibra_settings, config.separation_ms / 1000.0);
     }
     dbus::request_name(*connection, haptics1::kBusName);
     BusLoopBinding binding(loop, *connection);
+    // Pinged while both threads answer (WatchdogSec= in the unit).
+    const Watchdog watchdog(loop, playback);
 
     const auto stop_playback = [&] {
-        playback.call([](Player& player) { player.stop_all(kServiceStopped); });
+        try {
+            playback.call([](Player& player) { player.stop_all(kServiceStopped); });
+        } catch (const PlaybackStuck& stuck) {
+            log::error(std::string("stopping: ") + stuck.what());
+        }
     };
     const auto shut_down = [&] {
         log::info("stopping");
@@ -117,8 +126,12 @@ int serve(const CommandLine& command_line) {
     auto on_hup = loop.on_signal(SIGHUP, [&] {
         sd_notify(0, "RELOADING=1");
         try {
-            DaemonConfig fresh = read_config(command_line);
-            playback.call([&](Player&) { reload_config(config, std::move(fresh), host, callers); });
+            // The running configuration, the host and the callers live as long as the daemon;
+            // the fresh configuration goes with the work.
+            playback.call(
+                [&config, &host, &callers, fresh = read_config(command_line)](Player&) mutable {
+                    reload_config(config, std::move(fresh), host, callers);
+                });
         } catch (const std::exception& error) {
             log::error(std::string("reload failed, keeping the running configuration: ") +
                        error.what());

@@ -5,6 +5,8 @@
 #include <sys/prctl.h>
 
 #include <cerrno>
+#include <chrono>
+#include <cstdlib>
 #include <cstring>
 #include <optional>
 #include <stdexcept>
@@ -46,7 +48,8 @@ class PlaybackThread::Relay final : public PlayerListener {
 };
 
 PlaybackThread::PlaybackThread(EventLoop& bus_loop, drivers::Actuator& actuator,
-                               const Options& options) {
+                               const Options& options)
+    : bus_thread_(std::this_thread::get_id()), call_timeout_(options.call_timeout) {
     sd_event_source* source = nullptr;
     const int result = sd_event_add_io(
         bus_loop.get(), &source, events_.fd(), EPOLLIN,
@@ -85,6 +88,18 @@ PlaybackThread::PlaybackThread(EventLoop& bus_loop, drivers::Actuator& actuator,
 
 PlaybackThread::~PlaybackThread() {
     post([this] { loop_->exit(0); });
+    // A thread stuck in a driver would never join: after the call timeout the process ends
+    // without it (the kernel closes the devices; the unit's ExecStopPost switches the actuator
+    // off), rather than hanging until the service manager kills it.
+    const auto deadline = std::chrono::steady_clock::now() + call_timeout_;
+    while (!ended_ && std::chrono::steady_clock::now() < deadline) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+    if (!ended_) {
+        log::error("the playback thread did not end within " +
+                   std::to_string(call_timeout_.count()) + " ms; exiting without it");
+        std::_Exit(EXIT_FAILURE);
+    }
     thread_.join();
 }
 
@@ -98,9 +113,7 @@ void PlaybackThread::run(drivers::Actuator& actuator, const Options& options,
     std::optional<Player> player;
     EventSourcePtr work_source;
     try {
-        // The bus thread's loop pings the service manager's watchdog; this one must not hide
-        // a bus thread that hangs.
-        loop.emplace(EventLoop::Watchdog::not_pinged);
+        loop.emplace();
         relay.emplace(*this);
         player.emplace(*loop, actuator, &*relay, options.first_id);
         sd_event_source* source = nullptr;
@@ -128,6 +141,76 @@ void PlaybackThread::run(drivers::Actuator& actuator, const Options& options,
     } catch (const std::exception& error) {
         log::error(std::string("playback thread: ") + error.what());
     }
+    // Whatever ended the loop, no call will be answered any more: say so at once.
+    ended_ = true;
+}
+
+void PlaybackThread::require_bus_thread() const {
+    if (std::this_thread::get_id() == bus_thread_) {
+        return;
+    }
+    const bool playback = thread_.get_id() == std::this_thread::get_id();
+    throw std::logic_error(std::string("PlaybackThread::call() is only for the bus thread, which "
+                                       "made the PlaybackThread; it was called from ") +
+                           (playback ? "the playback thread itself, where it would wait for "
+                                       "itself"
+                                     : "another thread"));
+}
+
+void PlaybackThread::submit(const std::shared_ptr<TaskBase>& task) {
+    if (ended_) {
+        throw PlaybackStuck(
+            "the playback thread has ended (see the log); vibscored must be "
+            "restarted");
+    }
+    if (stuck_) {
+        const std::lock_guard lock(stuck_->mutex);
+        if (stuck_->state != TaskBase::State::done) {
+            throw PlaybackStuck(
+                "the playback thread is still stuck in an earlier call (a driver "
+                "that does not return?); the watchdog restarts vibscored");
+        }
+        stuck_.reset();
+    }
+    post([this, task] {
+        {
+            const std::lock_guard lock(task->mutex);
+            if (task->state == TaskBase::State::abandoned) {
+                task->state = TaskBase::State::done;  // its caller gave up: nothing to run
+                return;
+            }
+            task->state = TaskBase::State::running;
+        }
+        task->run(*player_);
+        {
+            const std::lock_guard lock(task->mutex);
+            task->state = TaskBase::State::done;
+        }
+        task->finished.notify_all();
+    });
+    std::unique_lock lock(task->mutex);
+    const bool done = task->finished.wait_for(lock, call_timeout_,
+                                              [&] { return task->state == TaskBase::State::done; });
+    if (done) {
+        return;
+    }
+    if (task->state == TaskBase::State::queued) {
+        task->state = TaskBase::State::abandoned;
+    }
+    // Until the thread gets past this task, calls fail at once instead of each waiting.
+    stuck_ = task;
+    throw PlaybackStuck("the playback thread did not answer within " +
+                        std::to_string(call_timeout_.count()) +
+                        " ms (a driver that does not return?); the watchdog restarts vibscored "
+                        "unless it recovers");
+}
+
+void PlaybackThread::ask_for_heartbeat() {
+    post([this] { heartbeat_us_ = monotonic_now_us(); });
+}
+
+bool PlaybackThread::answered_since(std::uint64_t since_us) const {
+    return heartbeat_us_.load() >= since_us;
 }
 
 void PlaybackThread::post(std::function<void()> work) {

@@ -30,7 +30,9 @@
 //   reference to the callback in both.
 // - Variant::peekValueType() returns a const char* (1.x: std::string), so `== "s"` would
 //   compare pointers: variant_signature() always gives a std::string.
-// - onPropertiesChanged() takes typed names: PropertiesChangedNames.
+// - onPropertiesChanged() takes typed names: ChangedProperties, PropertyName.
+// - An asynchronous call's reply handler gets std::optional<Error> (1.x: const Error*):
+//   AsyncCallError and failure_of().
 #ifndef VIBSCORE_SDBUS_CPP_MAJOR
 #error "VIBSCORE_SDBUS_CPP_MAJOR must be defined by the build (dbus/meson.build)"
 #endif
@@ -176,6 +178,20 @@ inline std::string sender_of(const sdbus::Message& message) {
     return message.getSender();
 #endif
 }
+
+// What an asynchronous call's reply handler is given as its first argument: the error, if the
+// call failed (1.x: a pointer, null on success; 2.x: an optional).
+#if VIBSCORE_SDBUS_CPP_MAJOR >= 2
+using AsyncCallError = std::optional<sdbus::Error>;
+inline const sdbus::Error* failure_of(const AsyncCallError& error) {
+    return error ? &*error : nullptr;
+}
+#else
+using AsyncCallError = const sdbus::Error*;
+inline const sdbus::Error* failure_of(AsyncCallError error) {
+    return error;
+}
+#endif
 
 // The error's name as a string in both generations.
 inline std::string error_name(const sdbus::Error& error) {

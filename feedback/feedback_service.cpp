@@ -1,13 +1,12 @@
 #include "feedback/feedback_service.hpp"
-#include "dbus/sdbus_compat.hpp"
 
-#include <algorithm>
-#include <cmath>
+#include <stdexcept>
 
 #include "common/monotonic_clock.hpp"
+#include "common/quoted_text.hpp"
 #include "daemon/log.hpp"
-#include "dbus/haptics1_names.hpp"
 #include "dbus/name_owner_watch.hpp"
+#include "dbus/sdbus_compat.hpp"
 
 namespace vibscore::feedback {
 
@@ -15,51 +14,70 @@ namespace {
 
 constexpr const char* kObjectPath = "/org/sigxcpu/Feedback";
 constexpr const char* kInvalidArgs = "org.freedesktop.DBus.Error.InvalidArgs";
-
-// feedbackd's limits on a Haptic.Vibrate pattern (fbd-haptic-manager.c).
-constexpr std::size_t kMaxPatternSteps = 10;
-constexpr std::uint32_t kMaxStepMs = 10'000;
+constexpr const char* kFailed = "org.freedesktop.DBus.Error.Failed";
 
 sdbus::Error invalid_args(const std::string& message) {
     return dbus::bus_error(kInvalidArgs, message);
 }
 
-// The level TriggerFeedback's hints ask for: "profile" may only lower it.
-Profile hinted_level(const std::map<std::string, sdbus::Variant>& hints, Profile level) {
-    const auto hint = hints.find("profile");
-    if (hint == hints.end()) {
-        return level;
+// TriggerFeedback's hints: "profile" (s) and "important" (b); others ("sound-file") have no
+// effect on vibration.
+void read_hints(const std::map<std::string, sdbus::Variant>& hints, Trigger& trigger) {
+    if (const auto hint = hints.find("profile"); hint != hints.end()) {
+        const std::string held = dbus::variant_signature(hint->second);
+        if (held != "s") {
+            throw invalid_args("hint \"profile\" must be a string (s), not " + held);
+        }
+        const auto name = hint->second.get<std::string>();
+        trigger.profile_hint = parse_profile(name);
+        if (!trigger.profile_hint) {
+            throw invalid_args("hint \"profile\": unknown profile \"" + name + "\" (expected " +
+                               std::string(kProfileNames) + ")");
+        }
     }
-    const std::string held = dbus::variant_signature(hint->second);
-    if (held != "s") {
-        throw invalid_args("hint \"profile\" must be a string (s), not " + held);
+    if (const auto hint = hints.find("important"); hint != hints.end()) {
+        const std::string held = dbus::variant_signature(hint->second);
+        if (held != "b") {
+            throw invalid_args("hint \"important\" must be a boolean (b), not " + held);
+        }
+        trigger.important = hint->second.get<bool>();
     }
-    const auto name = hint->second.get<std::string>();
-    const auto hinted = parse_profile(name);
-    if (!hinted) {
-        throw invalid_args("hint \"profile\": unknown profile \"" + name + "\" (expected " +
-                           std::string(kProfileNames) + ")");
-    }
-    return std::min(level, *hinted);
 }
 
 }  // namespace
 
 FeedbackService::FeedbackService(sdbus::IConnection& session_bus, sdbus::IConnection& system_bus,
-                                 daemon::EventLoop& loop, Theme theme, ServiceSettings settings)
+                                 daemon::EventLoop& loop, Theme theme, FeedbackSettings settings,
+                                 std::optional<std::filesystem::path> user_scores)
     : AdaptorInterfaces(session_bus, dbus::object_path(kObjectPath)),
-      haptics_(system_bus, {[this](std::uint64_t playback, const std::string& reason) {
-                                playback_finished(playback, reason);
+      haptics_(system_bus, {[this](std::uint64_t playback, const std::string&) {
+                                table_.playback_finished(playback);
                             },
-                            [this] { haptics_gone(); }}),
-      theme_(std::move(theme)),
-      settings_(std::move(settings)),
-      profile_(settings_.profile),
-      expiry_(loop, [this] { expire(); }) {
-    vanish_watch_ = dbus::watch_connections_leaving(session_bus, [this](const std::string& name) {
-        end_where([&](const Event& event) { return event.sender == name; },
-                  end_reason::explicit_end);
-    });
+                            [this] { table_.haptics_gone(); }}),
+      table_(haptics_, std::move(theme), std::move(settings),
+             {[this](std::uint32_t id, std::uint32_t reason) { emitFeedbackEnded(id, reason); },
+              [this](std::optional<std::uint64_t> deadline_us) {
+                  if (deadline_us) {
+                      expiry_.arm(*deadline_us);
+                  } else {
+                      expiry_.disarm();
+                  }
+              }}),
+      expiry_(loop, [this] { table_.expire(monotonic_now_us()); }),
+      user_scores_(std::move(user_scores)) {
+    vanish_watch_ = dbus::watch_connections_leaving(
+        session_bus, [this](const std::string& name) { table_.sender_left(name); });
+    if (user_scores_) {
+        try {
+            make_user_directory(user_scores_->parent_path());
+            user_scores_watch_ =
+                std::make_unique<FileWatch>(loop, *user_scores_, [this] { load_user_scores(); });
+        } catch (const std::exception& error) {
+            log::warning(std::string(error.what()) + ": changes to " + user_scores_->string() +
+                         " are not seen until a restart");
+        }
+        load_user_scores();
+    }
     registerAdaptor();
 }
 
@@ -67,40 +85,59 @@ FeedbackService::~FeedbackService() {
     unregisterAdaptor();
 }
 
-std::uint64_t FeedbackService::play(const ThemeEntry& entry, const std::string& title, int repeat) {
+void FeedbackService::load_user_scores() {
     try {
-        std::string score = entry.score;
-        double intensity = entry.intensity;
-        if (score.empty()) {
-            if (pattern_seconds(entry.pattern) <= 0.0) {
-                return 0;  // nothing to play, and nothing to repeat
-            }
-            auto on_clef =
-                pattern_on_clef(entry.pattern, title, kPatternClefHref, haptics_.pattern_clef());
-            score = std::move(on_clef.document);
-            intensity *= on_clef.intensity;
+        std::vector<Diagnostic> warnings;
+        auto scores = read_user_scores(*user_scores_, warnings);
+        for (const auto& warning : warnings) {
+            log::warning(format(warning));
         }
-        std::map<std::string, sdbus::Variant> options{
-            {"usage", sdbus::Variant(entry.usage)},
-            {"repeat", sdbus::Variant(static_cast<std::int32_t>(repeat))},
-            {"intensity", sdbus::Variant(intensity)},
-        };
-        if (!entry.clef.empty()) {
-            options.emplace("clef", sdbus::Variant(entry.clef));
-        }
-        return haptics_.Play(score, options);
-    } catch (const sdbus::Error& error) {
-        // Busy: a more important playback holds the actuator, as feedbackd's busy vibra.
-        if (error.getName() == haptics1::errors::kBusy) {
-            log::debug("vibscored is busy: " + error.getMessage());
-        } else {
-            log::warning("vibscored did not play \"" + title + "\": " + error.getName() + ": " +
-                         error.getMessage());
+        const auto count = scores.size();
+        if (table_.set_user_scores(std::move(scores))) {
+            log::info(std::to_string(count) + " of your own scores for events, from " +
+                      user_scores_->string());
+            emitEventScoresChanged();
         }
     } catch (const std::exception& error) {
-        log::warning("cannot play \"" + title + "\": " + error.what());
+        log::warning(std::string(error.what()) + " (the scores read before stay)");
     }
-    return 0;
+}
+
+std::vector<sdbus::Struct<std::string, std::string, std::string, bool>>
+FeedbackService::EventScores() {
+    std::vector<sdbus::Struct<std::string, std::string, std::string, bool>> list;
+    for (const auto& event : table_.event_scores()) {
+        list.emplace_back(event.event, event.score, event.theme_score, event.assigned);
+    }
+    return list;
+}
+
+void FeedbackService::AssignScore(const std::string& event, const std::string& score) {
+    try {
+        check_event_and_score(event, score);
+    } catch (const std::invalid_argument& error) {
+        throw invalid_args(error.what());
+    }
+    if (!user_scores_) {
+        throw dbus::bus_error(kFailed,
+                              "vibscore-feedback has no config directory (neither "
+                              "XDG_CONFIG_HOME nor HOME is set)");
+    }
+    try {
+        store_user_score(*user_scores_, event, score);
+    } catch (const std::exception& error) {
+        throw dbus::bus_error(
+            kFailed, "cannot store the score for " + quoted_text(event) + ": " + error.what());
+    }
+    log::info("event " + quoted_text(event) + " plays " +
+              (score.empty() ? std::string("the theme's score") : quoted_text(score)) +
+              " from now on (" + sender() + ")");
+    load_user_scores();
+}
+
+std::string FeedbackService::sender() const {
+    return dbus::with_current_message(
+        getObject(), [](const sdbus::Message& message) { return dbus::sender_of(message); });
 }
 
 void FeedbackService::TriggerFeedback(sdbus::Result<std::uint32_t>&& result, std::string app_id,
@@ -116,126 +153,22 @@ void FeedbackService::TriggerFeedback(sdbus::Result<std::uint32_t>&& result, std
         result.returnError(invalid_args("Invalid event " + event));
         return;
     }
-    feedback::Profile level = profile_;
+    Trigger trigger{sender(), std::move(app_id),    std::move(event), std::nullopt,
+                    false,    std::max(timeout, -1)};
     try {
-        level = hinted_level(hints, profile_);
+        read_hints(hints, trigger);
     } catch (const sdbus::Error& error) {
         result.returnError(error);
         return;
     }
-    timeout = std::max(timeout, -1);
-    const std::uint32_t id = next_id_++;
-    if (next_id_ == 0) {
-        next_id_ = 1;
-    }
-    const std::string sender = dbus::with_current_message(
-        getObject(), [](const sdbus::Message& message) { return dbus::sender_of(message); });
     // The caller has its id before anything plays, as with feedbackd.
+    const std::uint32_t id = table_.new_id();
     result.returnResults(id);
-
-    const ThemeEntry* entry = theme_.lookup(event, level);
-    const std::uint64_t playback = entry ? play(*entry, event, timeout == -1 ? 0 : -1) : 0;
-    const std::string about = "event " + std::to_string(id) + " \"" + event + "\" from " + app_id +
-                              " (" + sender + "), " + std::string(to_string(level)) + ": ";
-    if (playback == 0) {
-        log::debug(about + "no feedback");
-        emitFeedbackEnded(id, end_reason::not_found);
-        return;
-    }
-    log::debug(about + "playback " + std::to_string(playback));
-    Event& added = events_[id];
-    added.sender = sender;
-    added.level = theme_.level_of(event, level).value();
-    added.playback = playback;
-    if (timeout > 0) {
-        added.expires_us = monotonic_now_us() + static_cast<std::uint64_t>(timeout) * 1'000'000;
-        arm_expiry();
-    }
+    table_.trigger(id, trigger, monotonic_now_us());
 }
 
 void FeedbackService::EndFeedback(const std::uint32_t& id) {
-    end(id, end_reason::explicit_end);
-}
-
-void FeedbackService::end(std::uint32_t id, std::uint32_t reason) {
-    const auto event = events_.find(id);
-    if (event == events_.end() || event->second.ending) {
-        return;
-    }
-    event->second.end_reason = reason;
-    event->second.ending = true;
-    try {
-        haptics_.Stop(event->second.playback);
-        return;  // FeedbackEnded when vibscored reports the playback's end
-    } catch (const sdbus::Error& error) {
-        log::warning("vibscored did not stop playback " + std::to_string(event->second.playback) +
-                     ": " + error.getName() + ": " + error.getMessage());
-    }
-    ended(event);
-}
-
-void FeedbackService::ended(std::map<std::uint32_t, Event>::iterator event) {
-    const auto id = event->first;
-    const auto reason = event->second.end_reason;
-    events_.erase(event);
-    emitFeedbackEnded(id, reason);
-    arm_expiry();
-}
-
-void FeedbackService::end_where(const std::function<bool(const Event&)>& which,
-                                std::uint32_t reason) {
-    std::vector<std::uint32_t> ids;
-    for (const auto& [id, event] : events_) {
-        if (which(event)) {
-            ids.push_back(id);
-        }
-    }
-    for (const auto id : ids) {
-        end(id, reason);
-    }
-}
-
-void FeedbackService::playback_finished(std::uint64_t playback, const std::string& reason) {
-    if (haptic_playback_ == playback) {
-        haptic_playback_.reset();
-    }
-    const auto event = std::find_if(events_.begin(), events_.end(), [&](const auto& entry) {
-        return entry.second.playback == playback;
-    });
-    if (event != events_.end()) {
-        log::debug("event " + std::to_string(event->first) + ": playback " +
-                   std::to_string(playback) + " " + reason);
-        ended(event);
-    }
-}
-
-void FeedbackService::haptics_gone() {
-    log::warning("vibscored left the bus; the feedback it played has ended");
-    haptic_playback_.reset();
-    while (!events_.empty()) {
-        ended(events_.begin());
-    }
-}
-
-void FeedbackService::arm_expiry() {
-    std::optional<std::uint64_t> earliest;
-    for (const auto& [id, event] : events_) {
-        if (event.expires_us && !event.ending) {
-            earliest = std::min(earliest.value_or(*event.expires_us), *event.expires_us);
-        }
-    }
-    if (earliest) {
-        expiry_.arm(*earliest);
-    } else {
-        expiry_.disarm();
-    }
-}
-
-void FeedbackService::expire() {
-    const auto now = monotonic_now_us();
-    end_where([&](const Event& event) { return event.expires_us && *event.expires_us <= now; },
-              end_reason::expired);
-    arm_expiry();
+    table_.end(id, sender());
 }
 
 void FeedbackService::Profile(const std::string& value) {
@@ -244,65 +177,24 @@ void FeedbackService::Profile(const std::string& value) {
         throw invalid_args("unknown profile \"" + value + "\" (expected " +
                            std::string(kProfileNames) + ")");
     }
-    if (*profile == profile_) {
-        return;
-    }
-    profile_ = *profile;
-    log::info("profile " + value);
-    dbus::emit_properties_changed(getObject(), org::sigxcpu::Feedback_adaptor::INTERFACE_NAME,
-                                  {"Profile"});
-    // Feedback the new profile would not give ends now, as feedbackd ends it.
-    end_where([&](const Event& event) { return event.level > profile_; }, end_reason::explicit_end);
-    if (profile_ < feedback::Profile::quiet && haptic_playback_) {
-        try {
-            haptics_.Stop(*haptic_playback_);
-        } catch (const sdbus::Error& error) {
-            log::warning("vibscored did not stop the haptic pattern: " + error.getMessage());
-        }
+    if (table_.set_profile(*profile)) {
+        dbus::emit_properties_changed(getObject(), org::sigxcpu::Feedback_adaptor::INTERFACE_NAME,
+                                      {"Profile"});
     }
 }
 
 bool FeedbackService::Vibrate(const std::string& app_id,
                               const std::vector<sdbus::Struct<double, std::uint32_t>>& pattern) {
-    if (pattern.size() > kMaxPatternSteps) {
-        throw invalid_args("the pattern has " + std::to_string(pattern.size()) +
-                           " steps; at most " + std::to_string(kMaxPatternSteps) + " are allowed");
+    std::vector<HapticStep> steps;
+    steps.reserve(pattern.size());
+    for (const auto& step : pattern) {
+        steps.push_back({step.get<0>(), step.get<1>()});
     }
-    VibrationPattern steps;
-    for (std::size_t i = 0; i < pattern.size(); ++i) {
-        const double strength = pattern[i].get<0>();
-        const std::uint32_t ms = pattern[i].get<1>();
-        if (!(strength >= 0.0 && strength <= 1.0)) {
-            throw invalid_args("step " + std::to_string(i + 1) + ": strength " +
-                               std::to_string(strength) + " is outside 0..1");
-        }
-        if (ms > kMaxStepMs) {
-            throw invalid_args("step " + std::to_string(i + 1) + ": " + std::to_string(ms) +
-                               " ms is longer than " + std::to_string(kMaxStepMs) + " ms");
-        }
-        steps.push_back({ms / 1000.0, strength, strength, 0.0});
+    try {
+        return table_.vibrate(sender(), app_id, steps);
+    } catch (const std::invalid_argument& error) {
+        throw invalid_args(error.what());
     }
-    if (profile_ < feedback::Profile::quiet) {
-        return false;
-    }
-    if (pattern_seconds(steps) <= 0.0) {
-        if (haptic_playback_) {
-            try {
-                haptics_.Stop(*haptic_playback_);
-            } catch (const sdbus::Error& error) {
-                log::warning("vibscored did not stop the haptic pattern: " + error.getMessage());
-            }
-        }
-        return true;
-    }
-    ThemeEntry entry;
-    entry.pattern = std::move(steps);
-    entry.usage = settings_.haptic_usage;
-    const auto playback = play(entry, "haptic pattern of " + app_id, 0);
-    if (playback != 0) {
-        haptic_playback_ = playback;
-    }
-    return playback != 0;
 }
 
 }  // namespace vibscore::feedback

@@ -1,5 +1,7 @@
 #include "feedback/haptics_link.hpp"
 
+#include "common/quoted_text.hpp"
+#include "daemon/log.hpp"
 #include "dbus/haptics1_names.hpp"
 #include "dbus/name_owner_watch.hpp"
 #include "dbus/sdbus_compat.hpp"
@@ -30,6 +32,48 @@ const Clef& HapticsLink::pattern_clef() {
         pattern_clef_ = read_clef(Get("clef", kPatternClef), kPatternClefHref);
     }
     return *pattern_clef_;
+}
+
+Haptics::Played HapticsLink::play(const PlayRequest& request) {
+    const std::string title = quoted_text(request.title);
+    try {
+        const auto play = score_play(request, [this]() -> const Clef& { return pattern_clef(); });
+        if (!play) {
+            return {};
+        }
+        std::map<std::string, sdbus::Variant> options{
+            {"usage", sdbus::Variant(play->usage)},
+            {"repeat", sdbus::Variant(static_cast<std::int32_t>(play->repeat))},
+            {"intensity", sdbus::Variant(play->intensity)},
+        };
+        if (!play->clef.empty()) {
+            options.emplace("clef", sdbus::Variant(play->clef));
+        }
+        return {Play(play->score, options), false};
+    } catch (const sdbus::Error& error) {
+        // Busy: a more important playback holds the actuator, as feedbackd's busy vibra.
+        if (error.getName() == haptics1::errors::kBusy) {
+            log::debug("vibscored is busy: " + error.getMessage());
+        } else {
+            log::warning("vibscored did not play " + title + ": " + error.getName() + ": " +
+                         error.getMessage());
+        }
+        return {0, error.getName() == haptics1::errors::kNotFound && !request.entry.score.empty()};
+    } catch (const std::exception& error) {
+        log::warning("cannot play " + title + ": " + error.what());
+    }
+    return {};
+}
+
+bool HapticsLink::stop(std::uint64_t playback) {
+    try {
+        Stop(playback);
+        return true;
+    } catch (const sdbus::Error& error) {
+        log::warning("vibscored did not stop playback " + std::to_string(playback) + ": " +
+                     error.getName() + ": " + error.getMessage());
+    }
+    return false;
 }
 
 void HapticsLink::onPlaybackFinished(const std::uint64_t& playback, const std::string& reason) {

@@ -7,15 +7,16 @@
 #include <optional>
 #include <string>
 
+#include "feedback/haptics.hpp"
 #include "haptics1-proxy.h"
 #include "score/clef.hpp"
 
 namespace vibscore::feedback {
 
 // vibscored as vibscore-feedback uses it: its public D-Bus API on the system bus, nothing more.
-// Play and Stop are the generated calls (they throw sdbus::Error as vibscored answers); what it
-// reports comes back through the callbacks, on the thread that serves the connection.
-class HapticsLink : public sdbus::ProxyInterfaces<org::vibscore::Haptics1_proxy> {
+// It plays and stops what the event table asks (Haptics); what vibscored reports comes back
+// through the callbacks, on the thread that serves the connection.
+class HapticsLink : public sdbus::ProxyInterfaces<org::vibscore::Haptics1_proxy>, public Haptics {
   public:
     struct Callbacks {
         std::function<void(std::uint64_t playback, const std::string& reason)> playback_finished;
@@ -28,12 +29,15 @@ class HapticsLink : public sdbus::ProxyInterfaces<org::vibscore::Haptics1_proxy>
     HapticsLink(const HapticsLink&) = delete;
     HapticsLink& operator=(const HapticsLink&) = delete;
 
-    // The registry clef patterns are written on (pattern-ms), asked for once and kept until the
-    // registry announces a change of it. Throws sdbus::Error, or DocumentError for a clef that
-    // does not read.
-    const Clef& pattern_clef();
+    Played play(const PlayRequest& request) override;
+    bool stop(std::uint64_t playback) override;
 
   private:
+    // The registry clef patterns are written on (kPatternClef), asked for once and kept until
+    // the registry announces a change of it. Throws sdbus::Error, or DocumentError for a clef
+    // that does not read.
+    const Clef& pattern_clef();
+
     void onPlaybackStarted(const std::uint64_t&, const std::string&) override {}
     void onPlaybackPosition(const std::uint64_t&, const std::uint32_t&,
                             const std::uint32_t&) override {}
@@ -44,9 +48,5 @@ class HapticsLink : public sdbus::ProxyInterfaces<org::vibscore::Haptics1_proxy>
     std::optional<Clef> pattern_clef_;
     sdbus::Slot owner_watch_;  // NameOwnerChanged of vibscored's name
 };
-
-// The clef pattern_clef() fetches, and the href a score names it by.
-inline constexpr const char* kPatternClef = "pattern-ms";
-inline constexpr const char* kPatternClefHref = "pattern-ms.clef.xml";
 
 }  // namespace vibscore::feedback

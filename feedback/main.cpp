@@ -7,6 +7,8 @@
 #include <csignal>
 #include <cstdlib>
 #include <iostream>
+#include <string>
+#include <vector>
 
 #include "config.h"
 #include "daemon/event_loop.hpp"
@@ -14,7 +16,9 @@
 #include "daemon/usage.hpp"
 #include "dbus/sdbus_compat.hpp"
 #include "feedback/feedback_service.hpp"
+#include "feedback/feedbackd_theme.hpp"
 #include "feedback/theme.hpp"
+#include "feedback/user_scores.hpp"
 
 using namespace vibscore;
 using namespace vibscore::feedback;
@@ -27,11 +31,29 @@ struct Options {
     std::string theme;
     std::string profile = "full";
     std::string haptic_usage = "touch";
+    double max_haptic_strength = 1.0;
+    std::string allow_important = "org.sigxcpu.FbdAlertSlider,org.gnome.clocks";
     bool verbose = false;
 };
 
+std::vector<std::string> split_list(const std::string& list) {
+    std::vector<std::string> items;
+    std::size_t start = 0;
+    while (start <= list.size()) {
+        const auto comma = std::min(list.find(',', start), list.size());
+        if (comma > start) {
+            items.push_back(list.substr(start, comma - start));
+        }
+        start = comma + 1;
+    }
+    return items;
+}
+
 int serve(const Options& options) {
-    const Theme theme = load_theme(options.theme);
+    const Theme theme = load_theme(options.theme, ThemeSearch::from_environment());
+    for (const auto& warning : theme.warnings) {
+        log::warning(format(warning));
+    }
     log::info("theme \"" + theme.name + "\" (" + options.theme + "), " +
               std::to_string(theme.events().size()) + " events");
     daemon::EventLoop loop;
@@ -39,8 +61,19 @@ int serve(const Options& options) {
     auto session_bus = sdbus::createSessionBusConnection();
     auto system_bus = sdbus::createSystemBusConnection();
 
-    FeedbackService service(*session_bus, *system_bus, loop, theme,
-                            {*parse_profile(options.profile), options.haptic_usage});
+    FeedbackSettings settings;
+    settings.profile = *parse_profile(options.profile);
+    settings.haptic_usage = options.haptic_usage;
+    settings.max_haptic_strength = options.max_haptic_strength;
+    settings.allow_important = split_list(options.allow_important);
+    std::optional<std::filesystem::path> user_scores;
+    try {
+        user_scores = user_scores_path();
+    } catch (const std::exception& error) {
+        log::warning(std::string(error.what()) + ": events play the theme's scores only");
+    }
+    FeedbackService service(*session_bus, *system_bus, loop, theme, std::move(settings),
+                            user_scores);
     dbus::request_name(*session_bus, kBusName);
     daemon::BusLoopBinding session_binding(loop, *session_bus);
     daemon::BusLoopBinding system_binding(loop, *system_bus);
@@ -78,6 +111,14 @@ int main(int argc, char** argv) {
             return daemon::parse_usage(usage) ? std::string()
                                               : "expected " + std::string(daemon::usage_names());
         })
+        ->capture_default_str();
+    app.add_option("--max-haptic-strength", options.max_haptic_strength,
+                   "no vibration is stronger than this, 0..1 (feedbackd's max-haptic-strength)")
+        ->check(CLI::Range(0.0, 1.0))
+        ->capture_default_str();
+    app.add_option("--allow-important", options.allow_important,
+                   "app ids, comma-separated, whose \"important\" hint overrides the profile "
+                   "(feedbackd's allow-important; empty: none)")
         ->capture_default_str();
     app.add_flag("-v,--verbose", options.verbose, "log every event");
     app.set_version_flag("--version", VIBSCORE_VERSION);

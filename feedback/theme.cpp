@@ -2,12 +2,11 @@
 
 #include "daemon/usage.hpp"
 #include "feedback/feedbackd_theme.hpp"
+#include "feedback/json_fields.hpp"
 
 namespace vibscore::feedback {
 
 namespace {
-
-using Pointer = nlohmann::json::json_pointer;
 
 constexpr const char* kFormatKey = "vibscore-theme";
 
@@ -15,41 +14,39 @@ constexpr const char* kFormatKey = "vibscore-theme";
 //   { "vibscore-theme": 1, "name": "default",
 //     "profiles": { "quiet": { "EVENT": { "score": "NAME", "usage": "touch",
 //                                          "intensity": 0.8, "clef": "NAME" }, ... }, ... } }
-Theme read_vibscore_theme(const JsonDocument& document) {
-    const Pointer root;
-    document.only_members(root, {kFormatKey, "name", "profiles"});
-    if (document.integer(root / kFormatKey, 1, 1) != 1) {
-        throw document.error(root / kFormatKey, "unknown theme format version");
-    }
+Theme read_vibscore_theme(const JsonFields& json) {
+    const JsonValue& root = json.document().root();
+    json.only_members(root, {kFormatKey, "name", "profiles"});
+    json.integer(json.member(root, kFormatKey), 1, 1);
     Theme theme;
-    theme.name = document.string(root / "name");
-    for (const auto& [profile_name, events] : document.object(root / "profiles").items()) {
-        const Pointer profile_at = root / "profiles" / profile_name;
+    theme.name = json.string(json.member(root, "name"));
+    for (const auto& [profile_name, profile_offset, events] :
+         json.object(json.member(root, "profiles")).members) {
         const auto profile = parse_profile(profile_name);
         if (!profile) {
-            throw document.error(profile_at, "unknown profile \"" + profile_name + "\" (expected " +
-                                                 std::string(kProfileNames) + ")");
+            throw DocumentError(json.document().where(profile_offset),
+                                "unknown profile \"" + profile_name + "\" (expected " +
+                                    std::string(kProfileNames) + ")");
         }
-        for (const auto& [event, entry_json] : document.object(profile_at).items()) {
-            const Pointer at = profile_at / event;
-            document.only_members(at, {"score", "usage", "intensity", "clef"});
+        for (const auto& [event, event_offset, at] : json.object(events).members) {
+            json.only_members(at, {"score", "usage", "intensity", "clef"});
             ThemeEntry entry;
-            entry.score = document.string(at / "score");
+            const JsonValue& score = json.member(at, "score");
+            entry.score = json.string(score);
             if (entry.score.empty()) {
-                throw document.error(at / "score", "the score name is empty");
+                throw json.error(score, "the score name is empty");
             }
-            entry.usage =
-                document.has(at / "usage") ? document.string(at / "usage") : usage_for_event(event);
+            const JsonValue* usage = at.find("usage");
+            entry.usage = usage != nullptr ? json.string(*usage) : usage_for_event(event);
             if (!daemon::parse_usage(entry.usage)) {
-                throw document.error(at / "usage", "unknown usage \"" + entry.usage +
-                                                       "\" (expected " +
-                                                       std::string(daemon::usage_names()) + ")");
+                throw json.error(*usage, "unknown usage \"" + entry.usage + "\" (expected " +
+                                             std::string(daemon::usage_names()) + ")");
             }
-            if (document.has(at / "intensity")) {
-                entry.intensity = document.number(at / "intensity", 0.0, 1.0);
+            if (const JsonValue* intensity = at.find("intensity")) {
+                entry.intensity = json.number(*intensity, 0.0, 1.0);
             }
-            if (document.has(at / "clef")) {
-                entry.clef = document.string(at / "clef");
+            if (const JsonValue* clef = at.find("clef")) {
+                entry.clef = json.string(*clef);
             }
             theme.add(*profile, event, std::move(entry));
         }
@@ -81,16 +78,19 @@ void Theme::add(Profile profile, const std::string& event, ThemeEntry entry) {
     events_[event][profile] = std::move(entry);
 }
 
-Theme parse_theme(const JsonDocument& document) {
-    if (!document.root().is_object()) {
-        throw document.error(Pointer(), "a theme is a JSON object");
+Theme parse_theme(const JsonDocument& document, const ThemeSearch& search) {
+    const JsonFields json(document);
+    if (document.root().kind != JsonValue::Kind::object) {
+        throw json.error(document.root(), "a theme is a JSON object");
     }
-    return document.root().contains(kFormatKey) ? read_vibscore_theme(document)
-                                                : read_feedbackd_theme(document);
+    if (document.root().find(kFormatKey) != nullptr) {
+        return read_vibscore_theme(json);
+    }
+    return expand_feedbackd_theme(read_feedbackd_theme_file(json), search);
 }
 
-Theme load_theme(const std::string& path) {
-    return parse_theme(read_json_file(path));
+Theme load_theme(const std::string& path, const ThemeSearch& search) {
+    return parse_theme(read_json_file(path), search);
 }
 
 std::string usage_for_event(std::string_view event) {

@@ -29,7 +29,7 @@ _vibscore() {
     cur=${COMP_WORDS[COMP_CWORD]}
     prev=${COMP_WORDS[COMP_CWORD-1]}
     program=${COMP_WORDS[0]}
-    local verbs="check render info play stop list get compose delete show edit drivers driver convert"
+    local verbs="check render info play stop list get compose delete show edit drivers driver convert assign"
     local formats="score ahap android-json android-xml android-envelope rtttl midi"
     local valued="--usage|--clef|--clefs|--out|--rate|--repeat|--intensity|--width|--buttons|--keymap|--button-map|--from|--to|--track|--svg|--png"
 
@@ -80,10 +80,12 @@ _vibscore() {
             check|info) options+=" --clefs" ;;
             render) options+=" --rate --out --plot --width --svg --png --clefs" ;;
             play) options+=" --usage --repeat --clef --intensity --wait --clefs" ;;
+            stop) options+=" --all" ;;
             compose) options+=" --clefs" ;;
             show) options+=" --width --colour --color --svg --png --clefs" ;;
             convert) options+=" --from --to --clef --track --loop" ;;
             edit) options+=" --buttons --keymap --button-map --grab --clef" ;;
+            assign) options+=" --default --list" ;;
         esac
         COMPREPLY=($(compgen -W "$options" -- "$cur"))
         return
@@ -123,6 +125,12 @@ _vibscore() {
                 _vibscore_files "$cur" '*.@(xml|ahap|json|rtttl|rtx|mid|midi)'
             elif [[ $position -eq 1 ]]; then
                 _vibscore_files "$cur" '*'
+            fi ;;
+        assign)
+            if [[ $position -eq 0 ]]; then
+                COMPREPLY=($(compgen -W "$("$program" assign --list 2>/dev/null | cut -d' ' -f1)" -- "$cur"))
+            elif [[ $position -eq 1 ]]; then
+                COMPREPLY=($(compgen -W "$(_vibscore_registry "$program" scores)" -- "$cur"))
             fi ;;
         driver)
             [[ $position -eq 0 ]] &&

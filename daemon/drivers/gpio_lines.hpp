@@ -1,7 +1,5 @@
 #pragma once
 
-#include <gpiod.hpp>
-
 #include <memory>
 #include <string>
 #include <vector>
@@ -28,16 +26,18 @@ class GpioLines {
 // "gpiochip0 line 17" or "gpiochip0 lines 17, 18".
 std::string describe_lines(const std::string& chip, const std::vector<unsigned>& offsets);
 
-// The request open_gpio_lines() makes: outputs for consumer "vibscored", with the pull-down bias
+// Requests `offsets` on `chip` (a number, a /dev path, a name such as gpiochip0, or a label:
+// tried in that order) as outputs for consumer "vibscored", driven low, with the pull-down bias
 // enabled, so that a line the kernel releases (the daemon killed or crashed) falls to low rather
-// than keeping the level last driven (docs/drivers/gpio.md, "Safety").
-gpiod::line_request output_line_request();
-
-// Requests `offsets` on `chip` (a name such as gpiochip0, a /dev path, a label or a number) as
-// outputs driven low, with output_line_request(). The lines are driven low again and released when
-// the object goes. Throws DeviceError naming the chip (and the lines) when the chip cannot be
-// opened or a line cannot be requested (missing, busy, not an output).
+// than keeping the level last driven (docs/drivers/gpio.md, "Safety"). The lines are driven low
+// again and released when the object goes. Throws DeviceError naming the chip (and the lines)
+// when the chip cannot be found or opened, or a line cannot be requested (missing, busy, not an
+// output). Goes through libgpiod 1.x or 2.x, whichever the build found (gpio_lines_v1.cpp,
+// gpio_lines_v2.cpp).
 std::unique_ptr<GpioLines> open_gpio_lines(const std::string& chip,
                                            const std::vector<unsigned>& offsets);
+
+// The libgpiod the daemon runs with, as the loaded library reports it: "libgpiod 2.2.1".
+std::string gpio_library();
 
 }  // namespace vibscore::drivers

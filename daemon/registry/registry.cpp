@@ -8,6 +8,7 @@
 #include <type_traits>
 #include <utility>
 
+#include "common/quoted_text.hpp"
 #include "daemon/log.hpp"
 #include "daemon/registry/atomic_file.hpp"
 #include "score/clef_xml.hpp"
@@ -25,36 +26,15 @@ constexpr std::string_view score_suffix = kScoreSuffix;
 constexpr std::string_view clef_suffix = kClefSuffix;
 constexpr std::string_view name_rule = kNameRule;
 
-// Names and hrefs come from clients: a megabyte of one must not end up in a message or log, and
-// a NUL or newline in one must not cut a message short or forge a log line.
-std::string in_quotes(std::string_view text) {
-    constexpr std::size_t shown = 80;
-    std::string quoted = "\"";
-    for (const char c : text.substr(0, shown)) {
-        const auto byte = static_cast<unsigned char>(c);
-        if (byte < 0x20 || byte == 0x7f) {
-            constexpr std::string_view hex = "0123456789abcdef";
-            quoted += {'\\', 'x', hex[byte >> 4], hex[byte & 0xf]};
-        } else {
-            quoted += c;
-        }
-    }
-    quoted += '"';
-    if (text.size() > shown) {
-        quoted += "... (" + std::to_string(text.size()) + " bytes)";
-    }
-    return quoted;
-}
-
 // The file label diagnostics carry: `score "alarm"`, so clients see names, not store paths.
 std::string label(DocumentKind kind, std::string_view name) {
-    return std::string(to_string(kind)) + " " + in_quotes(name);
+    return std::string(to_string(kind)) + " " + quoted_text(name);
 }
 
 void check_name(std::string_view name) {
     if (!is_valid_name(name)) {
         throw RegistryError(Code::invalid_document,
-                            "invalid name " + in_quotes(name) + ": " + std::string(name_rule));
+                            "invalid name " + quoted_text(name) + ": " + std::string(name_rule));
     }
 }
 
@@ -98,7 +78,7 @@ Listing scan(const std::filesystem::path& directory, bool required) {
             log::warning("registry: skipping " + entry->path().string() + ": not a regular file");
         } else if (!is_valid_name(name)) {
             log::warning("registry: skipping " + entry->path().string() + ": invalid name " +
-                         in_quotes(name) + ": " + std::string(name_rule));
+                         quoted_text(name) + ": " + std::string(name_rule));
         } else {
             (is_clef ? listing.clefs : listing.scores).emplace_back(name, entry->path());
         }
@@ -149,16 +129,16 @@ const Record* find_in(const std::map<std::string, Record, std::less<>>& records,
 // document make the daemon read any file.
 std::string clef_name_of(const ClefDeclaration& declaration, const SourceLocation& declared_at) {
     if (declaration.href.find('/') != std::string::npos) {
-        throw DocumentError(declared_at, "clef " + in_quotes(declaration.id) + ": href " +
-                                             in_quotes(declaration.href) +
+        throw DocumentError(declared_at, "clef " + quoted_text(declaration.id) + ": href " +
+                                             quoted_text(declaration.href) +
                                              " is a path; the registry finds clefs by name only "
                                              "(NAME.clef.xml), unless Play sends the clef along");
     }
     auto name = clef_name_in_href(declaration.href);
     if (!name) {
         throw DocumentError(
-            declared_at, "clef " + in_quotes(declaration.id) + ": href " +
-                             in_quotes(declaration.href) +
+            declared_at, "clef " + quoted_text(declaration.id) + ": href " +
+                             quoted_text(declaration.href) +
                              " does not name a registry clef (NAME.clef.xml, NAME.xml or NAME; " +
                              std::string(name_rule) + ")");
     }
@@ -364,7 +344,7 @@ ScoreBundle Registry::inline_score(std::string_view document,
     try {
         std::map<std::string, Clef> inline_clefs;
         for (const auto& [href, text] : clef_documents) {
-            inline_clefs.emplace(href, read_clef(text, "<inline clef " + in_quotes(href) + ">"));
+            inline_clefs.emplace(href, read_clef(text, "<inline clef " + quoted_text(href) + ">"));
         }
         auto parsed = read_score(document, file);
         for (const auto& inline_clef : inline_clefs) {
@@ -374,7 +354,7 @@ ScoreBundle Registry::inline_score(std::string_view document,
                     parsed.score.clefs.begin(), parsed.score.clefs.end(),
                     [&](const ClefDeclaration& declared) { return declared.href == href; })) {
                 throw RegistryError(Code::invalid_document,
-                                    "inline clef " + in_quotes(href) +
+                                    "inline clef " + quoted_text(href) +
                                         " is not named by any <Clef href> of the score");
             }
         }
@@ -405,8 +385,8 @@ Registry::ScoreRecord Registry::bind(ParsedScore parsed, std::string file,
                 clef = &found->clef;
             }
             if (clef == nullptr) {
-                throw DocumentError(declared_at, "clef " + in_quotes(declaration.id) +
-                                                     ": no clef named " + in_quotes(name) +
+                throw DocumentError(declared_at, "clef " + quoted_text(declaration.id) +
+                                                     ": no clef named " + quoted_text(name) +
                                                      " in the registry");
             }
             record.clef_names.push_back(std::move(name));
@@ -504,14 +484,14 @@ DocumentKind Registry::compose(std::string_view name, std::string_view document)
     check_name(name);
     const std::string key(name);
     if (document.size() > limits_.document_bytes) {
-        throw RegistryError(Code::limit_exceeded, "document " + in_quotes(name) + " is " +
+        throw RegistryError(Code::limit_exceeded, "document " + quoted_text(name) + " is " +
                                                       std::to_string(document.size()) +
                                                       " bytes; the limit is " +
                                                       std::to_string(limits_.document_bytes));
     }
     DocumentKind kind{};
     try {
-        kind = document_kind(document, "document " + in_quotes(name));
+        kind = document_kind(document, "document " + quoted_text(name));
     } catch (const DocumentError& error) {
         throw RegistryError(Code::invalid_document, error.what());
     }

@@ -1,6 +1,7 @@
 #include "daemon/virtual_vibra/ff_effect_player.hpp"
 
 #include <cerrno>
+#include <memory>
 
 #include "daemon/log.hpp"
 #include "daemon/request_error.hpp"
@@ -77,7 +78,11 @@ void FfEffectPlayer::play(int id, int count) {
         PlaybackRequest request = make_playback_request(score, options, separation_s_);
         request.owner = 0;
         request.sender.clear();  // not a bus client: it ends with its effect
-        with_player_([&](Player& player) { playback_ = player.play(std::move(request)); });
+        // The work owns its request: a playback thread that does not answer in time runs it
+        // later or never (PlaybackThread::call).
+        const auto started = std::make_shared<std::uint64_t>(0);
+        with_player_([request, started](Player& player) { *started = player.play(request); });
+        playback_ = *started;
         playing_effect_ = id;
     } catch (const PlayerBusy& busy) {
         log::debug("virtual-vibra: effect " + std::to_string(id) + " not played: " + busy.what());

@@ -1,12 +1,14 @@
-// The GPIO character device end to end, without the daemon: libgpiod (v1 C++ API) drives
-// lines of a gpio-sim chip and the GpioSimChip fixture reads back what the kernel was told.
+// The GPIO character device end to end, without the daemon: a consumer speaking the kernel's
+// uAPI v2 directly (gpio_uapi.hpp) drives lines of a gpio-sim chip, and the fixtures read back
+// what the kernel was told. These check the fixtures the other GPIO tests rely on.
 #include <gtest/gtest.h>
 
-#include <gpiod.hpp>
 #include <thread>
 
 #include "tests/hil/gpio_lines_sampler.hpp"
 #include "tests/hil/gpio_sim_chip.hpp"
+#include "tests/hil/gpio_uapi.hpp"
+#include "tests/hil/gpio_value_trace.hpp"
 
 namespace vibscore::hil {
 namespace {
@@ -14,35 +16,38 @@ namespace {
 using namespace std::chrono_literals;
 using Clock = std::chrono::steady_clock;
 
-gpiod::line output_line(gpiod::chip& chip, const std::string& name) {
-    auto line = chip.find_line(name);
-    line.request({"vibscore-hil", gpiod::line_request::DIRECTION_OUTPUT, 0}, 0);
-    return line;
-}
+using Direction = GpioUapiLines::Direction;
 
-TEST(GpioSmoke, ValuesDrivenThroughLibgpiodAreWhatTheChipSees) {
+TEST(GpioSmoke, ValuesDrivenThroughTheCharacterDeviceAreWhatTheChipSees) {
     GpioSimChip sim({4, "vibscore-hil-chip", {"motor", "in1", "in2"}});
-    gpiod::chip chip(sim.chip_path().string(), gpiod::chip::OPEN_BY_PATH);
-    EXPECT_EQ(chip.label(), "vibscore-hil-chip");
-    EXPECT_EQ(chip.num_lines(), 4u);
+    const auto chip = gpio_chip_info(sim.chip_path());
+    EXPECT_EQ(chip.name, sim.chip_name());
+    EXPECT_EQ(chip.label, "vibscore-hil-chip");
+    EXPECT_EQ(chip.lines, 4u);
+    EXPECT_EQ(gpio_line_info(sim.chip_path(), 0).name, "motor");
+    EXPECT_EQ(gpio_line_info(sim.chip_path(), 3).name, "");
 
-    auto motor = output_line(chip, "motor");
-    EXPECT_EQ(motor.offset(), 0u);
+    GpioUapiLines motor(sim.chip_path(), {0}, Direction::output);
     EXPECT_EQ(sim.value(0), 0);
-    motor.set_value(1);
+    motor.set_values({1});
     EXPECT_EQ(sim.value(0), 1);
     EXPECT_EQ(sim.value(1), 0);
-    motor.set_value(0);
+    motor.set_values({0});
     EXPECT_EQ(sim.value(0), 0);
 
-    auto in2 = output_line(chip, "in2");
-    in2.set_value(1);
+    GpioUapiLines in2(sim.chip_path(), {2}, Direction::output);
+    in2.set_values({1});
     EXPECT_EQ(sim.value(2), 1);
-    EXPECT_TRUE(in2.is_used());
-    EXPECT_EQ(in2.consumer(), "vibscore-hil");
+    const auto info = gpio_line_info(sim.chip_path(), 2);
+    EXPECT_TRUE(info.used);
+    EXPECT_TRUE(info.output);
+    EXPECT_FALSE(info.pull_down) << "requested without a bias";
+    EXPECT_EQ(info.consumer, "vibscore-hil");
+    EXPECT_FALSE(gpio_line_info(sim.chip_path(), 1).used);
 
     // A released line falls back to its pull.
     in2.release();
+    EXPECT_FALSE(gpio_line_info(sim.chip_path(), 2).used);
     EXPECT_EQ(sim.value(2), 0);
     sim.set_pull(2, true);
     EXPECT_EQ(sim.value(2), 1);
@@ -50,24 +55,35 @@ TEST(GpioSmoke, ValuesDrivenThroughLibgpiodAreWhatTheChipSees) {
 
 TEST(GpioSmoke, AnInputLineReadsThePullTheTestSets) {
     GpioSimChip sim({2});
-    gpiod::chip chip(sim.chip_path().string(), gpiod::chip::OPEN_BY_PATH);
-    auto line = chip.get_line(1);
-    line.request({"vibscore-hil", gpiod::line_request::DIRECTION_INPUT, 0});
-    EXPECT_EQ(line.get_value(), 0);
+    GpioUapiLines line(sim.chip_path(), {1}, Direction::input);
+    EXPECT_TRUE(gpio_line_info(sim.chip_path(), 1).input);
+    EXPECT_EQ(line.values(), std::vector<int>{0});
     sim.set_pull(1, true);
-    EXPECT_EQ(line.get_value(), 1);
+    EXPECT_EQ(line.values(), std::vector<int>{1});
+}
+
+TEST(GpioSmoke, TheTraceRecordsEverySetOfTheChipsLinesInOrderAndNoOtherChips) {
+    GpioSimChip sim({3});
+    GpioSimChip other({1});
+    GpioValueTrace trace(sim);
+    GpioUapiLines lines(sim.chip_path(), {2, 0}, Direction::output);
+    GpioUapiLines elsewhere(other.chip_path(), {0}, Direction::output);
+    lines.set_values({1, 0});
+    elsewhere.set_values({1});
+    lines.set_values({0, 1});
+    // The request's initial lows, then each set line by line.
+    EXPECT_EQ(trace.sets(),
+              (std::vector<GpioValueSet>{{2, 0}, {0, 0}, {2, 1}, {0, 0}, {2, 0}, {0, 1}}));
 }
 
 TEST(GpioSmoke, TheSamplerRecordsEveryEdgeOfALineInOrder) {
     GpioSimChip sim({1});
-    gpiod::chip chip(sim.chip_path().string(), gpiod::chip::OPEN_BY_PATH);
-    auto line = chip.get_line(0);
-    line.request({"vibscore-hil", gpiod::line_request::DIRECTION_OUTPUT, 0}, 0);
+    GpioUapiLines line(sim.chip_path(), {0}, Direction::output);
     GpioLinesSampler sampler(sim, {0});
     // Each level is held until the sampler has seen it: no timing involved.
     for (int i = 0; i < 6; ++i) {
         const int value = (i + 1) % 2;
-        line.set_value(value);
+        line.set_values({value});
         const auto deadline = Clock::now() + 5s;
         while (sampler.changes().size() < static_cast<std::size_t>(i) + 2 &&
                Clock::now() < deadline) {
@@ -87,9 +103,7 @@ TEST(GpioSmoke, TheSamplerRecordsEveryEdgeOfALineInOrder) {
 
 TEST(GpioSmoke, TheSamplerMeasuresTheDutyCycleOfASoftwarePwm) {
     GpioSimChip sim({1});
-    gpiod::chip chip(sim.chip_path().string(), gpiod::chip::OPEN_BY_PATH);
-    auto line = chip.get_line(0);
-    line.request({"vibscore-hil", gpiod::line_request::DIRECTION_OUTPUT, 0}, 0);
+    GpioUapiLines line(sim.chip_path(), {0}, Direction::output);
     GpioLinesSampler sampler(sim, {0});
     std::this_thread::sleep_for(5ms);
 
@@ -98,10 +112,10 @@ TEST(GpioSmoke, TheSamplerMeasuresTheDutyCycleOfASoftwarePwm) {
     const auto begin = Clock::now();
     Clock::duration driven_high{0};
     for (int period = 0; period < 6; ++period) {
-        line.set_value(1);
+        line.set_values({1});
         const auto rise = Clock::now();
         std::this_thread::sleep_until(rise + 40ms);
-        line.set_value(0);
+        line.set_values({0});
         driven_high += Clock::now() - rise;
         std::this_thread::sleep_for(80ms);
     }

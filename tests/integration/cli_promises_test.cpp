@@ -50,13 +50,13 @@ TEST(WrongUsage, EachEndsWithTheReadmesStatusAndAMessageNamingWhatIsWrong) {
          2,
          "vibscore: unknown command \"frobnicate\"; the commands are: check render convert info "
          "play stop "
-         "list get compose delete drivers driver show edit"},
+         "list get compose delete drivers driver show assign edit"},
         {"VIBSCORE",
          {"lsit"},
          2,
          "vibscore: unknown command \"lsit\" (did you mean list?); the commands are: check render "
          "convert "
-         "info play stop list get compose delete drivers driver show edit"},
+         "info play stop list get compose delete drivers driver show assign edit"},
         {"VIBSCORE",
          {"play", "x", "--usage", "bogus"},
          2,

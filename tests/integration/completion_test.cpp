@@ -2,6 +2,10 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <cstdlib>
+#include <optional>
+#include <string>
+
 #include "tests/support/daemon_fixture.hpp"
 #include "tests/support/support.hpp"
 
@@ -44,6 +48,32 @@ TEST_F(Completion, OffersVerbsOptionsAndTheDaemonsNames) {
     EXPECT_EQ(complete("vibscore get "), "clef\nscore\n");
     EXPECT_EQ(complete("vibscore driver tr"), "trace\n");
     EXPECT_THAT(complete("vibscore list "), Not(HasSubstr("ringtone")));
+}
+
+TEST_F(Completion, OffersAssignItsOptionsTheUsersEventsAndTheRegistrysScores) {
+    // Without vibscore-feedback, the events are those of the user's own file.
+    const testing::TempDir config;
+    config.write("vibscore/feedback.json", R"({"events": {"phone-incoming-call": "alarm"}})");
+    const auto saved = [](const char* name) {
+        const char* value = std::getenv(name);
+        return value != nullptr ? std::optional<std::string>(value) : std::nullopt;
+    };
+    const auto config_home = saved("XDG_CONFIG_HOME");
+    const auto session_bus = saved("DBUS_SESSION_BUS_ADDRESS");
+    ::setenv("XDG_CONFIG_HOME", config.path().c_str(), 1);
+    ::setenv("DBUS_SESSION_BUS_ADDRESS", "unix:path=/nonexistent", 1);
+    EXPECT_EQ(complete("vibscore ass"), "assign\n");
+    EXPECT_EQ(complete("vibscore assign --d"), "--default\n");
+    EXPECT_EQ(complete("vibscore assign phone-"), "phone-incoming-call\n");
+    EXPECT_THAT(complete("vibscore assign phone-incoming-call ring"), HasSubstr("ringtone\n"));
+    for (const auto& [name, value] : {std::pair{"XDG_CONFIG_HOME", config_home},
+                                      std::pair{"DBUS_SESSION_BUS_ADDRESS", session_bus}}) {
+        if (value) {
+            ::setenv(name, value->c_str(), 1);
+        } else {
+            ::unsetenv(name);
+        }
+    }
 }
 
 TEST_F(Completion, FoldersEndInASlashAndFilesFollowTheVerbsPattern) {

@@ -4,10 +4,14 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
 #include <thread>
 
 #include "daemon/render/cue_adaptation.hpp"
+#include "feedback/feedbackd_theme.hpp"
 #include "feedback/theme.hpp"
+#include "feedback/user_scores.hpp"
+#include "feedback/vibra_feedback.hpp"
 #include "tests/hil/score_expectations.hpp"
 #include "tests/support/feedback_fixture.hpp"
 
@@ -108,7 +112,8 @@ void expect_plays(const std::vector<TraceRow>& rows, const std::vector<render::C
 }
 
 TEST_F(FeedbackApi, EveryEventOfTheShippedThemePlaysItsScore) {
-    const auto theme = feedback::load_theme(testing::required_env("VIBSCORE_FEEDBACK_THEME"));
+    const auto theme = feedback::load_theme(testing::required_env("VIBSCORE_FEEDBACK_THEME"),
+                                            feedback::ThemeSearch{});
     ASSERT_GE(theme.events().size(), 12u);
     for (const auto& [event, levels] : theme.events()) {
         const auto* entry = theme.lookup(event, Profile::full);
@@ -256,23 +261,36 @@ TEST_F(FeedbackApi, HapticVibratePlaysItsStepsAndAnEmptyPatternEndsThem) {
     EXPECT_EQ(daemon.trace_rows().back().amplitude, 0.0);
 }
 
-TEST_F(FeedbackApi, BadHapticPatternsGetErrorsAndSilentGetsFalse) {
-    const std::vector<sdbus::Struct<double, std::uint32_t>> eleven(11, {0.5, 10u});
-    EXPECT_EQ(error_of([&] { client->Vibrate("a", eleven); }),
-              std::string(kInvalidArgs) + ": the pattern has 11 steps; at most 10 are allowed");
+TEST_F(FeedbackApi, HapticPatternsAreCutDownAsFeedbackdCutsThemAndSilentGetsFalse) {
+    // Ten steps (feedbackd's maximum) play; an eleventh is dropped; steps of 10,000 ms are
+    // kept, longer ones shortened to it; strengths are clamped. Only NaN is refused.
+    std::vector<sdbus::Struct<double, std::uint32_t>> eleven;
+    for (int i = 0; i < 11; ++i) {
+        eleven.push_back({i % 2 == 0 ? 1.0 : 0.0, 20u});
+    }
+    auto first = daemon.trace_rows().size();
+    EXPECT_TRUE(client->Vibrate("a", eleven));
+    std::this_thread::sleep_for(400ms);
+    auto rows = rows_from(first);
+    ASSERT_GE(rows.size(), 10u);
+    // Five pulses of 20 ms with 20 ms between, the tenth step a pause: 180 ms to the last off.
+    EXPECT_EQ(
+        std::count_if(rows.begin(), rows.end(), [](const auto& row) { return row.amplitude > 0; }),
+        5);
+    EXPECT_NEAR(ms_between(rows.front().time_ns, rows.back().time_ns), 180.0, 25.0);
     EXPECT_EQ(error_of([&] {
-                  client->Vibrate("a", {{0.5, 10u}, {1.5, 10u}});
+                  client->Vibrate("a", {{0.5, 10u}, {std::nan(""), 10u}});
               }),
-              std::string(kInvalidArgs) + ": step 2: strength 1.500000 is outside 0..1");
-    EXPECT_EQ(error_of([&] {
-                  client->Vibrate("a", {{std::nan(""), 10u}});
-              }),
-              std::string(kInvalidArgs) + ": step 1: strength nan is outside 0..1");
-    EXPECT_EQ(error_of([&] {
-                  client->Vibrate("a", {{0.5, 20000u}});
-              }),
-              std::string(kInvalidArgs) + ": step 1: 20000 ms is longer than 10000 ms");
-    client->Profile("silent");
+              std::string(kInvalidArgs) + ": step 2: the strength is not a number");
+    first = daemon.trace_rows().size();
+    EXPECT_TRUE(client->Vibrate("a", {{1.5, 10'001u}}));
+    std::this_thread::sleep_for(100ms);
+    rows = rows_from(first);
+    ASSERT_FALSE(rows.empty());
+    EXPECT_EQ(rows[0].amplitude, 1.0);
+    client->Profile("silent");  // stops the running pattern
+    std::this_thread::sleep_for(100ms);
+    EXPECT_EQ(daemon.trace_rows().back().amplitude, 0.0);
     const auto before = daemon.trace_rows().size();
     EXPECT_FALSE(client->Vibrate("a", {{1.0, 100u}}));
     EXPECT_EQ(daemon.trace_rows().size(), before);
@@ -281,11 +299,12 @@ TEST_F(FeedbackApi, BadHapticPatternsGetErrorsAndSilentGetsFalse) {
 TEST_F(FeedbackApi, FeedbackdsOwnThemePlaysItsRumblesAsFeedbackdWould) {
     server.reset();
     serve({"--theme", kFeedbackdTheme});
-    // message-new-sms: two rumbles of 150 ms, 100 ms apart, at feedbackd's rumble strength.
+    // message-new-sms: two rumbles of 150 ms, 100 ms apart, at feedbackd 0.8's default
+    // rumble magnitude.
     const auto first = daemon.trace_rows().size();
     EXPECT_EQ(fbcli({"-E", "message-new-sms"}), 0);
     const auto rows = rows_from(first);
-    const double strength = 32768.0 / 65535.0;
+    const double strength = 0.5;
     ASSERT_GE(rows.size(), 4u);
     EXPECT_NEAR(rows[0].amplitude, strength, 1e-9);
     EXPECT_EQ(rows[0].frequency_hz, 0.0);  // the actuator's own, as a rumble motor's
@@ -299,6 +318,215 @@ TEST_F(FeedbackApi, FeedbackdsOwnThemePlaysItsRumblesAsFeedbackdWould) {
     const auto before = daemon.trace_rows().size();
     EXPECT_EQ(fbcli({"-E", "camera-shutter"}), 0);
     EXPECT_EQ(daemon.trace_rows().size(), before);
+}
+
+TEST_F(FeedbackApi, AnotherClientCanEndNeitherAnEventNorAPatternThatIsNotItsOwn) {
+    FeedbackClient stranger(session);
+    const auto looping = client->TriggerFeedback("org.vibscore.test", "phone-incoming-call", {}, 0);
+    std::this_thread::sleep_for(200ms);
+    stranger.EndFeedback(looping);
+    EXPECT_FALSE(client->wait_ended(looping, 300ms));
+    // Ids are checked against the caller: guessing the next one ends nothing either.
+    stranger.EndFeedback(looping + 1);
+    client->EndFeedback(looping);
+    EXPECT_EQ(client->wait_ended(looping)->reason, kExplicit);
+
+    EXPECT_TRUE(client->Vibrate("org.vibscore.test", {{0.8, 3000u}}));
+    std::this_thread::sleep_for(100ms);
+    EXPECT_TRUE(stranger.Vibrate("org.vibscore.stranger", {}));  // ends only its own: none
+    std::this_thread::sleep_for(200ms);
+    EXPECT_NEAR(daemon.trace_rows().back().amplitude, 0.8, 1e-9);
+    EXPECT_TRUE(client->Vibrate("org.vibscore.test", {}));
+    std::this_thread::sleep_for(100ms);
+    EXPECT_EQ(daemon.trace_rows().back().amplitude, 0.0);
+}
+
+TEST_F(FeedbackApi, LogsAnAppIdEscapedSoThatItCannotForgeALogLine) {
+    const auto id = client->TriggerFeedback("evil\n<3>forged error", "no-such-event", {}, -1);
+    client->wait_ended(id);
+    const auto log = server->log();
+    EXPECT_NE(log.find("from \"evil\\x0a<3>forged error\""), std::string::npos) << log;
+    EXPECT_EQ(log.find("\n<3>forged"), std::string::npos) << log;
+}
+
+TEST_F(FeedbackApi, AnImportantEventOfAnAllowedAppPlaysInSilentAndTheMaximumStrengthHolds) {
+    server.reset();
+    serve({"--profile", "silent", "--allow-important", "org.vibscore.clock,org.vibscore.test",
+           "--max-haptic-strength", "0.5"});
+    const std::map<std::string, sdbus::Variant> important{{"important", sdbus::Variant(true)}};
+    auto first = daemon.trace_rows().size();
+    const auto plain = client->TriggerFeedback("org.vibscore.test", "button-pressed", {}, -1);
+    EXPECT_EQ(client->wait_ended(plain)->reason, kNotFound);
+    const auto stranger =
+        client->TriggerFeedback("org.vibscore.other", "button-pressed", important, -1);
+    EXPECT_EQ(client->wait_ended(stranger)->reason, kNotFound);
+    EXPECT_EQ(daemon.trace_rows().size(), first);
+    const auto allowed =
+        client->TriggerFeedback("org.vibscore.test", "button-pressed", important, -1);
+    EXPECT_EQ(client->wait_ended(allowed)->reason, kNatural);
+    // touch-click at half its strength: the score scaled so that its full strength is 0.5.
+    expect_plays(rows_from(first), expected_drives_of("touch-click"), "touch-click", 0.5);
+    EXPECT_EQ(error_of([&] {
+                  client->TriggerFeedback("org.vibscore.test", "button-pressed",
+                                          {{"important", sdbus::Variant(1)}}, -1);
+              }),
+              std::string(kInvalidArgs) + ": hint \"important\" must be a boolean (b), not i");
+    // A pattern's steps are capped at the maximum.
+    client->Profile("full");
+    first = daemon.trace_rows().size();
+    EXPECT_TRUE(client->Vibrate("org.vibscore.test", {{1.0, 100u}, {0.3, 100u}}));
+    std::this_thread::sleep_for(300ms);
+    const auto rows = rows_from(first);
+    ASSERT_GE(rows.size(), 2u);
+    EXPECT_EQ(rows[0].amplitude, 0.5);
+    EXPECT_NEAR(rows[1].amplitude, 0.5 * 0.5556, 1e-9);  // 0.3 of the strongest 0.5: 5/9
+}
+
+// fbcli 0.8 (Debian 13) sets the important hint (-I) and the app id (-A); 0.0.3 cannot.
+TEST_F(FeedbackApi, FbcliOfFeedbackd08PlaysAnImportantEventOfAnAllowedAppInSilent) {
+    const auto help = testing::run_command({"/usr/bin/fbcli", "--help"});
+    if (help.out.find("--important") == std::string::npos) {
+        GTEST_SKIP() << "this release's fbcli has no --important (feedbackd 0.8 has)";
+    }
+    EXPECT_EQ(fbcli({"-P", "silent"}), 0);
+    auto first = daemon.trace_rows().size();
+    EXPECT_EQ(fbcli({"-I", "-A", "org.example.App", "-E", "button-pressed"}), 0);
+    EXPECT_EQ(daemon.trace_rows().size(), first);
+    EXPECT_EQ(fbcli({"-I", "-A", "org.gnome.clocks", "-E", "button-pressed"}), 0);
+    expect_plays(rows_from(first), expected_drives_of("touch-click"), "important");
+}
+
+// Each Debian release's feedbackd default theme, as its package ships it (the host's, and the
+// trixie chroot's when this machine has one): every vibra event plays its pattern, no
+// stronger than its strongest step.
+TEST_F(FeedbackApi, EveryVibraEventOfEachReleasesDefaultThemePlays) {
+    std::vector<std::string> themes;
+    for (const char* path :
+         {kFeedbackdTheme, "/srv/trixie/usr/share/feedbackd/themes/default.json"}) {
+        if (std::filesystem::exists(path)) {
+            themes.emplace_back(path);
+        }
+    }
+    if (themes.empty()) {
+        GTEST_SKIP() << "no feedbackd default theme on this machine";
+    }
+    for (const auto& path : themes) {
+        server.reset();
+        serve({"--theme", path});
+        const auto theme = feedback::load_theme(path, feedback::ThemeSearch{});
+        int events = 0;
+        for (const auto& [event, levels] : theme.events()) {
+            const auto* entry = theme.lookup(event, Profile::full);
+            if (entry == nullptr || !entry->vibra) {
+                continue;
+            }
+            ++events;
+            const auto pattern = feedback::vibra_pattern(*entry->vibra);
+            double strongest = 0.0;
+            for (const auto& step : pattern) {
+                strongest = std::max({strongest, step.from, step.to});
+            }
+            const auto first = daemon.trace_rows().size();
+            const auto id = client->TriggerFeedback("org.vibscore.test", event, {}, -1);
+            // Long ones (Debian 12's 10 s ringing) are ended after a second.
+            auto ended = client->wait_ended(id, 1500ms);
+            if (!ended) {
+                client->EndFeedback(id);
+                ended = client->wait_ended(id);
+            }
+            ASSERT_TRUE(ended) << path << ": " << event;
+            EXPECT_NE(ended->reason, kNotFound) << path << ": " << event;
+            const auto rows = rows_from(first);
+            double loudest = 0.0;
+            for (const auto& row : rows) {
+                loudest = std::max(loudest, row.amplitude);
+            }
+            EXPECT_GT(loudest, 0.0) << path << ": " << event;
+            EXPECT_LE(loudest, strongest + 1e-9) << path << ": " << event;
+            if (ended->reason == kNatural) {
+                EXPECT_NEAR(loudest, strongest, 1e-9) << path << ": " << event;
+            }
+            ASSERT_FALSE(rows.empty());
+            EXPECT_EQ(rows.back().amplitude, 0.0) << path << ": " << event;
+        }
+        EXPECT_GE(events, 12) << path;
+    }
+}
+
+// vibscore assign: the user's own score for an event, through vibscore-feedback's bus
+// interface, into its file, which it watches.
+TEST_F(FeedbackApi, AScoreTheUserAssignsToAnEventPlaysForItUntilTakenBack) {
+    const auto vibscore = testing::required_env("VIBSCORE");
+    const auto assign = [&](std::vector<std::string> args) {
+        args.insert(args.begin(), {vibscore, "assign"});
+        return testing::run_command(session.on_this_bus(args));
+    };
+    const auto plays = [&](const std::string& score, const std::string& what) {
+        const auto first = daemon.trace_rows().size();
+        EXPECT_EQ(fbcli({"-E", "message-new-sms"}), 0) << what;
+        expect_plays(rows_from(first), expected_drives_of(score), what);
+    };
+    auto result = assign({"message-new-sms", "touch-click"});
+    EXPECT_EQ(result.exit_code, 0) << result.err;
+    EXPECT_EQ(result.out, "message-new-sms plays touch-click from now on\n");
+    plays("touch-click", "assigned");
+    result = assign({"--list"});
+    EXPECT_EQ(result.exit_code, 0) << result.err;
+    EXPECT_NE(result.out.find("message-new-sms              touch-click              yours (the "
+                              "theme's: message-new-sms)\n"),
+              std::string::npos)
+        << result.out;
+    EXPECT_NE(result.out.find("phone-incoming-call          ringtone\n"), std::string::npos);
+    const auto file = session.config_home() / "vibscore" / "feedback.json";
+    std::vector<Diagnostic> warnings;
+    EXPECT_EQ(feedback::read_user_scores(file, warnings),
+              (feedback::UserScores{{"message-new-sms", "touch-click"}}));
+
+    // The file edited by hand is seen at once.
+    std::ofstream(file) << R"({"events": {"message-new-sms": "touch-tick"}})";
+    std::this_thread::sleep_for(300ms);
+    plays("touch-tick", "edited");
+
+    // A score vibscored does not have: the theme's plays, and the log says why.
+    EXPECT_EQ(assign({"message-new-sms", "no-such-score"}).exit_code, 0);
+    plays("message-new-sms", "unknown score");
+    EXPECT_NE(server->log().find("the score \"no-such-score\" chosen for \"message-new-sms\" is "
+                                 "not in vibscored's registry: the theme's plays instead"),
+              std::string::npos)
+        << server->log();
+
+    result = assign({"message-new-sms", "--default"});
+    EXPECT_EQ(result.out, "message-new-sms plays the theme's score from now on\n");
+    plays("message-new-sms", "default");
+    EXPECT_TRUE(feedback::read_user_scores(file, warnings).empty());
+
+    result = assign({"message-new-sms", "Touch"});
+    EXPECT_EQ(result.exit_code, 2);
+    EXPECT_EQ(result.err,
+              "vibscore: score \"Touch\" is not a score name (a name is 1 to 64 of a-z 0-9 . _ "
+              "-, starting with a letter or a digit)\n");
+}
+
+TEST(FeedbackAssign, WithoutVibscoreFeedbackStoresTheChoiceForWhenItStarts) {
+    DaemonFixture daemon;
+    const SessionBus session;  // nothing serves org.sigxcpu.Feedback, nothing is activatable
+    const auto result = testing::run_command(session.on_this_bus(
+        {testing::required_env("VIBSCORE"), "assign", "button-pressed", "touch-tick"}));
+    EXPECT_EQ(result.exit_code, 0) << result.err;
+    EXPECT_NE(result.out.find("button-pressed plays touch-tick when vibscore-feedback runs "
+                              "(vibscore-feedback cannot be reached on the session bus; stored "
+                              "in "),
+              std::string::npos)
+        << result.out;
+    FeedbackServer server(
+        session,
+        testing::vibscore_feedback({"--theme", testing::required_env("VIBSCORE_FEEDBACK_THEME")}));
+    const auto before = daemon.trace_rows().size();
+    Fbcli run(session, {"-E", "button-pressed"});
+    ASSERT_TRUE(run.wait(10s)) << run.output();
+    const auto rows = daemon.trace_rows();
+    ASSERT_GT(rows.size(), before);
+    EXPECT_EQ(rows[before].amplitude, expected_drives_of("touch-tick").front().amplitude);
 }
 
 TEST(FeedbackActivation, TheFirstCallStartsVibscoreFeedbackOnTheSessionBus) {

@@ -151,29 +151,84 @@ void HapticsClient::onRegistryChanged(const std::string& kind, const std::string
     record({"RegistryChanged", 0, kind + "/" + name});
 }
 
-DaemonFixture::DaemonFixture(const std::string& extra_config) {
+namespace {
+
+constexpr const char* kPolkitBusPolicy =
+    "/usr/share/dbus-1/system.d/org.freedesktop.PolicyKit1.conf";
+constexpr const char* kPolkitd = "/usr/lib/polkit-1/polkitd";
+
+// The private bus's configuration with polkit's own bus policy included as well.
+std::string with_polkit_policy(const std::string& bus_config) {
+    const auto end = bus_config.rfind("</busconfig>");
+    if (end == std::string::npos) {
+        throw std::runtime_error("the private bus configuration has no </busconfig>");
+    }
+    return bus_config.substr(0, end) + "  <include>" + kPolkitBusPolicy + "</include>\n" +
+           bus_config.substr(end);
+}
+
+}  // namespace
+
+DaemonFixture::DaemonFixture(const std::string& extra_config, bool with_polkit) {
     trace_ = dir_.path() / "trace.csv";
     store_ = dir_.path() / "store";
     write_config(extra_config, "trace = " + trace_.string());
     const auto socket = dir_.path() / "bus";
     bus_address_ = "unix:path=" + socket.string();
+    std::string bus_config = required_env("VIBSCORE_PRIVATE_BUS_CONF");
+    if (with_polkit) {
+        for (const auto* needed : {kPolkitBusPolicy, kPolkitd}) {
+            if (!std::filesystem::exists(needed)) {
+                throw std::runtime_error(std::string(needed) +
+                                         " is missing: install polkitd (./dev test does)");
+            }
+        }
+        bus_config =
+            dir_.write("polkit-bus.conf", with_polkit_policy(read_file(bus_config))).string();
+    }
     bus_ = std::make_unique<Process>(
-        std::vector<std::string>{"/usr/bin/dbus-daemon",
-                                 "--config-file=" + required_env("VIBSCORE_PRIVATE_BUS_CONF"),
+        std::vector<std::string>{"/usr/bin/dbus-daemon", "--config-file=" + bus_config,
                                  "--address=" + bus_address_, "--nofork", "--nopidfile"},
         dir_.path() / "bus.log");
     for (int i = 0; i < 500 && !std::filesystem::exists(socket); ++i) {
         std::this_thread::sleep_for(std::chrono::milliseconds(10));
     }
-    // Other users (the permission tests) must reach the socket and the trace.
+    // Other users (the permission tests, polkitd) must reach the socket and the trace.
     std::filesystem::permissions(dir_.path(), std::filesystem::perms::all);
     setenv("DBUS_SYSTEM_BUS_ADDRESS", bus_address_.c_str(), 1);
+    if (with_polkit) {
+        // polkitd starts as root and becomes user polkitd itself.
+        polkit_ = std::make_unique<Process>(
+            std::vector<std::string>{"/usr/bin/env", "DBUS_SYSTEM_BUS_ADDRESS=" + bus_address_,
+                                     kPolkitd, "--no-debug"},
+            dir_.path() / "polkitd.log");
+        wait_for_name("org.freedesktop.PolicyKit1", *polkit_, "polkitd.log");
+    }
     start_daemon();
 }
 
 DaemonFixture::~DaemonFixture() {
     daemon_.reset();
+    if (polkit_) {
+        polkit_->signal(SIGCONT);  // a test may have stopped it
+    }
+    polkit_.reset();
     bus_.reset();
+}
+
+void DaemonFixture::wait_for_name(const std::string& name, Process& owner, const std::string& log) {
+    for (int i = 0; i < 1000; ++i) {
+        const auto names = busctl({"list", "--no-pager", "--no-legend"});
+        if (names.out.find(name) != std::string::npos) {
+            return;
+        }
+        if (!owner.running()) {
+            throw std::runtime_error(name + "'s owner exited at start:\n" +
+                                     read_file(dir_.path() / log));
+        }
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    throw std::runtime_error(name + " was not taken:\n" + read_file(dir_.path() / log));
 }
 
 void DaemonFixture::start_daemon() {
@@ -181,17 +236,7 @@ void DaemonFixture::start_daemon() {
         std::make_unique<Process>(std::vector<std::string>{required_env("VIBSCORED"), "--config",
                                                            config_.string(), "--verbose"},
                                   dir_.path() / "daemon.log");
-    for (int i = 0; i < 1000; ++i) {
-        const auto names = busctl({"list", "--no-pager", "--no-legend"});
-        if (names.out.find("org.vibscore.Haptics1") != std::string::npos) {
-            return;
-        }
-        if (!daemon_->running()) {
-            throw std::runtime_error("vibscored exited at start:\n" + daemon_log());
-        }
-        std::this_thread::sleep_for(std::chrono::milliseconds(10));
-    }
-    throw std::runtime_error("vibscored did not take its bus name:\n" + daemon_log());
+    wait_for_name("org.vibscore.Haptics1", *daemon_, "daemon.log");
 }
 
 int DaemonFixture::stop_daemon() {

@@ -78,11 +78,15 @@ class HapticsClient : public sdbus::ProxyInterfaces<org::vibscore::Haptics1_prox
     std::vector<SeenSignal> signals_;
 };
 
-// A private bus with the real policy, and the real vibscored on it with the sim driver.
+// A private bus with the real policy, and the real vibscored on it with the sim driver. With
+// `with_polkit`, Debian's polkitd serves the bus too (it becomes user polkitd; its own bus
+// policy is included), started before vibscored; polkit() is its process.
 class DaemonFixture {
   public:
-    explicit DaemonFixture(const std::string& extra_config = "");
+    explicit DaemonFixture(const std::string& extra_config = "", bool with_polkit = false);
     ~DaemonFixture();
+
+    Process& polkit() { return *polkit_; }
 
     void start_daemon();
     // SIGTERM, then the exit code.
@@ -112,10 +116,14 @@ class DaemonFixture {
     std::vector<TraceRow> trace_rows() const;
 
   private:
+    // Waits until `name` is on the bus; throws with the owner's log when it exits first.
+    void wait_for_name(const std::string& name, Process& owner, const std::string& log);
+
     TempDir dir_;
     std::filesystem::path trace_, store_, config_;
     std::string bus_address_;
     std::unique_ptr<Process> bus_;
+    std::unique_ptr<Process> polkit_;
     std::unique_ptr<Process> daemon_;
 };
 

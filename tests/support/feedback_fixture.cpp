@@ -35,8 +35,10 @@ SessionBus::SessionBus(const std::vector<std::pair<std::string, std::string>>& a
     const auto config = dir_.write("session.conf", session_bus_config(services));
     const auto socket = dir_.path() / "bus";
     address_ = "unix:path=" + socket.string();
+    // Services it starts inherit its environment: the session's config directory.
     bus_ = std::make_unique<Process>(
-        std::vector<std::string>{"/usr/bin/dbus-daemon", "--config-file=" + config.string(),
+        std::vector<std::string>{"/usr/bin/env", "XDG_CONFIG_HOME=" + config_home().string(),
+                                 "/usr/bin/dbus-daemon", "--config-file=" + config.string(),
                                  "--address=" + address_, "--nofork", "--nopidfile"},
         dir_.path() / "bus.log");
     for (int i = 0; i < 500 && !std::filesystem::exists(socket); ++i) {
@@ -51,7 +53,8 @@ SessionBus::SessionBus(const std::vector<std::pair<std::string, std::string>>& a
 SessionBus::~SessionBus() = default;
 
 std::vector<std::string> SessionBus::on_this_bus(std::vector<std::string> argv) const {
-    argv.insert(argv.begin(), {"/usr/bin/env", "DBUS_SESSION_BUS_ADDRESS=" + address_});
+    argv.insert(argv.begin(), {"/usr/bin/env", "DBUS_SESSION_BUS_ADDRESS=" + address_,
+                               "XDG_CONFIG_HOME=" + config_home().string()});
     return argv;
 }
 
@@ -152,8 +155,13 @@ std::vector<std::string> vibscore_feedback(const std::vector<std::string>& args)
     return argv;
 }
 
-std::vector<std::string> real_feedbackd() {
-    return {"/usr/bin/env", "GSETTINGS_BACKEND=memory", "/usr/libexec/feedbackd"};
+std::vector<std::string> real_feedbackd(const std::filesystem::path& root) {
+    std::vector<std::string> argv{"/usr/bin/env", "GSETTINGS_BACKEND=memory",
+                                  "/usr/libexec/feedbackd"};
+    if (root != "/") {
+        argv.insert(argv.begin(), {"/usr/sbin/chroot", root.string()});
+    }
+    return argv;
 }
 
 Fbcli::Fbcli(const SessionBus& bus, const std::vector<std::string>& args) {

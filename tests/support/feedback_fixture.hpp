@@ -23,8 +23,10 @@
 // or the real feedbackd serving it, and the clients that call it (fbcli, a typed client).
 namespace vibscore::testing {
 
-// A private session bus, as a phone's user session has. Only the services a test names can be
-// started on demand: never the installed feedbackd by accident.
+// A private session bus, as a phone's user session has, with the session's own config
+// directory (XDG_CONFIG_HOME of everything run on it, activated services included), so that
+// nothing touches the real user's. Only the services a test names can be started on demand:
+// never the installed feedbackd by accident.
 class SessionBus {
   public:
     // `activatable`: bus name and the command line that serves it, started on the first call.
@@ -34,12 +36,14 @@ class SessionBus {
     SessionBus& operator=(const SessionBus&) = delete;
 
     const std::string& address() const { return address_; }
+    // The session's XDG_CONFIG_HOME (vibscore-feedback's scores file is under it).
+    std::filesystem::path config_home() const { return dir_.path() / "config"; }
     // busctl on this bus.
     CommandResult busctl(const std::vector<std::string>& args) const;
     // Whether `name` has an owner within `timeout`.
     bool wait_for_owner(const std::string& name,
                         std::chrono::milliseconds timeout = std::chrono::seconds(10)) const;
-    // argv run with this bus as its session bus.
+    // argv run with this bus as its session bus and its config directory.
     std::vector<std::string> on_this_bus(std::vector<std::string> argv) const;
 
   private:
@@ -102,8 +106,10 @@ class FeedbackServer {
 
 // vibscore-feedback from the build tree ($VIBSCORE_FEEDBACK) with these arguments.
 std::vector<std::string> vibscore_feedback(const std::vector<std::string>& args);
-// Debian's feedbackd, settings in memory (no dconf), as a phone's session starts it.
-std::vector<std::string> real_feedbackd();
+// Debian's feedbackd, settings in memory (no dconf), as a phone's session starts it; with a
+// `root`, the feedbackd of that Debian root (another release's), chrooted there, which must
+// see /dev, /proc, /sys, /run and /tmp (the session bus's socket).
+std::vector<std::string> real_feedbackd(const std::filesystem::path& root = "/");
 
 // fbcli, libfeedback's own command line client, as an application runs: its standard input is
 // held open, since it ends the feedback at a newline or at the end of its input.

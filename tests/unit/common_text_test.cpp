@@ -3,6 +3,7 @@
 
 #include "common/closest_name.hpp"
 #include "common/number_text.hpp"
+#include "common/quoted_text.hpp"
 
 namespace vibscore {
 namespace {
@@ -15,6 +16,18 @@ TEST(NumberText, PrintsTheShortestDecimalThatReadsBackTheSame) {
     EXPECT_EQ(number_text(0.1), "0.1");
     EXPECT_EQ(number_text(2.0 / 3.0), "0.6666666666666666");
     EXPECT_EQ(number_text(0.0), "0");
+}
+
+TEST(QuotedText, ShowsControlCharactersAsEscapesSoNoneForgesALogLine) {
+    EXPECT_EQ(quoted_text("org.gnome.Clocks"), "\"org.gnome.Clocks\"");
+    EXPECT_EQ(quoted_text("a\n<3>forged\r"), "\"a\\x0a<3>forged\\x0d\"");
+    EXPECT_EQ(quoted_text(std::string("a\0b\x7f\x1f ", 6)), "\"a\\x00b\\x7f\\x1f \"");
+    EXPECT_EQ(quoted_text(""), "\"\"");
+}
+
+TEST(QuotedText, ShowsEightyBytesAndTheSizeOfMore) {
+    EXPECT_EQ(quoted_text(std::string(80, 'x')), "\"" + std::string(80, 'x') + "\"");
+    EXPECT_EQ(quoted_text(std::string(81, 'x')), "\"" + std::string(80, 'x') + "\"... (81 bytes)");
 }
 
 TEST(ClosestName, FindsTheNameATypoWasMeantToBe) {

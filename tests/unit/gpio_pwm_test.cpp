@@ -157,18 +157,6 @@ TEST_F(GpioSettingsTest, LineRequestFailureIsADeviceError) {
     EXPECT_THROW(make_gpio_erm_actuator({{"line", "5"}}, busy), DeviceError);
 }
 
-// A line the kernel releases when the daemon dies falls to its bias: the pull-down is what stops
-// a motor that was on at a SIGKILL (the hil tier checks the kernel side on gpio-sim).
-TEST(GpioLineRequest, OutputsForVibscoredWithThePullDownBias) {
-    const gpiod::line_request request = output_line_request();
-    EXPECT_EQ(request.request_type, gpiod::line_request::DIRECTION_OUTPUT);
-    EXPECT_EQ(request.consumer, "vibscored");
-    EXPECT_EQ(request.flags & gpiod::line_request::FLAG_BIAS_PULL_DOWN,
-              gpiod::line_request::FLAG_BIAS_PULL_DOWN);
-    EXPECT_EQ(request.flags & gpiod::line_request::FLAG_BIAS_PULL_UP, 0);
-    EXPECT_EQ(request.flags & gpiod::line_request::FLAG_OPEN_DRAIN, 0);
-}
-
 // ----- playing through the PWM thread on fake lines -----
 
 GpioPwmSettings erm_settings(double carrier_hz, bool enable_line) {

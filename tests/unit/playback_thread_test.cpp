@@ -6,6 +6,8 @@
 #include <chrono>
 #include <condition_variable>
 #include <mutex>
+#include <stdexcept>
+#include <string>
 #include <thread>
 
 #include "daemon/playback_thread.hpp"
@@ -173,6 +175,151 @@ TEST(PlaybackThread, EndingTheThreadSwitchesTheActuatorOff) {
         EXPECT_EQ(actuator.amplitudes().back(), 0.5);
     }
     EXPECT_EQ(actuator.amplitudes().back(), 0.0);
+}
+
+// Opens when the test says so: a driver that does not return until then.
+class Gate {
+  public:
+    void wait() {
+        std::unique_lock lock(mutex_);
+        opened_.wait(lock, [&] { return open_; });
+    }
+    void open() {
+        {
+            const std::lock_guard lock(mutex_);
+            open_ = true;
+        }
+        opened_.notify_all();
+    }
+
+  private:
+    std::mutex mutex_;
+    std::condition_variable opened_;
+    bool open_ = false;
+};
+
+// An actuator whose apply() of the drive 0.6 hangs until the gate opens.
+class HangingActuator : public SharedActuator {
+  public:
+    explicit HangingActuator(Gate& gate) : gate_(gate) {}
+    void apply(const drivers::Drive& drive) override {
+        if (drive.amplitude == 0.6) {
+            gate_.wait();
+        }
+        SharedActuator::apply(drive);
+    }
+
+  private:
+    Gate& gate_;
+};
+
+// 0.5 at once, 0.6 from 20 ms (on the playback thread's timer, not in the call), off at 40 ms.
+PlaybackRequest two_drives() {
+    PlaybackRequest request = short_note();
+    request.cues = std::make_shared<render::CueList>(
+        std::vector<render::Cue>{cue(0, 0.5), cue(0.020, 0.6), cue(0.040, 0)});
+    request.duration_s = 0.040;
+    return request;
+}
+
+TEST(PlaybackThreadRule, ACallFromThePlaybackThreadItselfIsRefusedNamingTheRule) {
+    EventLoop bus_loop;
+    SharedActuator actuator;
+    PlaybackThread playback{bus_loop, actuator};
+    try {
+        playback.call([&playback](Player&) { playback.call([](Player&) {}); });
+        ADD_FAILURE() << "a call from the playback thread was run";
+    } catch (const std::logic_error& error) {
+        EXPECT_NE(std::string(error.what()).find("only for the bus thread"), std::string::npos);
+        EXPECT_NE(std::string(error.what()).find("the playback thread itself"), std::string::npos)
+            << error.what();
+    }
+}
+
+TEST(PlaybackThreadRule, ACallFromAThirdThreadIsRefused) {
+    EventLoop bus_loop;
+    SharedActuator actuator;
+    PlaybackThread playback{bus_loop, actuator};
+    std::string refusal;
+    std::thread([&] {
+        try {
+            playback.call([](Player&) {});
+        } catch (const std::logic_error& error) {
+            refusal = error.what();
+        }
+    }).join();
+    EXPECT_NE(refusal.find("from another thread"), std::string::npos) << refusal;
+}
+
+// A work that hangs (a driver stuck in the kernel): the call gives up after the timeout, the
+// next ones fail at once without being run, and once the thread is back calls work again.
+TEST(PlaybackThreadStuck, CallsFailAfterTheTimeoutThenAtOnceUntilTheThreadIsBack) {
+    EventLoop bus_loop;
+    SharedActuator actuator;
+    PlaybackThread playback{bus_loop, actuator, {.call_timeout = 100ms}};
+    Gate gate;
+    EXPECT_THROW(playback.call([&gate](Player&) { gate.wait(); }), PlaybackStuck);
+    bool ran = false;
+    EXPECT_THROW(playback.call([&ran](Player&) { ran = true; }), PlaybackStuck);
+    gate.open();
+    // The stuck work finishes; the thread answers again.
+    for (int i = 0; i < 100; ++i) {
+        try {
+            EXPECT_EQ(playback.call([](Player&) { return 42; }), 42);
+            break;
+        } catch (const PlaybackStuck&) {
+            std::this_thread::sleep_for(10ms);
+        }
+    }
+    EXPECT_EQ(playback.call([](Player&) { return 43; }), 43);
+    EXPECT_FALSE(ran);
+}
+
+// The thread hangs in a cue's apply(), not in a call: a call queued behind it times out and,
+// abandoned, is never run when the thread comes back.
+TEST(PlaybackThreadStuck, AnAbandonedCallIsNeverRunLater) {
+    EventLoop bus_loop;
+    Gate gate;
+    HangingActuator actuator(gate);
+    PlaybackThread playback{bus_loop, actuator, {.call_timeout = 100ms}};
+    playback.call([](Player& player) { return player.play(two_drives()); });
+    std::this_thread::sleep_for(50ms);  // the second drive's apply() hangs by now
+    bool ran = false;
+    EXPECT_THROW(playback.call([&ran](Player&) { ran = true; }), PlaybackStuck);
+    gate.open();
+    for (int i = 0; i < 100; ++i) {
+        try {
+            playback.call([](Player&) {});
+            break;
+        } catch (const PlaybackStuck&) {
+            std::this_thread::sleep_for(10ms);
+        }
+    }
+    EXPECT_FALSE(ran);
+}
+
+TEST(PlaybackThreadWatchdog, AHeartbeatIsAnsweredWhileTheThreadRunsAndNotWhileItHangs) {
+    EventLoop bus_loop;
+    Gate gate;
+    HangingActuator actuator(gate);
+    PlaybackThread playback{bus_loop, actuator, {.call_timeout = 100ms}};
+    auto asked = monotonic_now_us();
+    playback.ask_for_heartbeat();
+    for (int i = 0; i < 500 && !playback.answered_since(asked); ++i) {
+        std::this_thread::sleep_for(1ms);
+    }
+    EXPECT_TRUE(playback.answered_since(asked));
+    playback.call([](Player& player) { return player.play(two_drives()); });
+    std::this_thread::sleep_for(50ms);  // the second drive's apply() hangs by now
+    asked = monotonic_now_us();
+    playback.ask_for_heartbeat();
+    std::this_thread::sleep_for(100ms);
+    EXPECT_FALSE(playback.answered_since(asked));
+    gate.open();
+    for (int i = 0; i < 500 && !playback.answered_since(asked); ++i) {
+        std::this_thread::sleep_for(1ms);
+    }
+    EXPECT_TRUE(playback.answered_since(asked));
 }
 
 }  // namespace

@@ -64,8 +64,8 @@ TEST_F(ReloadTest, ANewRequestRateAppliesAtOnceWithoutTouchingTheBackend) {
     fresh.request_burst = 1.0;
     reload_config(running, fresh, *host, callers);
     EXPECT_EQ(callers.requests_per_second(), 5.0);
-    EXPECT_TRUE(callers.admit(":1.1", 1'000'000));
-    EXPECT_FALSE(callers.admit(":1.1", 1'000'000));
+    EXPECT_TRUE(callers.admit(1000, 1'000'000));
+    EXPECT_FALSE(callers.admit(1000, 1'000'000));
     EXPECT_EQ(running.requests_per_second, 5.0);
     EXPECT_THAT(reasons.reasons, IsEmpty());
 }

@@ -1,14 +1,57 @@
-#include "client/formats/json_source.hpp"
+#include "common/json/json_document.hpp"
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <fstream>
 #include <iterator>
+#include <unordered_set>
 
-namespace vibscore::formats {
+namespace vibscore {
 
 namespace {
 
-constexpr std::size_t kMaxDepth = 64;
+constexpr int kNumberOverflow = 406;  // nlohmann's out_of_range.406: a number beyond a double
+
+bool is_blank(char c) {
+    return c == ' ' || c == '\t' || c == '\n' || c == '\r';
+}
+
+// The text with each trailing comma ([1,] or {"a": 1,}) turned into a blank, so every other
+// character keeps its offset; `found` gets where they were. One pass: strings are skipped with
+// their escapes, and a comma counts only after a value (so [,] and [1,,] stay errors).
+std::string blank_trailing_commas(std::string_view text, std::vector<std::ptrdiff_t>& found) {
+    std::string out(text);
+    char last = '\0';  // the last character outside blanks and strings, '"' after a string
+    for (std::size_t i = 0; i < out.size(); ++i) {
+        const char c = out[i];
+        if (c == '"') {
+            for (++i; i < out.size() && out[i] != '"'; ++i) {
+                i += out[i] == '\\' ? 1 : 0;
+            }
+            last = '"';
+            continue;
+        }
+        if (is_blank(c)) {
+            continue;
+        }
+        if (c == ',' && last != '\0' && std::strchr("[{,:", last) == nullptr) {
+            std::size_t next = i + 1;
+            while (next < out.size() && is_blank(out[next])) {
+                ++next;
+            }
+            if (next < out.size() && (out[next] == ']' || out[next] == '}')) {
+                out[i] = ' ';
+                found.push_back(static_cast<std::ptrdiff_t>(i));
+                continue;  // `last` stays the value before it
+            }
+        }
+        last = c;
+    }
+    return out;
+}
 
 // Walks the text for nlohmann's parser and leaves behind how far it has read: each SAX event
 // then knows where the token it reports ended, and so where the value began.
@@ -83,29 +126,39 @@ class TreeBuilder : public nlohmann::json_sax<nlohmann::json> {
     bool end_array() override { return close(); }
     bool key(string_t& value) override {
         const auto offset = token_start();
-        auto& object = *open_.back();
-        for (const auto& member : object.members) {
-            if (member.key == value) {
-                throw DocumentError(lines_.at(offset),
-                                    "key \"" + value + "\" appears twice in one object");
-            }
+        auto& frame = open_.back();
+        // A set per open object keeps the check linear in the number of keys.
+        if (!frame.keys.insert(value).second) {
+            throw DocumentError(lines_.at(offset),
+                                "key \"" + value + "\" appears twice in one object");
         }
-        object.members.push_back({std::move(value), offset, {}});
+        frame.value->members.push_back({std::move(value), offset, {}});
         return true;
     }
-    bool parse_error(std::size_t, const std::string&,
+    bool parse_error(std::size_t position, const std::string& last_token,
                      const nlohmann::detail::exception& error) override {
         std::string message = error.what();
+        // Point at the token at fault. nlohmann's position is just past the character it
+        // stopped at: for a bracket, brace, colon or comma where none may stand ("unexpected
+        // ','") that character is the token; for a string, number or literal the token began
+        // after the last one read well.
+        const bool separator = message.find("unexpected '") != std::string::npos && position > 0;
+        const auto where =
+            lines_.at(separator ? static_cast<std::ptrdiff_t>(std::min(position, text_.size()) - 1)
+                                : token_start());
+        if (error.id == kNumberOverflow) {
+            throw DocumentError(where, "number " + last_token + " is too large");
+        }
         // nlohmann prefixes "[json.exception...] parse error at line L, column C: "; the
         // location is ours to give.
         if (const auto column = message.find("column "); column != std::string::npos) {
             if (const auto colon = message.find(": ", column); colon != std::string::npos) {
                 message = message.substr(colon + 2);
             }
+        } else if (const auto bracket = message.find("] "); bracket != std::string::npos) {
+            message = message.substr(bracket + 2);
         }
-        // nlohmann's position is where it stopped reading, past the token at fault; point at
-        // the token's start instead.
-        throw DocumentError(lines_.at(token_start()), "not JSON: " + message);
+        throw DocumentError(where, "not JSON: " + message);
     }
 
   private:
@@ -129,7 +182,7 @@ class TreeBuilder : public nlohmann::json_sax<nlohmann::json> {
             root_ = std::move(value);
             return root_;
         }
-        auto& parent = *open_.back();
+        auto& parent = *open_.back().value;
         if (parent.kind == JsonValue::Kind::array) {
             parent.items.push_back(std::move(value));
             return parent.items.back();
@@ -138,11 +191,12 @@ class TreeBuilder : public nlohmann::json_sax<nlohmann::json> {
         return parent.members.back().value;
     }
     bool open(JsonValue::Kind kind) {
-        if (open_.size() >= kMaxDepth) {
-            throw DocumentError(lines_.at(token_start()),
-                                "nested deeper than " + std::to_string(kMaxDepth) + " levels");
+        if (open_.size() >= JsonDocument::max_depth) {
+            throw DocumentError(
+                lines_.at(token_start()),
+                "nested deeper than " + std::to_string(JsonDocument::max_depth) + " levels");
         }
-        open_.push_back(&add(kind));
+        open_.push_back({&add(kind), {}});
         return true;
     }
     bool close() {
@@ -156,7 +210,13 @@ class TreeBuilder : public nlohmann::json_sax<nlohmann::json> {
     JsonValue& root_;
     const char* reached_;
     const char* last_end_;
-    std::vector<JsonValue*> open_;
+    // The arrays and objects being read, outermost first. A pointer stays valid: only the
+    // innermost one grows.
+    struct Frame {
+        JsonValue* value;
+        std::unordered_set<std::string> keys;  // an object's keys so far
+    };
+    std::vector<Frame> open_;
 };
 
 }  // namespace
@@ -188,12 +248,40 @@ std::string_view to_string(JsonValue::Kind kind) {
     return "?";
 }
 
-JsonDocument::JsonDocument(std::string_view text, std::string file)
+JsonDocument::JsonDocument(std::string_view text, std::string file, JsonOptions options)
     : lines_(text, std::move(file)) {
+    // nlohmann's words for this differ between its releases (Debian 12's and 13's): ours.
+    if (std::all_of(text.begin(), text.end(), is_blank)) {
+        throw DocumentError(lines_.at(static_cast<std::ptrdiff_t>(text.size())),
+                            "not JSON: the text is empty");
+    }
+    std::string tolerant;
+    if (options.trailing_commas) {
+        tolerant = blank_trailing_commas(text, trailing_commas_);
+        text = tolerant;
+    }
     TreeBuilder builder(text, lines_, root_);
     const ReadingIterator first(text.data(), builder.reached());
     const ReadingIterator last(text.data() + text.size(), builder.reached());
     nlohmann::json::sax_parse(first, last, &builder);
 }
 
-}  // namespace vibscore::formats
+JsonDocument read_json_file(const std::string& path, JsonOptions options) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) {
+        throw DocumentError({path}, std::string("cannot open: ") + std::strerror(errno));
+    }
+    std::string text(max_json_file_bytes + 1, '\0');
+    in.read(text.data(), static_cast<std::streamsize>(text.size()));
+    if (in.bad()) {
+        throw DocumentError({path}, std::string("cannot read: ") + std::strerror(errno));
+    }
+    text.resize(static_cast<std::size_t>(in.gcount()));
+    if (text.size() > max_json_file_bytes) {
+        throw DocumentError({path}, "larger than " + std::to_string(max_json_file_bytes) +
+                                        " bytes, the limit for a JSON file");
+    }
+    return JsonDocument(text, path, options);
+}
+
+}  // namespace vibscore

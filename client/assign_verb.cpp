@@ -1,0 +1,157 @@
+#include "client/assign_verb.hpp"
+
+#include <sdbus-c++/sdbus-c++.h>
+
+#include <algorithm>
+#include <iomanip>
+#include <stdexcept>
+#include <vector>
+
+#include "client/offline_verbs.hpp"
+#include "dbus/sdbus_compat.hpp"
+#include "feedback/user_scores.hpp"
+#include "feedback1-proxy.h"
+
+namespace vibscore::client {
+
+namespace {
+
+constexpr const char* kFeedbackName = "org.sigxcpu.Feedback";
+constexpr const char* kFeedbackPath = "/org/sigxcpu/Feedback";
+
+class FeedbackLink : public sdbus::ProxyInterfaces<org::vibscore::Feedback1_proxy> {
+  public:
+    explicit FeedbackLink(std::unique_ptr<sdbus::IConnection> connection)
+        : ProxyInterfaces(*connection, dbus::service_name(kFeedbackName),
+                          dbus::object_path(kFeedbackPath)),
+          connection_(std::move(connection)) {
+        registerProxy();
+    }
+    ~FeedbackLink() { unregisterProxy(); }
+
+  private:
+    void onEventScoresChanged() override {}
+    std::unique_ptr<sdbus::IConnection> connection_;
+};
+
+// The errors that mean "vibscore-feedback is not there": no session bus, no one (and nothing
+// activatable) owns the name, or another program (feedbackd) does.
+bool not_reachable(const sdbus::Error& error) {
+    static const std::vector<std::string> names{
+        "org.freedesktop.DBus.Error.ServiceUnknown",   "org.freedesktop.DBus.Error.NameHasNoOwner",
+        "org.freedesktop.DBus.Error.UnknownInterface", "org.freedesktop.DBus.Error.UnknownMethod",
+        "org.freedesktop.DBus.Error.UnknownObject",    "org.freedesktop.DBus.Error.NoReply",
+        "org.freedesktop.DBus.Error.Disconnected"};
+    return std::find(names.begin(), names.end(), error.getName()) != names.end() ||
+           error.getName().starts_with("org.freedesktop.DBus.Error.Spawn");
+}
+
+std::string why(const sdbus::Error& error) {
+    return error.getName() == "org.freedesktop.DBus.Error.UnknownInterface" ||
+                   error.getName() == "org.freedesktop.DBus.Error.UnknownMethod"
+               ? "org.sigxcpu.Feedback is served by another program (feedbackd?)"
+               : "vibscore-feedback cannot be reached on the session bus";
+}
+
+int list_file(const std::filesystem::path& file, const std::string& reason, std::ostream& out,
+              std::ostream& err) {
+    std::vector<Diagnostic> warnings;
+    const auto scores = feedback::read_user_scores(file, warnings);
+    for (const auto& warning : warnings) {
+        err << "vibscore: warning: " << format(warning) << "\n";
+    }
+    err << "vibscore: " << reason << "; your own scores, from " << file.string()
+        << " (the theme's events are not known without it):\n";
+    for (const auto& [event, score] : scores) {
+        out << std::left << std::setw(28) << event << " " << score << "\n";
+    }
+    return exit_ok;
+}
+
+int list_live(FeedbackLink& link, std::ostream& out) {
+    for (const auto& entry : link.EventScores()) {
+        const auto& event = entry.get<0>();
+        const auto& score = entry.get<1>();
+        const auto& theme_score = entry.get<2>();
+        const bool assigned = entry.get<3>();
+        std::string note;
+        if (assigned) {
+            note = "yours" +
+                   (theme_score.empty() ? std::string() : " (the theme's: " + theme_score + ")");
+        } else if (score.empty()) {
+            note = "the theme's pattern";
+        }
+        out << std::left << std::setw(28) << event << " ";
+        if (note.empty()) {
+            out << (score.empty() ? "-" : score) << "\n";
+        } else {
+            out << std::setw(24) << (score.empty() ? "-" : score) << " " << note << "\n";
+        }
+    }
+    return exit_ok;
+}
+
+}  // namespace
+
+int assign(const AssignRequest& request, std::ostream& out, std::ostream& err) {
+    if (request.list != request.event.empty() ||
+        (!request.list && request.to_default != request.score.empty()) ||
+        (request.list && (request.to_default || !request.score.empty()))) {
+        err << "vibscore: assign takes EVENT SCORE, EVENT --default or --list\n"
+               "Run 'vibscore assign --help' for usage.\n";
+        return exit_usage;
+    }
+    if (!request.list) {
+        try {
+            feedback::check_event_and_score(request.event, request.score);
+        } catch (const std::invalid_argument& error) {
+            err << "vibscore: " << error.what() << "\n";
+            return exit_usage;
+        }
+    }
+    std::string reason;
+    std::unique_ptr<sdbus::IConnection> bus;
+    try {
+        bus = sdbus::createSessionBusConnection();
+    } catch (const sdbus::Error& error) {
+        reason = "there is no session bus (" + error.getMessage() + ")";
+    }
+    if (bus) {
+        try {
+            FeedbackLink link(std::move(bus));
+            if (request.list) {
+                return list_live(link, out);
+            }
+            link.AssignScore(request.event, request.score);
+            out << request.event << " plays "
+                << (request.score.empty() ? "the theme's score" : request.score)
+                << " from now on\n";
+            return exit_ok;
+        } catch (const sdbus::Error& error) {
+            if (!not_reachable(error)) {
+                err << "vibscore: " << error.getMessage() << "\n";
+                return error.getName() == "org.freedesktop.DBus.Error.InvalidArgs" ? exit_usage
+                                                                                   : exit_failed;
+            }
+            reason = why(error);
+        }
+    }
+    // Without vibscore-feedback: its file, which it reads when it starts.
+    try {
+        const auto file = feedback::user_scores_path();
+        if (request.list) {
+            return list_file(file, reason, out, err);
+        }
+        feedback::store_user_score(file, request.event, request.score);
+        out << request.event << " plays "
+            << (request.score.empty() ? "the theme's score" : request.score)
+            << " when vibscore-feedback runs (" << reason << "; stored in " << file.string()
+            << ")\n";
+        return exit_ok;
+    } catch (const std::exception& error) {
+        err << "vibscore: " << error.what() << "\n";
+        return exit_failed;
+    }
+}
+
+}  // namespace vibscore::client
