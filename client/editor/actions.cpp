@@ -25,9 +25,21 @@ struct SessionActions {
         return {Request::Kind::play, {}, 0};
     }
     static Request save(ButtonScheme& scheme, EditorModel&) {
+        // A new score's first save asks what it is for, as save as does.
+        if (scheme.never_saved_ && !scheme.events_->empty()) {
+            scheme.open_use_for(false);
+            return {};
+        }
+        scheme.pending_event_.clear();
         return scheme.save_under(scheme.destination_, false);
     }
     static Request save_as(ButtonScheme& scheme, EditorModel& model) {
+        if (!scheme.events_->empty()) {
+            scheme.open_use_for(true);
+            return {};
+        }
+        scheme.pending_event_.clear();
+        scheme.pending_save_as_ = true;
         scheme.begin_name_entry(model, false);
         return {};
     }

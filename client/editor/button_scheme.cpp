@@ -88,6 +88,10 @@ Request ButtonScheme::press(Button button, EditorModel& model, std::optional<Tim
             return name_press(button);
         case Mode::replace_menu:
             return replace_press(button, model);
+        case Mode::use_for:
+            return use_for_press(button, model);
+        case Mode::assigned:
+            return assigned_press(button);
         case Mode::playing:
             return {Request::Kind::stop};
     }
@@ -371,9 +375,88 @@ Request ButtonScheme::save_under(const std::string& name, bool then_quit) {
     }
     mode_ = Mode::browse;
     if (name == destination_) {
-        return {then_quit ? Request::Kind::save_and_quit : Request::Kind::save};
+        return {then_quit ? Request::Kind::save_and_quit : Request::Kind::save,
+                {},
+                0,
+                false,
+                pending_event_};
     }
-    return {Request::Kind::save_as, name, 0, then_quit};
+    return {Request::Kind::save_as, name, 0, then_quit, pending_event_};
+}
+
+// Saving offers, before any name, the events the score could be for: the theme's events with
+// what each plays now, and last, none.
+void ButtonScheme::open_use_for(bool save_as) {
+    pending_save_as_ = save_as;
+    pending_event_.clear();
+    list_.set(0, static_cast<int>(events_->size()) + 1);
+    mode_ = Mode::use_for;
+}
+
+Request ButtonScheme::use_for_press(Button button, EditorModel& model) {
+    const int size = static_cast<int>(events_->size()) + 1;
+    switch (button) {
+        case Button::up:
+            list_.step(-1, size);
+            return {};
+        case Button::down:
+            list_.step(+1, size);
+            return {};
+        case Button::left:
+        case Button::right:
+            return {};
+        case Button::back:
+            mode_ = Mode::browse;
+            return {};
+        case Button::select:
+            break;
+    }
+    const auto chosen = static_cast<std::size_t>(list_.index());
+    if (chosen < events_->size()) {
+        pending_event_ = (*events_)[chosen].event;  // a name proposed from it, one Select
+        begin_name_entry(model, false);
+        return {};
+    }
+    if (pending_save_as_) {
+        begin_name_entry(model, false);
+        return {};
+    }
+    return save_under(destination_, false);
+}
+
+void ButtonScheme::show_assigned(const std::string& event, const std::string& score) {
+    assigned_before_ = {event, "", "", false};
+    for (const auto& known : *events_) {
+        if (known.event == event) {
+            assigned_before_ = known;
+        }
+    }
+    assigned_score_ = score;
+    list_.set(0, 2);
+    mode_ = Mode::assigned;
+}
+
+Request ButtonScheme::assigned_press(Button button) {
+    switch (button) {
+        case Button::up:
+        case Button::down:
+            list_.step(button == Button::up ? -1 : 1, 2);
+            return {};
+        case Button::left:
+        case Button::right:
+            return {};
+        case Button::back:
+            mode_ = Mode::browse;
+            return {};
+        case Button::select:
+            break;
+    }
+    mode_ = Mode::browse;
+    if (list_.index() == 1) {
+        return {Request::Kind::keep_event, score_before(assigned_before_), 0, false,
+                assigned_before_.event};
+    }
+    return {};
 }
 
 void ButtonScheme::begin_name_entry(const EditorModel& model, bool then_quit) {
@@ -381,7 +464,12 @@ void ButtonScheme::begin_name_entry(const EditorModel& model, bool then_quit) {
     for (const auto& taken : *taken_) {
         names.push_back(taken.name);
     }
-    name_.start(name_proposals(destination_, model.score().title, "", names));
+    auto proposals = name_proposals(destination_, model.score().title, pending_event_, names);
+    if (never_saved_ && !pending_save_as_ && !pending_event_.empty()) {
+        // Saving a new score for an event: its own name is one of the choices too.
+        proposals.insert(proposals.begin() + 1, destination_);
+    }
+    name_.start(std::move(proposals));
     then_quit_ = then_quit;
     mode_ = Mode::name_entry;
 }
@@ -426,9 +514,13 @@ Request ButtonScheme::replace_press(Button button, const EditorModel& model) {
             const std::string name = replacing_.name;
             if (name == destination_) {
                 destination_ours_ = true;  // asked once; the next saves go there quietly
-                return {then_quit_ ? Request::Kind::save_and_quit : Request::Kind::save};
+                return {then_quit_ ? Request::Kind::save_and_quit : Request::Kind::save,
+                        {},
+                        0,
+                        false,
+                        pending_event_};
             }
-            return {Request::Kind::save_as, name, 0, then_quit_};
+            return {Request::Kind::save_as, name, 0, then_quit_, pending_event_};
         }
         default:
             mode_ = Mode::browse;
@@ -489,6 +581,25 @@ ButtonScheme::MenuView ButtonScheme::menu_view(const EditorModel& model) const {
             view.lines = name_.lines();
             view.highlighted = name_.highlighted();
             break;
+        case Mode::use_for:
+            view.title = "use for ...";
+            for (const auto& event : *events_) {
+                view.lines.push_back(event_label(event.event) + ": " +
+                                     (event.score.empty() ? "-" : event.score));
+            }
+            view.lines.push_back(pending_save_as_ ? "no event: a name..." : "no event: just save");
+            view.highlighted = list_.index();
+            break;
+        case Mode::assigned:
+            // Narrow screens: the title holds the event, the lines the two scores.
+            view.title = event_label(assigned_before_.event) + " plays:";
+            view.lines = {
+                assigned_score_ + " (ok)",
+                "keep as it was (" +
+                    (assigned_before_.score.empty() ? std::string("-") : assigned_before_.score) +
+                    ")"};
+            view.highlighted = list_.index();
+            break;
         case Mode::replace_menu:
             view.title = replace_title(replacing_);
             view.lines = {"save as another name", replace_choice(replacing_), "cancel"};
@@ -521,6 +632,10 @@ std::string ButtonScheme::hint(const EditorModel& model) const {
             return replace_hint(replacing_);
         case Mode::tapping:
             return "tap S:note \u2193rest \u2191 B:done \u2190drop";
+        case Mode::use_for:
+            return "\u2191\u2193choose Sel:save for it Back:close";
+        case Mode::assigned:
+            return "\u2191\u2193choose Sel:ok";
         case Mode::playing:
             return "playing: any button stops";
     }

@@ -12,6 +12,7 @@
 #include "client/editor/commands.hpp"
 #include "client/editor/editor_model.hpp"
 #include "client/editor/entry_steps.hpp"
+#include "client/editor/events.hpp"
 #include "client/editor/menu.hpp"
 #include "client/editor/name_entry.hpp"
 #include "client/editor/shared_value.hpp"
@@ -21,11 +22,23 @@ namespace vibscore::editor {
 
 // What the editor asks of the world around the model after a key or button.
 struct Request {
-    enum class Kind { none, play, stop, save, save_as, open, new_score, quit, save_and_quit };
+    enum class Kind {
+        none,
+        play,
+        stop,
+        save,
+        save_as,
+        open,
+        new_score,
+        quit,
+        save_and_quit,
+        keep_event,  // "keep as it was": give `event` back the score `name` ("" the theme's)
+    };
     Kind kind = Kind::none;
     std::string name;        // open: the registry name or file; save_as: the name to save under
     std::size_t bar = 0;     // play: the first bar
     bool then_quit = false;  // save_as: quit once saved
+    std::string event;       // save, save_as: once saved, `event` plays it ("use for ...")
     bool operator==(const Request&) const = default;
 };
 
@@ -73,6 +86,8 @@ class ButtonScheme {
         name_entry,    // save as: typing the name
         replace_menu,  // the name is taken: another name, replace it, cancel
         tapping,       // a rhythm tapped on Select (tap_rhythm.hpp)
+        use_for,       // saving: which event the score is for, or none
+        assigned,      // saved for an event: ok, or keep the event as it was
         playing
     };
 
@@ -97,10 +112,17 @@ class ButtonScheme {
     void set_taken(std::vector<TakenName> names) { taken_ = std::move(names); }
     // Where "save" stores the score; `ours` when this session made it or already replaced it
     // (saving there again asks nothing).
-    void set_destination(std::string name, bool ours) {
+    // `never_saved`: a new score, whose first "save" asks what it is for.
+    void set_destination(std::string name, bool ours, bool never_saved = false) {
         destination_ = std::move(name);
         destination_ours_ = ours;
+        never_saved_ = never_saved;
     }
+    // The events of the feedback theme in use with what each plays now: saving offers them
+    // first ("use for ..."). None (vibscore-feedback out of reach) offers none.
+    void set_events(std::vector<EventScore> events) { events_ = in_offer_order(std::move(events)); }
+    // Saved, and `event` plays `score` now: asks "ok" or "keep as it was".
+    void show_assigned(const std::string& event, const std::string& score);
     // The clefs the session could read, by id: a rhythm tapped at a clef's own pace is
     // written at its tempo; "clefs..." edits them.
     void set_clef_book(ClefBook book) { clef_book_ = std::move(book); }
@@ -143,6 +165,9 @@ class ButtonScheme {
     void begin_entry(EditorModel& model,
                      EditorModel::Continuing continuing = EditorModel::Continuing::no);
     Request tap(Button button, EditorModel& model, std::optional<Time> at);
+    void open_use_for(bool save_as);
+    Request use_for_press(Button button, EditorModel& model);
+    Request assigned_press(Button button);
     void end_tapping(EditorModel& model);
 
     Mode mode_ = Mode::browse;
@@ -158,6 +183,12 @@ class ButtonScheme {
     NameEntry name_;
     TakenName replacing_;  // the taken name the replace menu asks about
     TapRecorder taps_;
+    Shared<std::vector<EventScore>> events_;
+    bool never_saved_ = false;
+    std::string pending_event_;     // the event the score being saved is for
+    bool pending_save_as_ = false;  // "use for" was opened by save as (else by save)
+    EventScore assigned_before_;    // the event as it was before the score was saved for it
+    std::string assigned_score_;
     Shared<ClefBook> clef_book_;
     bool then_quit_ = false;  // quit once the pending save is done
 };

@@ -14,6 +14,7 @@
 #include "client/editor/documents.hpp"
 #include "client/editor/editor.hpp"
 #include "client/editor/evdev_buttons.hpp"
+#include "client/editor/event_link.hpp"
 #include "client/editor/ncurses_view.hpp"
 #include "client/editor/phrase_book.hpp"
 #include "common/device_error.hpp"
@@ -57,6 +58,7 @@ class Session {
             registry_scores_ = daemon_->list("score");
             registry_clefs_ = daemon_->list("clef");
             read_registry_scores();
+            events_ = std::make_unique<EventLink>();
         } catch (const DaemonError& error) {
             // Files can still be edited; playing and the registry wait for the daemon.
             daemon_.reset();
@@ -134,8 +136,10 @@ class Session {
         editor->scheme.set_taken(taken_names(source));
         editor->scheme.set_clef_book(read_clef_book(editor->model, source));
         // A file opened is the user's to save over; a registry name may be a shipped score.
-        editor->scheme.set_destination(name_of(source),
-                                       is_new || source.kind == ScoreSource::Kind::file);
+        const bool registry = source.kind == ScoreSource::Kind::registry;
+        editor->scheme.set_destination(name_of(source), is_new || !registry, is_new && registry);
+        // The feedback theme's events play registry scores: saving one offers them.
+        editor->scheme.set_events(registry ? event_scores() : std::vector<EventScore>{});
         if (editor_) {
             editor->model.carry_over(editor_->model);
         }
@@ -348,17 +352,26 @@ class Session {
                 stop();
                 return;
             case Request::Kind::save:
-                save();
+                if (save()) {
+                    use_for(request.event, true);
+                }
                 return;
             case Request::Kind::save_and_quit:
                 if (save()) {
+                    use_for(request.event, false);
                     running_ = false;
                 }
                 return;
             case Request::Kind::save_as:
-                if (save_as(request.name) && request.then_quit) {
-                    running_ = false;
+                if (save_as(request.name)) {
+                    use_for(request.event, !request.then_quit);
+                    if (request.then_quit) {
+                        running_ = false;
+                    }
                 }
+                return;
+            case Request::Kind::keep_event:
+                keep_event(request.event, request.name);
                 return;
             case Request::Kind::quit:
                 running_ = false;
@@ -369,6 +382,49 @@ class Session {
             case Request::Kind::new_score:
                 replace(std::nullopt);
                 return;
+        }
+    }
+
+    // What each event of the feedback theme plays now; none when it cannot be read (the editor
+    // then saves as it did, and says why once).
+    std::vector<EventScore> event_scores() {
+        if (!events_) {
+            return {};
+        }
+        try {
+            return events_->events();
+        } catch (const std::exception& error) {
+            message_ = std::string("events: ") + error.what();
+            return {};
+        }
+    }
+
+    // Saved for `event`: from now on it plays the score just saved, for this user. `ask`: offer
+    // "keep as it was" (not when quitting).
+    void use_for(const std::string& event, bool ask) {
+        if (event.empty() || !events_) {
+            return;
+        }
+        try {
+            events_->assign(event, source_.name);
+            message_ = event_label(event) + " plays " + source_.name;
+            if (ask) {
+                editor_->scheme.show_assigned(event, source_.name);
+            }
+            editor_->scheme.set_events(event_scores());
+        } catch (const std::exception& error) {
+            message_ = "saved; not used for " + event_label(event) + ": " + error.what();
+        }
+    }
+
+    void keep_event(const std::string& event, const std::string& score) {
+        try {
+            events_->assign(event, score);
+            message_ = event_label(event) + " plays " +
+                       (score.empty() ? std::string("the theme's score") : score) + " again";
+            editor_->scheme.set_events(event_scores());
+        } catch (const std::exception& error) {
+            message_ = event_label(event) + ": " + error.what();
         }
     }
 
@@ -469,6 +525,7 @@ class Session {
 
     EditOptions options_;
     std::unique_ptr<DaemonLink> daemon_;
+    std::unique_ptr<EventLink> events_;  // the feedback theme's events ("use for ...")
     std::vector<std::string> registry_scores_;
     std::vector<std::string> registry_clefs_;
     std::vector<NamedScore> learned_;  // the registry's scores the proposals learn from

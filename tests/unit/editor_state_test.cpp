@@ -167,7 +167,9 @@ TEST(EditorEquality, EqualEditorsAnswerEveryPressAlikeInAScoreWithBarsBlocksAndN
     editor.scheme.set_openable({"alarm", "ringtone"});
     editor.scheme.set_taken(
         {{"alarm", editor::TakenName::What::shipped}, {"t", editor::TakenName::What::stored}});
-    editor.scheme.set_destination("t", false);
+    editor.scheme.set_destination("t", false, true);
+    editor.scheme.set_events({{"phone-incoming-call", "ringtone", "ringtone", false},
+                              {"message-new-sms", "confirm", "message-new-sms", true}});
     const auto search = search_from(editor, 5'000);
     EXPECT_GE(search.states, 5'000u);
     EXPECT_GT(search.met_again, 500u);
