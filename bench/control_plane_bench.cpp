@@ -6,22 +6,19 @@
 // interleaved with a Peer.Ping to the daemon (answered inside sd-bus, the floor) and measured in
 // the same stretch, so the ratio to the floor means something on a noisy machine. Prints a table
 // and one JSON line; asserts nothing.
-#include <CLI/CLI.hpp>
 #include <signal.h>
-#include <unistd.h>
+#include <CLI/CLI.hpp>
 
 #include <atomic>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
-#include <iterator>
-#include <sstream>
 #include <memory>
 #include <string>
 #include <thread>
 #include <vector>
 
+#include "bench/flood.hpp"
 #include "bench/report.hpp"
 #include "bench/summary.hpp"
 #include "dbus/sdbus_compat.hpp"
@@ -52,17 +49,6 @@ const char* name_of(Flood flood) {
     return "?";
 }
 
-// 2,250 whole notes through lra-phone: the largest inline score the limits admit (30 min).
-std::string largest_inline_score() {
-    std::string bars;
-    for (int i = 0; i < 2250; ++i) {
-        bars += "<Bar clef=\"l\"><Note length=\"whole\" number=\"" + std::to_string(1 + i % 9) +
-                "\" string=\"" + std::to_string(1 + i % 6) + "\"/></Bar>";
-    }
-    return "<VibScore><Title>flood</Title><Clef id=\"l\" href=\"lra-phone.clef.xml\"/>" + bars +
-           "</VibScore>";
-}
-
 // The flooder process: `connections` threads, each with a connection of its own, calling Play
 // with what `kind` says until killed.
 int flood(const std::string& kind, int connections) {
@@ -71,7 +57,7 @@ int flood(const std::string& kind, int connections) {
     if (kind == "polkit") {
         options["usage"] = sdbus::Variant(std::string("ringtone"));
     } else if (kind == "inline") {
-        score = largest_inline_score();
+        score = bench::largest_inline_score();
     } else if (kind == "big") {
         score.assign(30u << 20, 'x');
     }
@@ -112,39 +98,10 @@ struct Row {
     int connections;
     bench::Summary list, play, ping;
     int timeouts = 0;         // root's calls that got no answer within D-Bus's 25 s
+    int refused = 0;          // root's calls refused (an error other than no answer)
     double daemon_cpu_s = 0;  // vibscored's CPU time over the stretch
     double stretch_s = 0;
 };
-
-// A process's user + system CPU time in seconds, from /proc.
-double cpu_seconds(pid_t pid) {
-    std::ifstream in("/proc/" + std::to_string(pid) + "/stat");
-    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    const auto close = text.rfind(')');
-    if (close == std::string::npos) {
-        return 0;
-    }
-    std::istringstream fields(text.substr(close + 2));
-    std::string field;
-    double ticks = 0;
-    for (int index = 3; fields >> field; ++index) {
-        if (index == 14 || index == 15) {
-            ticks += std::stod(field);
-        }
-    }
-    return ticks / static_cast<double>(sysconf(_SC_CLK_TCK));
-}
-
-pid_t owner_pid(const testing::DaemonFixture& daemon, const std::string& name) {
-    const auto status = daemon.busctl({"status", "--no-pager", name});
-    std::istringstream lines(status.out);
-    for (std::string line; std::getline(lines, line);) {
-        if (line.rfind("PID=", 0) == 0) {
-            return static_cast<pid_t>(std::stol(line.substr(4)));
-        }
-    }
-    return 0;
-}
 
 double ms_since(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
@@ -176,10 +133,10 @@ int main(int argc, char** argv) {
     const auto self = std::filesystem::read_symlink("/proc/self/exe").string();
     auto root = daemon.client();
     auto ping_connection = sdbus::createSystemBusConnection();
-    auto ping = dbus::create_proxy(*ping_connection, "org.vibscore.Haptics1",
-                                   "/org/vibscore/Haptics1");
+    auto ping =
+        dbus::create_proxy(*ping_connection, "org.vibscore.Haptics1", "/org/vibscore/Haptics1");
 
-    const pid_t daemon_pid = owner_pid(daemon, "org.vibscore.Haptics1");
+    const pid_t daemon_pid = bench::owner_pid(daemon);
     std::vector<Row> rows;
     const auto measure = [&](Flood flood, int connections) {
         std::unique_ptr<testing::Process> flooder;
@@ -191,47 +148,49 @@ int main(int argc, char** argv) {
                 daemon.polkit().signal(SIGSTOP);
             }
             flooder = std::make_unique<testing::Process>(
-                std::vector<std::string>{"/usr/bin/setpriv", "--reuid=65534", "--regid=65534",
-                                         "--clear-groups", "--", "/usr/bin/env",
-                                         "DBUS_SYSTEM_BUS_ADDRESS=" + daemon.bus_address(), self,
-                                         "--flood", kind, "--connections",
-                                         std::to_string(connections)},
+                std::vector<std::string>{
+                    "/usr/bin/setpriv", "--reuid=65534", "--regid=65534", "--clear-groups", "--",
+                    "/usr/bin/env", "DBUS_SYSTEM_BUS_ADDRESS=" + daemon.bus_address(), self,
+                    "--flood", kind, "--connections", std::to_string(connections)},
                 "/dev/null");
             std::this_thread::sleep_for(1s);  // flooding in earnest
         }
         std::vector<double> list_ms, play_ms, ping_ms;
-        int timeouts = 0;
+        int timeouts = 0, refused = 0;
         // A call with no answer counts as taking the whole time it waited.
         const auto timed = [&](std::vector<double>& into, const auto& call) {
             const auto start = std::chrono::steady_clock::now();
             try {
                 call();
-            } catch (const sdbus::Error&) {
-                ++timeouts;
+            } catch (const sdbus::Error& error) {
+                ++(dbus::error_name(error) == "org.freedesktop.DBus.Error.NoReply" ? timeouts
+                                                                                   : refused);
             }
             into.push_back(ms_since(start));
         };
-        const double cpu_before = cpu_seconds(daemon_pid);
+        const double cpu_before = bench::cpu_seconds(daemon_pid);
         const auto stretch_start = std::chrono::steady_clock::now();
         // Three calls without an answer (25 s each) say enough: the stretch ends there.
         for (int i = 0; i < samples && timeouts < 3; ++i) {
-            timed(ping_ms, [&] { ping->callMethod("Ping").onInterface("org.freedesktop.DBus.Peer"); });
+            timed(ping_ms,
+                  [&] { ping->callMethod("Ping").onInterface("org.freedesktop.DBus.Peer"); });
             timed(list_ms, [&] { root->List("score"); });
             timed(play_ms, [&] { root->Stop(root->Play("touch-tick", {})); });
         }
         const double stretch_s = ms_since(stretch_start) / 1000.0;
-        const double daemon_cpu_s = cpu_seconds(daemon_pid) - cpu_before;
+        const double daemon_cpu_s = bench::cpu_seconds(daemon_pid) - cpu_before;
         flooder.reset();
         if (flood == Flood::polkit_stopped) {
             daemon.polkit().signal(SIGCONT);
         }
         rows.push_back({flood, connections, bench::summarize(list_ms), bench::summarize(play_ms),
-                        bench::summarize(ping_ms), timeouts, daemon_cpu_s, stretch_s});
+                        bench::summarize(ping_ms), timeouts, refused, daemon_cpu_s, stretch_s});
         const auto& row = rows.back();
         std::printf(
-            "  %-15s %3d   List %7.2f %8.2f   Play %7.2f %8.2f   Ping %6.2f %7.2f   %5.0f%%  %d\n",
+            "  %-15s %3d   List %7.2f %8.2f   Play %7.2f %8.2f   Ping %6.2f %7.2f   %5.0f%%  "
+            "%d/%d\n",
             name_of(flood), connections, row.list.p50, row.list.p99, row.play.p50, row.play.p99,
-            row.ping.p50, row.ping.p99, 100.0 * daemon_cpu_s / stretch_s, timeouts);
+            row.ping.p50, row.ping.p99, 100.0 * daemon_cpu_s / stretch_s, timeouts, refused);
         std::fflush(stdout);
     };
 
@@ -239,7 +198,7 @@ int main(int argc, char** argv) {
         "control_plane_bench (%s; a shared, noisy machine: compare each row with its Ping)\n"
         "  %-15s %3s   %-18s   %-18s   %-16s   %6s  %s\n",
         bench::cpu_model().c_str(), "flood", "n", "List p50/p99 ms", "Play p50/p99 ms",
-        "Ping p50/p99 ms", "daemon", "no answer");
+        "Ping p50/p99 ms", "daemon", "no answer/refused");
     measure(Flood::quiet, 0);
     for (const auto flood :
          {Flood::polkit, Flood::inline_score, Flood::big_name, Flood::polkit_stopped}) {
@@ -249,12 +208,13 @@ int main(int argc, char** argv) {
     }
     std::string json = "{\"bench\":\"control_plane\"";
     for (const auto& row : rows) {
-        const std::string prefix = std::string(name_of(row.flood)) + "_" +
-                                   std::to_string(row.connections);
+        const std::string prefix =
+            std::string(name_of(row.flood)) + "_" + std::to_string(row.connections);
         json += "," + bench::json_summary((prefix + "_list").c_str(), row.list) + "," +
                 bench::json_summary((prefix + "_play").c_str(), row.play) + "," +
                 bench::json_summary((prefix + "_ping").c_str(), row.ping) + ",\"" + prefix +
                 "_timeouts\":" + std::to_string(row.timeouts) + ",\"" + prefix +
+                "_refused\":" + std::to_string(row.refused) + ",\"" + prefix +
                 "_daemon_cpu\":" + std::to_string(row.daemon_cpu_s / row.stretch_s);
     }
     std::printf("%s}\n", json.c_str());

@@ -245,10 +245,14 @@ int DaemonFixture::stop_daemon() {
 }
 
 void DaemonFixture::write_config(const std::string& daemon_lines, const std::string& sim_lines) {
-    config_ = dir_.write("vibscored.conf",
-                         "[daemon]\ndriver = sim\nshipped = " + required_env("VIBSCORE_CLEFS") +
-                             "\nstore = " + store_.string() + "\n" + daemon_lines + "\n[sim]\n" +
-                             sim_lines + "\n");
+    // A key set twice is an error in vibscored.conf: sim only when the lines name no driver.
+    const bool names_driver = daemon_lines.rfind("driver =", 0) == 0 ||
+                              daemon_lines.find("\ndriver =") != std::string::npos;
+    config_ = dir_.write("vibscored.conf", "[daemon]\n" +
+                                               std::string(names_driver ? "" : "driver = sim\n") +
+                                               "shipped = " + required_env("VIBSCORE_CLEFS") +
+                                               "\nstore = " + store_.string() + "\n" +
+                                               daemon_lines + "\n[sim]\n" + sim_lines + "\n");
 }
 
 void DaemonFixture::signal_daemon(int signo) const {
@@ -258,6 +262,10 @@ void DaemonFixture::signal_daemon(int signo) const {
 void DaemonFixture::kill_daemon() {
     daemon_->signal(SIGKILL);
     daemon_->wait();
+}
+
+int DaemonFixture::wait_daemon() {
+    return daemon_->wait();
 }
 
 std::string DaemonFixture::daemon_log() const {
