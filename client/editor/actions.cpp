@@ -18,6 +18,10 @@ struct SessionActions {
         scheme.open_clef_menu(model);
         return {};
     }
+    static Request edit_clefs(ButtonScheme& scheme, EditorModel& model) {
+        scheme.open_clef_list(model);
+        return {};
+    }
     static Request play_from_bar(ButtonScheme&, EditorModel& model) {
         return {Request::Kind::play, {}, model.cursor().bar};
     }
@@ -190,6 +194,8 @@ constexpr ActionRecord kActions[] = {
           call<&EditorModel::delete_at_cursor>()),
     session(Action::choose_clef, "bar clef", key('k'), symbol_bar, "bar clef...",
             &SessionActions::choose_clef),
+    session(Action::edit_clefs, "edit clefs", key('K'), symbol_bar, "edit clefs...",
+            &SessionActions::edit_clefs),
 
     model(Action::strings_up, "strings up", key(KEY_SR), shift, "strings up", shift_strings<+1>),
     model(Action::strings_down, "strings down", key(KEY_SF), shift, "strings down",

@@ -5,6 +5,7 @@
 
 #include "client/editor/actions.hpp"
 #include "client/editor/status_line.hpp"
+#include "score/clef_xml.hpp"
 
 namespace vibscore::editor {
 
@@ -90,6 +91,14 @@ Request ButtonScheme::press(Button button, EditorModel& model, std::optional<Tim
             return replace_press(button, model);
         case Mode::use_for:
             return use_for_press(button, model);
+        case Mode::clef_list:
+            return clef_list_press(button, model);
+        case Mode::clef_edit:
+            return clef_edit_press(button);
+        case Mode::clef_name:
+            return clef_name_press(button);
+        case Mode::clef_close:
+            return clef_close_press(button);
         case Mode::assigned:
             return assigned_press(button);
         case Mode::playing:
@@ -424,6 +433,143 @@ Request ButtonScheme::use_for_press(Button button, EditorModel& model) {
     return save_under(destination_, false);
 }
 
+const ClefEditor* ButtonScheme::clef_editor() const {
+    const bool open =
+        mode_ == Mode::clef_edit || mode_ == Mode::clef_name || mode_ == Mode::clef_close;
+    return open ? &clef_editor_ : nullptr;
+}
+
+// "edit clefs...": the clefs the session could read, the score's own first.
+void ButtonScheme::open_clef_list(EditorModel& model) {
+    if (clef_book_->clefs().empty()) {
+        model.say("no clef could be read");
+        return;
+    }
+    int index = 0;
+    const std::string& current = model.score().bars.at(model.cursor().bar).clef;
+    for (std::size_t i = 0; i < clef_book_->clefs().size(); ++i) {
+        if (clef_book_->clefs()[i].declaration.id == current) {
+            index = static_cast<int>(i);
+        }
+    }
+    list_.set(index, static_cast<int>(clef_book_->clefs().size()));
+    mode_ = Mode::clef_list;
+}
+
+Request ButtonScheme::clef_list_press(Button button, EditorModel&) {
+    const int size = static_cast<int>(clef_book_->clefs().size());
+    switch (button) {
+        case Button::up:
+        case Button::down:
+            list_.step(button == Button::up ? -1 : 1, size);
+            return {};
+        case Button::left:
+        case Button::right:
+            return {};
+        case Button::back:
+            mode_ = Mode::menu;
+            return {};
+        case Button::select:
+            break;
+    }
+    const auto& chosen = clef_book_->clefs()[static_cast<std::size_t>(list_.index())];
+    clef_editor_ = ClefEditor(chosen.declaration.id, chosen.clef);
+    mode_ = Mode::clef_edit;
+    return {};
+}
+
+namespace {
+
+Request hearing(const ClefEditor& editor) {
+    Request request{Request::Kind::hear_clef, editor.id()};
+    request.document = write_clef(editor.clef());
+    request.string = editor.string();
+    request.number = editor.number();
+    return request;
+}
+
+}  // namespace
+
+Request ButtonScheme::clef_edit_press(Button button) {
+    switch (clef_editor_.press(button)) {
+        case ClefEditor::Outcome::editing:
+            return {};
+        case ClefEditor::Outcome::hear:
+            return hearing(clef_editor_);
+        case ClefEditor::Outcome::save_as:
+            begin_clef_name();
+            return {};
+        case ClefEditor::Outcome::close:
+            if (clef_editor_.modified()) {
+                list_.set(0, 3);
+                mode_ = Mode::clef_close;
+                return {};
+            }
+            mode_ = Mode::browse;
+            return {};
+    }
+    return {};
+}
+
+// A clef is saved under a new name each time: a shipped clef (or any other) is never saved
+// over.
+void ButtonScheme::begin_clef_name() {
+    std::vector<std::string> names;
+    for (const auto& known : clef_book_->clefs()) {
+        names.push_back(known.declaration.id);
+    }
+    name_.start({free_name(clef_editor_.id(), names)});
+    mode_ = Mode::clef_name;
+}
+
+Request ButtonScheme::clef_name_press(Button button) {
+    switch (name_.press(button)) {
+        case NameEntry::Outcome::typing:
+            return {};
+        case NameEntry::Outcome::cancelled:
+            mode_ = Mode::clef_edit;
+            return {};
+        case NameEntry::Outcome::done:
+            break;
+    }
+    if (clef_book_->find(name_.name()) != nullptr) {
+        name_.refuse(name_.name() + " exists: another name");
+        return {};
+    }
+    mode_ = Mode::browse;
+    Request request{Request::Kind::save_clef, name_.name()};
+    request.document = write_clef(clef_editor_.clef());
+    return request;
+}
+
+Request ButtonScheme::clef_close_press(Button button) {
+    switch (button) {
+        case Button::up:
+        case Button::down:
+            list_.step(button == Button::up ? -1 : 1, 3);
+            return {};
+        case Button::left:
+        case Button::right:
+            return {};
+        case Button::back:
+            mode_ = Mode::clef_edit;
+            return {};
+        case Button::select:
+            break;
+    }
+    switch (list_.index()) {
+        case 0:
+            begin_clef_name();
+            return {};
+        case 1:
+            mode_ = Mode::browse;  // the changes dropped
+            return {};
+        default:
+            mode_ = Mode::clef_edit;
+            return {};
+    }
+}
+
 void ButtonScheme::show_assigned(const std::string& event, const std::string& score) {
     assigned_before_ = {event, "", "", false};
     for (const auto& known : *events_) {
@@ -541,6 +687,11 @@ Request ButtonScheme::command(const Command& command, EditorModel& model) {
     if (mode_ == Mode::playing) {
         return {Request::Kind::stop};
     }
+    if (mode_ == Mode::clef_list || clef_editor() != nullptr) {
+        // A letter key at 80x24 would otherwise drop the clef being edited without a word.
+        model.say("a clef is open: Back, Back closes it");
+        return {};
+    }
     leave_layers(model);
     return perform(command, model);
 }
@@ -580,6 +731,26 @@ ButtonScheme::MenuView ButtonScheme::menu_view(const EditorModel& model) const {
             view.title = "save as";
             view.lines = name_.lines();
             view.highlighted = name_.highlighted();
+            break;
+        case Mode::clef_list:
+            view.title = "edit clefs";
+            for (const auto& known : clef_book_->clefs()) {
+                char tempo[32];
+                std::snprintf(tempo, sizeof tempo, "%.2f s", known.clef.tempo);
+                view.lines.push_back(known.declaration.id + "  " +
+                                     std::string(to_string(known.clef.type)) + " " + tempo);
+            }
+            view.highlighted = list_.index();
+            break;
+        case Mode::clef_name:
+            view.title = "save clef as";
+            view.lines = name_.lines();
+            view.highlighted = name_.highlighted();
+            break;
+        case Mode::clef_close:
+            view.title = clef_editor_.id() + " changed";
+            view.lines = {"save as...", "drop the changes", "cancel"};
+            view.highlighted = list_.index();
             break;
         case Mode::use_for:
             view.title = "use for ...";
@@ -634,6 +805,14 @@ std::string ButtonScheme::hint(const EditorModel& model) const {
             return "tap S:note \u2193rest \u2191 B:done \u2190drop";
         case Mode::use_for:
             return "\u2191\u2193choose Sel:save for it Back:close";
+        case Mode::clef_list:
+            return "\u2191\u2193choose Sel:edit Back:close";
+        case Mode::clef_edit:
+            return clef_editor_.hint();
+        case Mode::clef_name:
+            return name_.hint();
+        case Mode::clef_close:
+            return "\u2191\u2193choose Sel:ok";
         case Mode::assigned:
             return "\u2191\u2193choose Sel:ok";
         case Mode::playing:

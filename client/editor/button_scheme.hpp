@@ -9,6 +9,7 @@
 
 #include "client/editor/buttons.hpp"
 #include "client/editor/clef_book.hpp"
+#include "client/editor/clef_editor.hpp"
 #include "client/editor/commands.hpp"
 #include "client/editor/editor_model.hpp"
 #include "client/editor/entry_steps.hpp"
@@ -33,12 +34,17 @@ struct Request {
         quit,
         save_and_quit,
         keep_event,  // "keep as it was": give `event` back the score `name` ("" the theme's)
+        hear_clef,   // play string `string` at number `number` through the clef `document`
+        save_clef,   // store the clef `document` as `name` and use it for the cursor's bar
     };
     Kind kind = Kind::none;
     std::string name;        // open: the registry name or file; save_as: the name to save under
     std::size_t bar = 0;     // play: the first bar
     bool then_quit = false;  // save_as: quit once saved
     std::string event;       // save, save_as: once saved, `event` plays it ("use for ...")
+    std::string document;    // hear_clef, save_clef: the clef as a VibClef document
+    int string = 0;          // hear_clef
+    int number = 0;
     bool operator==(const Request&) const = default;
 };
 
@@ -88,6 +94,10 @@ class ButtonScheme {
         tapping,       // a rhythm tapped on Select (tap_rhythm.hpp)
         use_for,       // saving: which event the score is for, or none
         assigned,      // saved for an event: ok, or keep the event as it was
+        clef_list,     // "edit clefs...": which clef
+        clef_edit,     // a clef's window (clef_editor.hpp)
+        clef_name,     // saving the clef: its new name
+        clef_close,    // closing an edited clef: save as, drop the changes, cancel
         playing
     };
 
@@ -127,6 +137,14 @@ class ButtonScheme {
     // written at its tempo; "clefs..." edits them.
     void set_clef_book(ClefBook book) { clef_book_ = std::move(book); }
     const ClefBook& clef_book() const { return *clef_book_; }
+    // A clef saved: offered from now on (and never saved over: a new name each time).
+    void add_clef(KnownClef clef) {
+        ClefBook book = *clef_book_;
+        book.put(std::move(clef));
+        clef_book_ = std::move(book);
+    }
+    // The clef being edited, while its window is open.
+    const ClefEditor* clef_editor() const;
     // The notes tapped so far while tapping.
     int taps() const { return taps_.notes(); }
 
@@ -166,6 +184,12 @@ class ButtonScheme {
                      EditorModel::Continuing continuing = EditorModel::Continuing::no);
     Request tap(Button button, EditorModel& model, std::optional<Time> at);
     void open_use_for(bool save_as);
+    void open_clef_list(EditorModel& model);
+    Request clef_list_press(Button button, EditorModel& model);
+    Request clef_edit_press(Button button);
+    Request clef_name_press(Button button);
+    Request clef_close_press(Button button);
+    void begin_clef_name();
     Request use_for_press(Button button, EditorModel& model);
     Request assigned_press(Button button);
     void end_tapping(EditorModel& model);
@@ -190,6 +214,7 @@ class ButtonScheme {
     EventScore assigned_before_;    // the event as it was before the score was saved for it
     std::string assigned_score_;
     Shared<ClefBook> clef_book_;
+    ClefEditor clef_editor_;
     bool then_quit_ = false;  // quit once the pending save is done
 };
 

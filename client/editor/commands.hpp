@@ -32,6 +32,7 @@ enum class Action {
     split_bar,
     delete_symbol,
     choose_clef,
+    edit_clefs,  // the clef editor: a clef's strings, numbers and tempo
     strings_up,
     strings_down,
     numbers_up,

@@ -80,7 +80,7 @@ class Session {
     void run() {
         Screen screen;
         while (running_) {
-            screen.draw(editor_->model, editor_->scheme, {source_.name, message_, playing_at_});
+            screen.draw(editor_->model, editor_->scheme, {source_.name, message_, playing_at_, {}});
             wait_for_input();
             while (const auto code = screen.key()) {
                 // A terminal's keys carry no time: now is when the key was read.
@@ -373,6 +373,12 @@ class Session {
             case Request::Kind::keep_event:
                 keep_event(request.event, request.name);
                 return;
+            case Request::Kind::hear_clef:
+                hear_clef(request);
+                return;
+            case Request::Kind::save_clef:
+                save_clef(request);
+                return;
             case Request::Kind::quit:
                 running_ = false;
                 return;
@@ -425,6 +431,52 @@ class Session {
             editor_->scheme.set_events(event_scores());
         } catch (const std::exception& error) {
             message_ = event_label(event) + ": " + error.what();
+        }
+    }
+
+    // The string at the number under the cursor, through the clef as it is being edited: a
+    // quarter note, sent with the clef inline, on the actuator at once.
+    void hear_clef(const Request& request) {
+        if (!daemon_) {
+            message_ = "cannot hear it: no daemon";
+            return;
+        }
+        const std::string href = "edited.clef.xml";
+        const std::string score = "<VibScore><Title>" + request.name +
+                                  "</Title><Clef id=\"edited\" href=\"" + href +
+                                  "\"/><Bar clef=\"edited\"><Note length=\"quarter\" number=\"" +
+                                  std::to_string(request.number) + "\" string=\"" +
+                                  std::to_string(request.string) + "\"/></Bar></VibScore>";
+        try {
+            daemon_->audition(score, {{href, request.document}});
+        } catch (const DaemonError& error) {
+            message_ = "cannot hear it: " + std::string(error.what());
+        }
+    }
+
+    // Stores the edited clef under a new name (the registry, or a file beside a file score) and
+    // the bars at the cursor use it.
+    void save_clef(const Request& request) {
+        const std::string href = request.name + std::string(kClefSuffix);
+        try {
+            const Clef clef = read_clef(request.document, href);
+            if (source_.kind == ScoreSource::Kind::file) {
+                const auto path = std::filesystem::path(source_.name).parent_path() / href;
+                write_document_file(path, request.document);
+            } else if (daemon_) {
+                daemon_->compose(request.name, request.document);
+            } else {
+                message_ = "clef not saved: no daemon";
+                return;
+            }
+            const ClefDeclaration declaration{request.name, href};
+            editor_->scheme.add_clef({declaration, clef, false});
+            editor_->model.add_available_clef(declaration);
+            editor_->model.set_bar_clef(request.name);
+            message_ = "clef " + request.name + " saved; bar " +
+                       std::to_string(editor_->model.cursor().bar + 1) + " uses it";
+        } catch (const std::exception& error) {
+            message_ = "clef not saved: " + std::string(error.what());
         }
     }
 

@@ -60,6 +60,14 @@ Score EditorModel::blank_score(std::string title, const ClefDeclaration& clef) {
     return score;
 }
 
+void EditorModel::add_available_clef(const ClefDeclaration& clef) {
+    auto clefs = *available_clefs_;
+    if (std::find(clefs.begin(), clefs.end(), clef) == clefs.end()) {
+        clefs.push_back(clef);
+        available_clefs_ = std::move(clefs);
+    }
+}
+
 void EditorModel::set_title(std::string title) {
     if (title != score_->title) {
         edit().title = std::move(title);
@@ -822,10 +830,19 @@ bool EditorModel::set_bar_clef(const std::string& id) {
         last = marked->end.symbol == 0 && marked->end.bar > first ? marked->end.bar - 1
                                                                   : marked->end.bar;
     }
+    return set_clef_of_bars(first, last, *chosen);
+}
+
+bool EditorModel::set_clef_of_bars(std::size_t first, std::size_t last,
+                                   const ClefDeclaration& clef) {
+    const std::string& id = clef.id;
+    if (first > last || last >= score_->bars.size()) {
+        return refuse("no such bars");
+    }
     const auto used_before = clefs_in_use(*score_);
     Score changed = *score_;
     if (changed.find_clef(id) == nullptr) {
-        changed.clefs.push_back(*chosen);
+        changed.clefs.push_back(clef);
     }
     for (std::size_t b = first; b <= last; ++b) {
         changed.bars[b].clef = id;

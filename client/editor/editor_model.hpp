@@ -49,6 +49,8 @@ class EditorModel {
     // What a session keeps when another score is opened or a new one started: the clipboard,
     // so a bar copied in one score can be pasted into another.
     void carry_over(const EditorModel& previous) { clipboard_ = previous.clipboard_; }
+    // A clef bars may use from now on (one just saved).
+    void add_available_clef(const ClefDeclaration& clef);
     // The scores the proposals learn from besides the score itself (phrase_book.hpp).
     void learn_from(std::shared_ptr<const PhraseBook> phrases) { phrases_ = std::move(phrases); }
 
@@ -103,6 +105,8 @@ class EditorModel {
     bool undo();
     bool redo();
     bool set_bar_clef(const std::string& id);
+    // Bars `first` to `last` play with `clef` (declared when the score does not yet).
+    bool set_clef_of_bars(std::size_t first, std::size_t last, const ClefDeclaration& clef);
     // Whole bars (a tapped rhythm) put in as bars at the cursor, one undo step: an empty bar is
     // replaced by them, at a bar line they go in before or after the bar, inside a bar it is
     // split there. The cursor goes to their first symbol.

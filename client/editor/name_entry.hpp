@@ -34,6 +34,8 @@ class NameEntry {
     // `proposals`, best first; at least one (an empty list proposes "tacton-2").
     void start(std::vector<std::string> proposals);
     Outcome press(Button button);
+    // The name chosen cannot be taken (the caller knows why): typing goes on, the box says it.
+    void refuse(std::string why) { refused_ = std::move(why); }
 
     // The name Select saves under now.
     const std::string& name() const;

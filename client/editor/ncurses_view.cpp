@@ -165,13 +165,23 @@ void Screen::draw(const EditorModel& model, const ButtonScheme& scheme, const Vi
     const int focus_x = std::max(layout.x_of(focus), 0);
     first_column_ = scroll_to_show(first_column_, cols, focus_x, layout.width);
 
-    for (int row = 0; row < staff_height; ++row) {
-        move(top + row, 0);
-        for (int x = first_column_; x < first_column_ + cols && x < layout.width; ++x) {
-            const Cell& cell =
-                layout.rows[static_cast<std::size_t>(row)][static_cast<std::size_t>(x)];
-            attrset(attributes(cell));
-            addstr(cell.glyph.c_str());
+    if (const ClefEditor* clef = scheme.clef_editor()) {
+        // A clef's window where the staff was: the field under the cursor marked '>'.
+        const auto lines = clef->lines(cols, staff_height, status.feel);
+        for (int row = 0; row < static_cast<int>(lines.size()); ++row) {
+            const auto& line = lines[static_cast<std::size_t>(row)];
+            attrset(line.starts_with(">") ? A_BOLD : A_NORMAL);
+            mvaddstr(top + row, 0, line.c_str());
+        }
+    } else {
+        for (int row = 0; row < staff_height; ++row) {
+            move(top + row, 0);
+            for (int x = first_column_; x < first_column_ + cols && x < layout.width; ++x) {
+                const Cell& cell =
+                    layout.rows[static_cast<std::size_t>(row)][static_cast<std::size_t>(x)];
+                attrset(attributes(cell));
+                addstr(cell.glyph.c_str());
+            }
         }
     }
     attrset(A_NORMAL);

@@ -14,6 +14,7 @@
 #include "client/editor/documents.hpp"
 #include "client/editor/editor.hpp"
 #include "client/editor/planner/press_planner.hpp"
+#include "score/clef_xml.hpp"
 #include "tests/hil/score_expectations.hpp"
 #include "tests/support/editor_support.hpp"
 #include "tests/support/feedback_fixture.hpp"
@@ -570,6 +571,54 @@ TEST_F(EditorForAnEvent, ThePatternComposedIsUsedForIncomingCallAndFbcliPlaysIt)
     }
     send(pane, menu_presses(copy, "quit"));
     EXPECT_EQ(pane.wait_exit(), "0") << pane.screen();
+}
+
+TEST_F(EditorEndToEnd, AClefEditedIsHeardAsItChangesAndSavedUnderANewNameForTheBar) {
+    TmuxPane pane(edit_command("my-clefs"), 40, 12);
+    ASSERT_TRUE(pane.wait_for_text("S:new note")) << pane.screen();
+    const ClefDeclaration lra{"lra-phone", "lra-phone.clef.xml"};
+    std::vector<std::string> clef_names;
+    for (const auto& entry : client->List("clef")) {
+        clef_names.push_back(entry.get<0>());
+    }
+    editor::Editor copy{editor::EditorModel(editor::EditorModel::blank_score("my-clefs", lra),
+                                            editor::registry_clefs(clef_names)),
+                        {}};
+    send(pane, menu_presses(copy, "edit clefs..."));
+    ASSERT_TRUE(pane.wait_for_text(">lra-phone  sine 0.20 s")) << pane.screen();
+    send(pane, {Button::select, Button::down, Button::down, Button::down, Button::down});
+    ASSERT_TRUE(pane.wait_for_text(">s3 185 Hz")) << pane.screen();
+
+    // Heard as it changes: string 3 at number 5 through the clef as edited, on the actuator.
+    const auto first = daemon.trace_rows().size();
+    send(pane, {Button::right, Button::right});
+    ASSERT_TRUE(pane.wait_for_text(">s3 195 Hz")) << pane.screen();
+    ASSERT_TRUE(hil::eventually([&] {
+        const auto rows = daemon.trace_rows();
+        return std::any_of(rows.begin() + static_cast<std::ptrdiff_t>(first), rows.end(),
+                           [](const auto& row) { return row.frequency_hz == 195; });
+    })) << pane.screen();
+    const auto rows = daemon.trace_rows();
+    EXPECT_TRUE(std::any_of(rows.begin() + static_cast<std::ptrdiff_t>(first), rows.end(),
+                            [](const auto& row) {
+                                return row.frequency_hz == 190 && row.amplitude > 0.59 &&
+                                       row.amplitude < 0.61;  // number 5: 0.6
+                            }));
+    EXPECT_NE(pane.screen().find("clef lra-phone (sine) *"), std::string::npos) << pane.screen();
+
+    // Saved under a new name (lra-phone is shipped: never saved over), for the bar.
+    send(pane, {Button::back, Button::select});
+    ASSERT_TRUE(pane.wait_for_text("[lra-phone-2]")) << pane.screen();
+    send(pane, {Button::select});
+    ASSERT_TRUE(pane.wait_for_text("clef lra-phone-2 saved; bar 1 uses it")) << pane.screen();
+    const Clef stored = read_clef(client->Get("clef", "lra-phone-2"), "lra-phone-2");
+    EXPECT_DOUBLE_EQ(stored.strings.at(2).frequency, 195.0);
+    EXPECT_EQ(read_clef(client->Get("clef", "lra-phone"), "lra-phone").strings.at(2).frequency,
+              185.0);
+    ASSERT_TRUE(pane.wait_for_text("[lra-phone-2 0]")) << pane.screen();
+    pane.key("q");
+    EXPECT_EQ(pane.wait_exit(), "") << pane.screen();  // unsaved changes: it asks
+    EXPECT_TRUE(pane.wait_for_text("unsaved changes")) << pane.screen();
 }
 
 TEST_F(EditorEndToEnd, ShowDrawsARegistryScore) {
