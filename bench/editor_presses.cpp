@@ -4,7 +4,8 @@
 // result is checked to equal the target, and the presses are counted. With a registry the
 // editor learns every registry score but the target itself (leave-one-out: not the same file
 // name, not the same music), as `vibscore edit` learns the daemon's registry. Prints a table,
-// the totals per note and per symbol, and one JSON line.
+// the totals per note and per symbol, issue 26's newcomer tasks from opening the editor to the
+// last press (bench/editor_tasks.hpp), and one JSON line.
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
@@ -18,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/editor_tasks.hpp"
 #include "bench/press_targets.hpp"
 #include "bench/report.hpp"
 #include "client/editor/editor.hpp"
@@ -28,6 +30,9 @@
 
 #ifndef VIBSCORE_BENCH_CLEFS
 #define VIBSCORE_BENCH_CLEFS "clefs"
+#endif
+#ifndef VIBSCORE_BENCH_THEME
+#define VIBSCORE_BENCH_THEME "feedback/themes/default.json"
 #endif
 
 using namespace vibscore;
@@ -381,6 +386,12 @@ int main(int argc, char** argv) {
                    "default: --clefs when no --targets are given");
     app.add_flag("--no-registry", no_registry, "measure without registry proposals only");
     app.add_flag("--sequences", sequences, "print each press sequence (U D L R S B)");
+    std::string theme = VIBSCORE_BENCH_THEME;
+    app.add_option("--theme", theme,
+                   "vibscore-feedback theme whose events 'use for ...' offers in the tasks");
+    bool tasks_only = false;
+    app.add_flag("--tasks-only", tasks_only,
+                 "count only issue 26's tasks (names, Experiment 2, the newcomer's tasks)");
     CLI11_PARSE(app, argc, argv);
 
     const auto began = std::chrono::steady_clock::now();
@@ -393,7 +404,9 @@ int main(int argc, char** argv) {
             with_registry = true;
         }
         const auto* learning = with_registry ? &registry : nullptr;
-        if (targets.empty()) {
+        if (tasks_only) {
+            // Issue 26's tasks only, below.
+        } else if (targets.empty()) {
             Set notifications{"Fig. 2.3 + notification set"};
             notifications.results.push_back(measure(
                 {"fig-2.3-measure-1", {"", read_score(kFigure23, "fig-2.3").score}}, learning));
@@ -436,9 +449,25 @@ int main(int argc, char** argv) {
                 seconds);
     const std::string names = report_names();
     const std::string experiment = report_experiment_2();
+    std::string tasks;
+    try {
+        // Issue 26's tasks: the shipped scores are the registry the editor learns from.
+        const auto events = bench::theme_events(theme);
+        const auto shipped = with_registry ? registry : read_registry(clefs);
+        tasks =
+            "{\"without_registry\":" + bench::report_tasks(nullptr, events, clefs) +
+            (no_registry ? std::string()
+                         : ",\"with_registry\":" + bench::report_tasks(&shipped, events, clefs)) +
+            "}";
+    } catch (const std::exception& error) {
+        std::cerr << "editor_presses: " << error.what() << "\n";
+        return 1;
+    }
     all_verified = all_verified && names.find("false") == std::string::npos &&
-                   experiment.find("false") == std::string::npos;
-    std::printf("%s],\"names\":%s,\"experiment_2\":%s,\"all_verified\":%s}\n", json.c_str(),
-                names.c_str(), experiment.c_str(), all_verified ? "true" : "false");
+                   experiment.find("false") == std::string::npos &&
+                   tasks.find("false") == std::string::npos;
+    std::printf("%s],\"names\":%s,\"experiment_2\":%s,\"tasks\":%s,\"all_verified\":%s}\n",
+                json.c_str(), names.c_str(), experiment.c_str(), tasks.c_str(),
+                all_verified ? "true" : "false");
     return all_verified ? 0 : 1;
 }

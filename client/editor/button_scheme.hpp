@@ -147,6 +147,8 @@ class ButtonScheme {
     const ClefEditor* clef_editor() const;
     // The notes tapped so far while tapping.
     int taps() const { return taps_.notes(); }
+    // The name being typed while saving (a score's or a clef's).
+    const NameEntry& name_entry() const { return name_; }
 
     // What to draw for an open menu: its title, lines and the highlighted one.
     struct MenuView {

@@ -63,6 +63,20 @@ TEST(ClefEditor, ASineClefShowsTempoStringsAndNumbersInFortyColumns) {
     EXPECT_EQ(editor.hint(), "\u2191\u2193field \u2190\u2192value S:hear B:more");
 }
 
+TEST(ClefEditor, AtEightyColumnsTheNumbersTakeTwoRowsAndAShortWindowKeepsTheCursorInSight) {
+    ClefEditor editor("lra-phone", lra_phone());
+    const auto wide = editor.lines(80, 20);
+    ASSERT_EQ(wide.size(), 10u);
+    EXPECT_EQ(wide[8].substr(0, 9), " n1 0.20 ");
+    EXPECT_NE(wide[8].find("n8 0.90"), std::string::npos);
+    EXPECT_EQ(wide[9], " n9 1.00 ");
+    // Five rows: the field under the cursor (n9, Up from the tempo) stays on screen.
+    editor.press(editor::Button::up);
+    const auto shortened = editor.lines(40, 5);
+    ASSERT_EQ(shortened.size(), 5u);
+    EXPECT_EQ(shortened.back(), ">n9 1.00 ");
+}
+
 TEST(ClefEditor, AStringsFrequencyStepsBy5HzThen1HzFineAndEachStepIsHeard) {
     ClefEditor editor("lra-phone", lra_phone());
     press_all(editor, {D, D, D, D});  // tempo, s6, s5, s4, s3
