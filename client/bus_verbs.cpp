@@ -93,6 +93,27 @@ std::string explain(const sdbus::Error& error) {
     return describe_daemon_error(error.getName(), error.getMessage());
 }
 
+// The declaration the Actuator property holds: [actuator]'s own keys and values.
+actuator::Declaration declaration_of(const std::map<std::string, std::string>& settings) {
+    std::vector<actuator::Setting> lines;
+    for (const auto& [key, value] : settings) {
+        lines.push_back({key, value, "vibscored's Actuator property"});
+    }
+    try {
+        return actuator::parse_declaration(lines, "vibscored's Actuator property");
+    } catch (const actuator::DeclarationError& error) {
+        throw std::runtime_error(error.what());
+    }
+}
+
+std::string actuator_line(const std::map<std::string, std::string>& settings) {
+    if (settings.empty()) {
+        return "none declared: strengths play as written ([actuator] in vibscored.conf, "
+               "docs/drivers.md)";
+    }
+    return actuator::describe(declaration_of(settings));
+}
+
 template <typename Body>
 int with_daemon(std::ostream& err, Body&& body) {
     std::unique_ptr<sdbus::IConnection> connection;
@@ -360,6 +381,7 @@ int describe_registry_score(const std::string& name, std::ostream& out, std::ost
             out << "  " << b + 1 << "  " << written
                 << (device == written ? " (as written)" : " -> " + device) << "\n";
         }
+        out << "actuator: " << actuator_line(haptics.Actuator()) << "\n";
         return exit_ok;
     });
 }
@@ -385,8 +407,25 @@ int driver(const std::string& name, std::ostream& out, std::ostream& err) {
             out << " " << capability;
         }
         out << "\n";
+        out << "actuator: " << actuator_line(haptics.Actuator()) << "\n";
         return exit_ok;
     });
+}
+
+actuator::Declaration daemon_actuator() {
+    std::map<std::string, std::string> settings;
+    try {
+        Haptics haptics(sdbus::createSystemBusConnection());
+        settings = haptics.Actuator();
+    } catch (const sdbus::Error& error) {
+        throw std::runtime_error("cannot ask vibscored for its actuator: " + explain(error));
+    }
+    if (settings.empty()) {
+        throw std::runtime_error(
+            "vibscored declares no actuator ([actuator] in its vibscored.conf); give --actuator "
+            "FILE");
+    }
+    return declaration_of(settings);
 }
 
 }  // namespace vibscore::client

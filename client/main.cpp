@@ -5,6 +5,7 @@
 #include <iterator>
 #include <limits>
 
+#include "client/actuator_option.hpp"
 #include "client/assign_verb.hpp"
 #include "client/bus_verbs.hpp"
 #include "client/convert_verb.hpp"
@@ -25,6 +26,8 @@ constexpr const char* kUsages[] = {"ringtone",      "alarm",         "notificati
                                    "communication", "accessibility", "hardware-feedback",
                                    "touch",         "media"};
 constexpr const char* kKindHelp = "score or clef (scores and clefs work too)";
+// What `--actuator` without a file stands for: ask vibscored.
+constexpr const char* kDaemonActuator = "daemon";
 
 // Registry kinds, the plural too, as vibscored takes them.
 CLI::Validator kind_validator() {
@@ -38,6 +41,36 @@ void add_clefs_option(CLI::App* verb, ClefSearch& search) {
                      "folder of NAME.clef.xml files where a clef the score names by registry "
                      "name is looked up first (repeatable; then vibscored, then the shipped clefs)")
         ->check(CLI::ExistingDirectory);
+}
+
+// `--actuator [FILE]` on the verbs that show what an actuator makes of a score: a file with an
+// [actuator] section (vibscored.conf will do), or without one the daemon's declaration.
+void add_actuator_option(CLI::App* verb, std::string& spec, const std::string& what) {
+    verb->add_option("--actuator", spec,
+                     "the actuator declared in FILE's [actuator] section (vibscored.conf will "
+                     "do), or without FILE the one vibscored declares: " +
+                         what)
+        ->expected(0, 1)
+        ->default_str(kDaemonActuator)
+        ->type_name("[FILE]");
+}
+
+// The declaration `--actuator` names, into `declared` (nothing when not given). exit_ok, or,
+// having said why there is none, exit_usage for a bad file and exit_failed when vibscored could
+// not give one.
+int resolve_actuator(const std::string& spec,
+                     std::optional<vibscore::actuator::Declaration>& declared, std::ostream& err) {
+    if (spec.empty()) {
+        return exit_ok;
+    }
+    const bool daemon = spec == kDaemonActuator;
+    try {
+        declared = daemon ? daemon_actuator() : load_actuator(spec);
+        return exit_ok;
+    } catch (const std::exception& error) {
+        err << "vibscore: " << error.what() << "\n";
+        return daemon ? exit_failed : exit_usage;
+    }
 }
 
 // "unknown command "x"" with the commands, instead of CLI11's "arguments were not expected".
@@ -91,6 +124,10 @@ int main(int argc, char** argv) {
         "check", "Validate scores (with the clefs they name) and clefs; list every problem.");
     check->add_option("FILE", check_files, "VibScore or VibClef documents")->required();
     add_clefs_option(check, clef_search);
+    std::string check_actuator;
+    add_actuator_option(check, check_actuator,
+                        "also warn, naming bar, note and numbers, where a score asks what the "
+                        "actuator cannot give");
 
     RenderRequest render;
     auto* render_verb = app.add_subcommand(
@@ -108,6 +145,11 @@ int main(int argc, char** argv) {
                             "draw the signal and its envelope, with bar and note boundaries, "
                             "as an SVG picture");
     render_verb->add_option("--png", render.png, "the same picture as a PNG image");
+    std::string render_actuator;
+    add_actuator_option(render_verb, render_actuator,
+                        "--out FILE.csv then has t,written,uncompensated,compensated: the "
+                        "strength written and what the actuator produces without and with "
+                        "compensation");
 
     ConvertRequest convert_request;
     auto* convert_verb = app.add_subcommand(
@@ -272,9 +314,16 @@ int main(int argc, char** argv) {
     }
 
     if (check->parsed()) {
-        return check_documents(check_files, clef_search, std::cout, std::cerr);
+        std::optional<vibscore::actuator::Declaration> declared;
+        if (const int failed = resolve_actuator(check_actuator, declared, std::cerr)) {
+            return failed;
+        }
+        return check_documents(check_files, clef_search, std::cout, std::cerr, declared);
     }
     if (render_verb->parsed()) {
+        if (const int failed = resolve_actuator(render_actuator, render.actuator, std::cerr)) {
+            return failed;
+        }
         return render_document(render, clef_search, std::cout, std::cerr);
     }
     if (convert_verb->parsed()) {

@@ -2,12 +2,16 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <fstream>
 #include <map>
+#include <optional>
 
 #include "client/pictures/signal_picture.hpp"
 #include "client/signal_output.hpp"
 #include "client/terminal_plot.hpp"
 #include "common/number_text.hpp"
+#include "daemon/render/actuator_check.hpp"
+#include "daemon/render/actuator_response.hpp"
 #include "daemon/render/performance.hpp"
 #include "score/bundle.hpp"
 #include "score/clef_xml.hpp"
@@ -114,9 +118,32 @@ void describe_score(const LoadedScore& loaded, std::ostream& out) {
     }
 }
 
+namespace {
+
+// The strengths written and produced, one row per sample: what `render --actuator --out F.csv`
+// writes, for plots and spreadsheets.
+std::size_t write_actuator_csv(const render::ActuatorResponse& response, const std::string& path) {
+    std::ofstream csv(path);
+    csv << "t,written,uncompensated,compensated\n";
+    for (std::size_t k = 0; k < response.written.size(); ++k) {
+        csv << number(static_cast<double>(k) / response.rate_hz) << ","
+            << number(response.written[k]) << "," << number(response.uncompensated[k]) << ","
+            << number(response.compensated[k]) << "\n";
+    }
+    csv.close();
+    if (!csv) {
+        throw std::runtime_error(path + ": cannot write");
+    }
+    return response.written.size();
+}
+
+}  // namespace
+
 int check_documents(const std::vector<std::string>& files, const ClefSearch& clefs,
-                    std::ostream& out, std::ostream& err) {
+                    std::ostream& out, std::ostream& err,
+                    const std::optional<actuator::Declaration>& declared) {
     int failed = 0;
+    std::size_t warned = 0;
     for (const auto& file : files) {
         try {
             const auto text = read_document_file(file);
@@ -128,6 +155,13 @@ int check_documents(const std::vector<std::string>& files, const ClefSearch& cle
                 const render::Performance performance(bundle);
                 out << file << ": ok (score: " << count(bundle.score.bars.size(), "bar") << ", "
                     << fixed(performance.duration()) << " s)\n";
+                if (declared) {
+                    for (const auto& warning :
+                         render::actuator_warnings(bundle, performance, *declared)) {
+                        err << file << ": warning: " << render::describe(warning) << "\n";
+                        ++warned;
+                    }
+                }
             }
         } catch (const DocumentError& error) {
             report(error, err);
@@ -137,6 +171,10 @@ int check_documents(const std::vector<std::string>& files, const ClefSearch& cle
     if (failed > 0 && files.size() > 1) {
         err << failed << " of " << files.size() << " documents are invalid\n";
     }
+    if (declared) {
+        out << count(warned, "warning") << " for the actuator (" << actuator::describe(*declared)
+            << ")\n";
+    }
     return failed == 0 ? exit_ok : exit_failed;
 }
 
@@ -145,6 +183,11 @@ int render_document(const RenderRequest& request, const ClefSearch& clefs, std::
     if (request.out.empty() && !request.plot && request.svg.empty() && request.png.empty()) {
         err << "render: nothing to do: give --out FILE.csv|FILE.wav, --plot, --svg FILE or "
                "--png FILE\n";
+        return exit_usage;
+    }
+    const std::optional<actuator::Declaration>& declared = request.actuator;
+    if (declared && !request.out.empty() && !request.out.ends_with(".csv")) {
+        err << "render: --actuator writes strengths to a .csv file, not " << request.out << "\n";
         return exit_usage;
     }
     try {
@@ -174,7 +217,16 @@ int render_document(const RenderRequest& request, const ClefSearch& clefs, std::
                 << number(performance.peak_amplitude()) << ")\n";
             plot_envelope(out, performance, request.plot_width, 8);
         }
-        if (!request.out.empty()) {
+        if (!request.out.empty() && declared) {
+            render::ResponseOptions options;
+            options.rate_hz = request.rate;
+            options.reverse = declared->brake == actuator::Brake::reverse;
+            const auto samples = write_actuator_csv(
+                render::actuator_response(performance, *declared, options), request.out);
+            out << "wrote " << request.out << ": " << samples << " samples at " << request.rate
+                << " Hz of the written strength and what the actuator produces without and with "
+                   "compensation\n";
+        } else if (!request.out.empty()) {
             const auto samples = write_signal(performance, request.rate, request.out);
             out << "wrote " << request.out << ": " << samples << " samples at " << request.rate
                 << " Hz, " << fixed(performance.duration()) << " s\n";

@@ -23,6 +23,7 @@ ActuatorHost::ActuatorHost(const DaemonConfig& config)
       driver_(config.driver),
       settings_(config.settings_of(config.driver)),
       running_modules_(modules_of(config)),
+      declared_(config.actuator),
       modules_(running_modules_) {
     const auto crashed = read_module_record(config.module_record);
     remove_module_record(config.module_record);  // about the run that ended; this one starts afresh
@@ -38,7 +39,7 @@ ActuatorHost::ActuatorHost(const DaemonConfig& config)
         settings_ = config.settings_of("sim");
     }
     try {
-        actuator_ = open(driver_, settings_, *running_modules_);
+        actuator_ = open(driver_, settings_, *running_modules_, declared_);
     } catch (const drivers::SettingError&) {
         throw;  // names its file:line already
     } catch (const std::invalid_argument& error) {
@@ -46,6 +47,14 @@ ActuatorHost::ActuatorHost(const DaemonConfig& config)
     } catch (const DeviceError& error) {
         throw DeviceError(config.where(driver_, "") + error.what());
     }
+    if (declared_) {
+        log::info("actuator: " + actuator::describe(*declared_));
+    }
+}
+
+void ActuatorHost::attach(Player& player) {
+    player_ = &player;
+    player_->set_actuator(config_.actuator);
 }
 
 ActuatorHost::~ActuatorHost() {
@@ -72,15 +81,15 @@ std::string ActuatorHost::reason_to_run_sim_instead(
     return {};
 }
 
-std::unique_ptr<drivers::Actuator> ActuatorHost::open(const std::string& driver,
-                                                      const DriverSettingsMap& settings,
-                                                      const drivers::ModuleCatalog& modules) {
+std::unique_ptr<drivers::Actuator> ActuatorHost::open(
+    const std::string& driver, const DriverSettingsMap& settings,
+    const drivers::ModuleCatalog& modules, const std::optional<actuator::Declaration>& declared) {
     std::optional<ModuleRecord> record;
     if (const auto* module = drivers::is_built_in_driver(driver) ? nullptr : modules.find(driver)) {
         record.emplace(config_.module_record, ModuleInUse{driver, module->path});
     }
     try {
-        auto actuator = drivers::make_actuator(driver, settings, modules);
+        auto actuator = drivers::make_actuator(driver, settings, modules, declared);
         if (record) {
             record_.emplace(std::move(*record));  // removed once this actuator has closed
         }
@@ -111,6 +120,7 @@ void ActuatorHost::switch_to(const std::string& driver) {
 
 void ActuatorHost::open_in_place_of_running(const std::string& driver) {
     const DriverSettingsMap settings = config_.settings_of(driver);
+    const std::optional<actuator::Declaration> declared = config_.actuator;
     std::shared_ptr<const drivers::ModuleCatalog> modules;
     {
         const std::lock_guard lock(modules_mutex_);
@@ -125,12 +135,12 @@ void ActuatorHost::open_in_place_of_running(const std::string& driver) {
     actuator_.reset();
     record_.reset();
     try {
-        actuator_ = open(driver, settings, *modules);
+        actuator_ = open(driver, settings, *modules, declared);
     } catch (const std::exception& error) {
         log::error("driver " + driver + " failed to open (" + error.what() + "); reopening " +
                    driver_);
         try {
-            actuator_ = open(driver_, settings_, *running_modules_);
+            actuator_ = open(driver_, settings_, *running_modules_, declared_);
         } catch (const std::exception& reopen_error) {
             actuator_ = std::make_unique<drivers::DisconnectedActuator>(
                 "driver " + driver + " failed (" + error.what() + ") and driver " + driver_ +
@@ -151,10 +161,19 @@ void ActuatorHost::open_in_place_of_running(const std::string& driver) {
     driver_ = driver;
     settings_ = settings;
     running_modules_ = std::move(modules);
+    declared_ = declared;
     log::info("driver is now " + driver);
 }
 
 bool ActuatorHost::follow_config() {
+    const bool declaration_changed = config_.actuator != declared_;
+    if (declaration_changed) {
+        log::info("actuator: " +
+                  (config_.actuator ? actuator::describe(*config_.actuator) : "none declared"));
+    }
+    if (player_) {
+        player_->set_actuator(config_.actuator);
+    }
     const auto fresh = modules_of(config_);
     {
         const std::lock_guard lock(modules_mutex_);
@@ -164,12 +183,18 @@ bool ActuatorHost::follow_config() {
     // scanned again.
     const bool module_changed = !drivers::is_built_in_driver(driver_) && driver_ != "none" &&
                                 !fresh->same_module(*running_modules_, driver_);
+    // Only the sim is made of the declaration; a real backend drives whatever is on the board.
     const bool differs = config_.driver != driver_ ||
-                         config_.settings_of(config_.driver) != settings_ || module_changed;
+                         config_.settings_of(config_.driver) != settings_ || module_changed ||
+                         (declaration_changed && config_.driver == "sim");
     if (differs) {
         switch_to(config_.driver);
     } else {
         running_modules_ = fresh;
+        declared_ = config_.actuator;
+        if (declaration_changed && changed_) {
+            changed_();  // the bus announces the new declaration
+        }
     }
     return differs;
 }

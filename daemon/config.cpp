@@ -10,6 +10,7 @@
 
 #include "common/closest_name.hpp"
 #include "common/number_text.hpp"
+#include "daemon/actuator_config.hpp"
 
 namespace vibscore::daemon {
 
@@ -219,6 +220,7 @@ DaemonConfig parse_config(const std::string& text, const std::string& file, Daem
             throw ConfigError(where + ": " + key + " has no value");
         }
     }
+    config.actuator = declared_actuator(config);
     return config;
 }
 

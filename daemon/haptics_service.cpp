@@ -5,6 +5,7 @@
 #include "common/monotonic_clock.hpp"
 #include "common/number_text.hpp"
 #include "config.h"
+#include "daemon/actuator/declaration.hpp"
 #include "daemon/bus_errors.hpp"
 #include "daemon/log.hpp"
 #include "daemon/request_error.hpp"
@@ -38,7 +39,8 @@ HapticsService::HapticsService(sdbus::IConnection& connection, const DaemonConfi
       host_(host),
       authorizer_(authorizer),
       announced_driver_(Driver()),
-      announced_capabilities_(Capabilities()) {
+      announced_capabilities_(Capabilities()),
+      announced_actuator_(Actuator()) {
     vanish_watch_ = dbus::watch_connections_leaving(connection, [this](const std::string& name) {
         callers_.forget(name);
         authorizer_.forget(name);
@@ -72,6 +74,21 @@ std::vector<std::string> HapticsService::Capabilities() {
     });
 }
 
+std::map<std::string, std::string> HapticsService::Actuator() {
+    return guarded("Actuator", [&] {
+        return playback_.call([&host = host_](Player&) {
+            const auto& declared = host.declaration();
+            std::map<std::string, std::string> settings;
+            if (declared) {
+                for (auto& [key, value] : actuator::to_settings(*declared)) {
+                    settings.emplace(std::move(key), std::move(value));
+                }
+            }
+            return settings;
+        });
+    });
+}
+
 double HapticsService::Intensity() {
     return guarded("Intensity", [&] {
         return playback_.call([](Player& player) { return player.master_intensity(); });
@@ -81,19 +98,24 @@ double HapticsService::Intensity() {
 void HapticsService::driver_switched() {
     std::string driver;
     std::vector<std::string> capabilities;
+    std::map<std::string, std::string> actuator;
     try {
         driver = Driver();
         capabilities = Capabilities();
+        actuator = Actuator();
     } catch (const sdbus::Error& error) {
         log::error("after a driver switch: " + error.getMessage());
         return;
     }
-    if (driver == announced_driver_ && capabilities == announced_capabilities_) {
+    if (driver == announced_driver_ && capabilities == announced_capabilities_ &&
+        actuator == announced_actuator_) {
         return;
     }
     announced_driver_ = std::move(driver);
     announced_capabilities_ = std::move(capabilities);
-    dbus::emit_properties_changed(getObject(), INTERFACE_NAME, {"Driver", "Capabilities"});
+    announced_actuator_ = std::move(actuator);
+    dbus::emit_properties_changed(getObject(), INTERFACE_NAME,
+                                  {"Driver", "Capabilities", "Actuator"});
 }
 
 Caller HapticsService::admit_caller() {

@@ -58,6 +58,7 @@ class HapticsService final : public sdbus::AdaptorInterfaces<org::vibscore::Hapt
     void SetIntensity(sdbus::Result<>&& result, double value) override;
     std::string Driver() override;
     std::vector<std::string> Capabilities() override;
+    std::map<std::string, std::string> Actuator() override;
     double Intensity() override;
     void Intensity(const double& value) override;
     std::string Version() override;
@@ -74,7 +75,8 @@ class HapticsService final : public sdbus::AdaptorInterfaces<org::vibscore::Hapt
     std::uint64_t play(const Caller& caller, const std::string& score, const PlayOptions& options);
     Player::StopResult stop(const Caller& caller, std::uint64_t playback_id, bool privileged);
     void set_intensity(const Caller& caller, double value);
-    // Driver and Capabilities changed with a switch: announced with PropertiesChanged.
+    // Driver, Capabilities or Actuator changed with a switch or reload: announced with
+    // PropertiesChanged.
     void driver_switched();
 
     const DaemonConfig& config_;
@@ -85,6 +87,7 @@ class HapticsService final : public sdbus::AdaptorInterfaces<org::vibscore::Hapt
     Authorizer& authorizer_;
     std::string announced_driver_;
     std::vector<std::string> announced_capabilities_;
+    std::map<std::string, std::string> announced_actuator_;
     sdbus::Slot vanish_watch_;  // NameOwnerChanged: a caller left the bus
 };
 

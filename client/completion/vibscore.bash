@@ -33,7 +33,7 @@ _vibscore() {
     # What convert reads (--from) and writes (--to).
     local readable="score ahap android-json android-xml rtttl midi"
     local writable="score ahap android-json android-xml android-envelope midi"
-    local valued="--usage|--clef|--clefs|--out|--rate|--repeat|--intensity|--width|--buttons|--keymap|--button-map|--from|--to|--track|--svg|--png"
+    local valued="--usage|--clef|--clefs|--out|--rate|--repeat|--intensity|--width|--buttons|--keymap|--button-map|--from|--to|--track|--svg|--png|--actuator"
 
     verb=
     for ((i = 1; i < COMP_CWORD; i++)); do
@@ -69,6 +69,9 @@ _vibscore() {
         --clefs)
             _vibscore_files "$cur" '*/'
             return ;;
+        --actuator)
+            _vibscore_files "$cur" '*.conf'
+            return ;;
         --out)
             _vibscore_files "$cur" '*.@(csv|wav)'
             return ;;
@@ -82,8 +85,9 @@ _vibscore() {
     if [[ $cur == -* ]]; then
         local options="--help"
         case $verb in
-            check|info) options+=" --clefs" ;;
-            render) options+=" --rate --out --plot --width --svg --png --clefs" ;;
+            check) options+=" --clefs --actuator" ;;
+            info) options+=" --clefs" ;;
+            render) options+=" --rate --out --plot --width --svg --png --clefs --actuator" ;;
             play) options+=" --usage --repeat --clef --intensity --wait --clefs" ;;
             stop) options+=" --all" ;;
             compose) options+=" --clefs" ;;

@@ -110,7 +110,10 @@ TEST_F(DriverSwitch, TheClientListsAndSwitchesDrivers) {
     EXPECT_THAT(listed.out, HasSubstr("  trace\texample driver module"));
     const auto switched = testing::run_command({vibscore, "driver", "trace"});
     EXPECT_EQ(switched.exit_code, 0) << switched.err;
-    EXPECT_EQ(switched.out, "driver trace: amplitude-control frequency-control\n");
+    EXPECT_EQ(switched.out,
+              "driver trace: amplitude-control frequency-control\n"
+              "actuator: none declared: strengths play as written ([actuator] in vibscored.conf, "
+              "docs/drivers.md)\n");
     const auto unknown = testing::run_command({vibscore, "driver", "piezo"});
     EXPECT_EQ(unknown.exit_code, 1);
     EXPECT_EQ(unknown.err,
