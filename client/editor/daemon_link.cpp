@@ -142,6 +142,10 @@ std::string DaemonLink::origin(const std::string& kind, const std::string& name)
     return guarded([&] { return proxy_->Origin(kind, name); });
 }
 
+std::map<std::string, std::string> DaemonLink::actuator() {
+    return guarded([&] { return proxy_->Actuator(); });
+}
+
 std::vector<std::string> DaemonLink::list(const std::string& kind) {
     return guarded([&] {
         std::vector<std::string> names;

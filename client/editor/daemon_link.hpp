@@ -51,6 +51,8 @@ class DaemonLink {
     std::vector<std::string> list(const std::string& kind);
     // "shipped", "stored" or "stored-over-shipped" (Origin).
     std::string origin(const std::string& kind, const std::string& name);
+    // The actuator the daemon declares (Haptics1.Actuator), empty when none is.
+    std::map<std::string, std::string> actuator();
 
     // For poll(): the bus descriptor, the events to wait for, and how long at most (ms, -1
     // for no limit).

@@ -6,10 +6,12 @@
 #include <algorithm>
 #include <chrono>
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <optional>
 #include <set>
 
+#include "client/editor/actuator_feel.hpp"
 #include "client/editor/daemon_link.hpp"
 #include "client/editor/documents.hpp"
 #include "client/editor/editor.hpp"
@@ -57,6 +59,11 @@ class Session {
             daemon_ = std::make_unique<DaemonLink>();
             registry_scores_ = daemon_->list("score");
             registry_clefs_ = daemon_->list("clef");
+            try {
+                actuator_ = daemon_->actuator();
+            } catch (const DaemonError&) {
+                // A daemon that declares none, or predates the property: no feel shown.
+            }
             read_registry_scores();
             events_ = std::make_unique<EventLink>();
         } catch (const DaemonError& error) {
@@ -80,7 +87,11 @@ class Session {
     void run() {
         Screen screen;
         while (running_) {
-            screen.draw(editor_->model, editor_->scheme, {source_.name, message_, playing_at_, {}});
+            const ClefEditor* clef = editor_->scheme.clef_editor();
+            screen.draw(editor_->model, editor_->scheme,
+                        {source_.name, message_, playing_at_,
+                         clef != nullptr ? actuator_feel(clef->clef(), actuator_)
+                                         : std::vector<std::string>{}});
             wait_for_input();
             while (const auto code = screen.key()) {
                 // A terminal's keys carry no time: now is when the key was read.
@@ -577,7 +588,8 @@ class Session {
 
     EditOptions options_;
     std::unique_ptr<DaemonLink> daemon_;
-    std::unique_ptr<EventLink> events_;  // the feedback theme's events ("use for ...")
+    std::map<std::string, std::string> actuator_;  // Haptics1.Actuator, for the clef window
+    std::unique_ptr<EventLink> events_;            // the feedback theme's events ("use for ...")
     std::vector<std::string> registry_scores_;
     std::vector<std::string> registry_clefs_;
     std::vector<NamedScore> learned_;  // the registry's scores the proposals learn from

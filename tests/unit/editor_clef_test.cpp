@@ -3,7 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <map>
 
+#include "client/editor/actuator_feel.hpp"
 #include "client/editor/clef_editor.hpp"
 #include "client/editor/status_line.hpp"
 #include "score/clef_xml.hpp"
@@ -262,6 +264,40 @@ TEST(ClefOfBars, ASavedClefIsDeclaredOnceAndGivenToTheBarsAsked) {
     EXPECT_FALSE(editor.model.set_clef_of_bars(1, 0, mine));
     EXPECT_TRUE(editor.model.undo());
     EXPECT_EQ(editor.model.score().bars[0].clef, "lra");
+}
+
+TEST(ActuatorFeel, AnLraGivesItsStrengthAtEachStringsFrequencyBesideIt) {
+    const std::map<std::string, std::string> lra{
+        {"kind", "lra"}, {"resonance-hz", "185"}, {"q", "10"}, {"rated-drive", "1"}};
+    const auto feel = editor::actuator_feel(lra_phone(), lra);
+    ASSERT_EQ(feel.size(), 6u);
+    EXPECT_EQ(feel[2], "gives 100%");  // s3: 185 Hz, the resonance
+    // G(f) = (1/Q) / sqrt((1 - r^2)^2 + (r/Q)^2): s1 155 Hz 32 %, s6 235 Hz 16 %.
+    EXPECT_EQ(feel[0], "gives 32%");
+    EXPECT_EQ(feel[5], "gives 16%");
+    // A curve clef's strings play at the resonance.
+    EXPECT_EQ(editor::actuator_feel(curve(), lra)[0], "gives 100%");
+    // Written beside each string in the window.
+    const ClefEditor editor("lra-phone", lra_phone());
+    EXPECT_EQ(editor.lines(40, 11, feel)[5], " s3 185 Hz  gives 100%");
+}
+
+TEST(ActuatorFeel, NothingIsShownForAnErmOrWithoutAUsableDeclaration) {
+    EXPECT_TRUE(editor::actuator_feel(lra_phone(), {}).empty());
+    EXPECT_TRUE(
+        editor::actuator_feel(lra_phone(), {{"kind", "erm"}, {"spin-up-ms", "30"}}).empty());
+    for (const std::string resonance : {"0", "-5", "abc", "175x", "inf"}) {
+        EXPECT_TRUE(editor::actuator_feel(
+                        lra_phone(), {{"kind", "lra"}, {"resonance-hz", resonance}, {"q", "10"}})
+                        .empty())
+            << resonance;
+    }
+    EXPECT_TRUE(
+        editor::actuator_feel(lra_phone(), {{"kind", "lra"}, {"resonance-hz", "175"}}).empty());
+    EXPECT_EQ(
+        editor::actuator_feel(lra_phone(), {{"kind", "lra"}, {"resonance-hz", "0.001"}, {"q", "1"}})
+            .size(),
+        6u);  // the least positive value is a declaration
 }
 
 }  // namespace
