@@ -4,7 +4,8 @@
 // result is checked to equal the target, and the presses are counted. With a registry the
 // editor learns every registry score but the target itself (leave-one-out: not the same file
 // name, not the same music), as `vibscore edit` learns the daemon's registry. Prints a table,
-// the totals per note and per symbol, and one JSON line.
+// the totals per note and per symbol, issue 26's newcomer tasks from opening the editor to the
+// last press (bench/editor_tasks.hpp), and one JSON line.
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
@@ -18,16 +19,20 @@
 #include <string>
 #include <vector>
 
+#include "bench/editor_tasks.hpp"
 #include "bench/press_targets.hpp"
 #include "bench/report.hpp"
 #include "client/editor/editor.hpp"
 #include "client/editor/phrase_book.hpp"
-#include "client/editor/press_planner.hpp"
+#include "client/editor/planner/press_planner.hpp"
 #include "score/bundle.hpp"
 #include "score/score_xml.hpp"
 
 #ifndef VIBSCORE_BENCH_CLEFS
 #define VIBSCORE_BENCH_CLEFS "clefs"
+#endif
+#ifndef VIBSCORE_BENCH_THEME
+#define VIBSCORE_BENCH_THEME "feedback/themes/default.json"
 #endif
 
 using namespace vibscore;
@@ -250,6 +255,116 @@ std::string report(const Set& set, bool with_registry, bool sequences) {
     return object + (t.verified ? ",\"verified\":true}" : ",\"verified\":false}");
 }
 
+// The names of issue 26's tasks, typed from what save-as proposes there: the fewest presses
+// from the name entry opening to the Select that saves.
+struct NameTask {
+    std::string proposal;
+    std::string name;
+};
+const std::vector<NameTask> kNameTasks{
+    {"tacton-2", "exp2"}, {"tacton-2", "confirm"}, {"ringtone-2", "my-ring"}};
+
+std::string report_names() {
+    std::printf("\nnames typed from the proposal (save as)\n");
+    std::printf("  %-10s %-12s %7s  %s\n", "name", "proposal", "presses", "sequence");
+    std::string json = "[";
+    std::size_t total = 0;
+    for (const auto& task : kNameTasks) {
+        NameEntry entry;
+        entry.start({task.proposal});
+        const PressPlan plan = plan_name(entry, task.name);
+        std::string sequence;
+        for (const Button button : plan.presses) {
+            entry.press(button);
+            sequence += letter(button);
+        }
+        const bool verified = plan.reached && entry.name() == task.name;
+        total += plan.presses.size();
+        std::printf("  %-10s %-12s %7zu  %s%s\n", task.name.c_str(), task.proposal.c_str(),
+                    plan.presses.size(), sequence.c_str(), verified ? "" : "  DIFFERS");
+        json += (json.size() > 1 ? "," : "") + std::string("{\"name\":\"") + task.name +
+                "\",\"presses\":" + std::to_string(plan.presses.size()) +
+                ",\"verified\":" + (verified ? "true" : "false") + "}";
+    }
+    std::printf(
+        "  total %zu presses (one character at a time through a-z 0-9 - . _: 38, 56, 47 "
+        "pressed by a newcomer, issue 26)\n",
+        total);
+    return json + "]";
+}
+
+// Experiment 2's score task (thesis Fig. 7.5, issue 26): three bars of four quarter notes,
+// strengths 9, 3, 6, 3 in each, on one string; on a new score, entered note by note, and tapped
+// (the rhythm tapped on Select, then the strengths changed).
+Score experiment_2() {
+    std::string bars;
+    for (int bar = 0; bar < 3; ++bar) {
+        bars += "<Bar clef=\"lra-phone\">";
+        for (const int number : {9, 3, 6, 3}) {
+            bars +=
+                "<Note length=\"quarter\" number=\"" + std::to_string(number) + "\" string=\"3\"/>";
+        }
+        bars += "</Bar>";
+    }
+    return read_score(
+               "<VibScore><Title>exp2</Title><Clef id=\"lra-phone\" "
+               "href=\"lra-phone.clef.xml\"/>" +
+                   bars + "</VibScore>",
+               "experiment-2")
+        .score;
+}
+
+std::string sequence_of(const std::vector<Button>& presses) {
+    std::string text;
+    for (const Button button : presses) {
+        text += letter(button);
+    }
+    return text;
+}
+
+std::string report_experiment_2() {
+    const Score target = experiment_2();
+    const ClefDeclaration clef{"lra-phone", "lra-phone.clef.xml"};
+    const Editor fresh{EditorModel(EditorModel::blank_score("tacton-1", clef), {clef}), {}};
+
+    const PressPlan typed = plan_presses(fresh, target);
+    Editor tapped = fresh;
+    std::vector<Button> to_tap{Button::back, Button::select, Button::select};  // the menu's first
+    for (const Button button : to_tap) {
+        tapped.press(button);
+    }
+    for (int k = 0; k < 12; ++k) {
+        tapped.press_at(Button::select, std::chrono::milliseconds(800 * k));
+    }
+    tapped.press_at(Button::back, std::chrono::milliseconds(9600));
+    const std::size_t taps = to_tap.size() + 12 + 1;
+    const PressPlan changed = plan_changes(tapped, target);
+    Editor check = tapped;
+    for (const Button button : changed.presses) {
+        check.press(button);
+    }
+    const bool verified =
+        typed.reached && changed.reached && check.model.score().bars == target.bars;
+    if (!verified) {
+        std::fprintf(stderr, "experiment 2: typed %s, tapped %s, tapped bars %zu\n",
+                     typed.reached ? "reached" : "not reached",
+                     changed.reached ? "reached" : "not reached", tapped.model.score().bars.size());
+    }
+    std::printf(
+        "\nExperiment 2's score task (Fig. 7.5, strengths 9 3 6 3), from a new score to the "
+        "score entered\n");
+    std::printf("  entered note by note: %zu presses  %s\n", typed.presses.size(),
+                sequence_of(typed.presses).c_str());
+    std::printf(
+        "  tapped: %zu presses to open tap entry, tap 12 and finish, then %zu to set the "
+        "strengths (%zu in all)  %s%s\n",
+        taps, changed.presses.size(), taps + changed.presses.size(),
+        sequence_of(changed.presses).c_str(), verified ? "" : "  DIFFERS");
+    return "{\"typed\":" + std::to_string(typed.presses.size()) +
+           ",\"tapped\":" + std::to_string(taps + changed.presses.size()) +
+           ",\"verified\":" + (verified ? "true" : "false") + "}";
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -271,6 +386,12 @@ int main(int argc, char** argv) {
                    "default: --clefs when no --targets are given");
     app.add_flag("--no-registry", no_registry, "measure without registry proposals only");
     app.add_flag("--sequences", sequences, "print each press sequence (U D L R S B)");
+    std::string theme = VIBSCORE_BENCH_THEME;
+    app.add_option("--theme", theme,
+                   "vibscore-feedback theme whose events 'use for ...' offers in the tasks");
+    bool tasks_only = false;
+    app.add_flag("--tasks-only", tasks_only,
+                 "count only issue 26's tasks (names, Experiment 2, the newcomer's tasks)");
     CLI11_PARSE(app, argc, argv);
 
     const auto began = std::chrono::steady_clock::now();
@@ -283,7 +404,9 @@ int main(int argc, char** argv) {
             with_registry = true;
         }
         const auto* learning = with_registry ? &registry : nullptr;
-        if (targets.empty()) {
+        if (tasks_only) {
+            // Issue 26's tasks only, below.
+        } else if (targets.empty()) {
             Set notifications{"Fig. 2.3 + notification set"};
             notifications.results.push_back(measure(
                 {"fig-2.3-measure-1", {"", read_score(kFigure23, "fig-2.3").score}}, learning));
@@ -324,6 +447,27 @@ int main(int argc, char** argv) {
         std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
     std::printf("\nplanned and replayed in %.1f s (a count: the machine does not change it)\n",
                 seconds);
-    std::printf("%s],\"all_verified\":%s}\n", json.c_str(), all_verified ? "true" : "false");
+    const std::string names = report_names();
+    const std::string experiment = report_experiment_2();
+    std::string tasks;
+    try {
+        // Issue 26's tasks: the shipped scores are the registry the editor learns from.
+        const auto events = bench::theme_events(theme);
+        const auto shipped = with_registry ? registry : read_registry(clefs);
+        tasks =
+            "{\"without_registry\":" + bench::report_tasks(nullptr, events, clefs) +
+            (no_registry ? std::string()
+                         : ",\"with_registry\":" + bench::report_tasks(&shipped, events, clefs)) +
+            "}";
+    } catch (const std::exception& error) {
+        std::cerr << "editor_presses: " << error.what() << "\n";
+        return 1;
+    }
+    all_verified = all_verified && names.find("false") == std::string::npos &&
+                   experiment.find("false") == std::string::npos &&
+                   tasks.find("false") == std::string::npos;
+    std::printf("%s],\"names\":%s,\"experiment_2\":%s,\"tasks\":%s,\"all_verified\":%s}\n",
+                json.c_str(), names.c_str(), experiment.c_str(), tasks.c_str(),
+                all_verified ? "true" : "false");
     return all_verified ? 0 : 1;
 }

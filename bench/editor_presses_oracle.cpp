@@ -20,7 +20,7 @@
 #include "bench/report.hpp"
 #include "client/editor/editor.hpp"
 #include "client/editor/phrase_book.hpp"
-#include "client/editor/press_planner.hpp"
+#include "client/editor/planner/press_planner.hpp"
 #include "client/editor/recurrence.hpp"
 #include "client/editor/score_edits.hpp"
 #include "score/bundle.hpp"

@@ -321,6 +321,15 @@ int main(int argc, char** argv) {
                           "POWER (default: phone volume and power keys)");
     edit_verb->add_flag("--grab", edit_options.grab,
                         "take the button devices' keys for the editor alone");
+    edit_verb->footer(
+        "Six buttons (Up Down Left Right Select Back; arrows, Enter, Escape on a keyboard):\n"
+        "  the status line names what each does now. Back gives the other choices,\n"
+        "  Back, Select the menu: tap a rhythm (t), bar clef (k), edit clefs (K: a clef's\n"
+        "  frequencies, amplitudes, tempo and points, heard as they change, saved under a\n"
+        "  new name), save, save as. Saving a new score first asks 'use for ...': an event\n"
+        "  of the feedback theme (incoming call, new message, ...) then plays it for this\n"
+        "  user (as 'vibscore assign' does).\n"
+        "Keys: 1-9 note, 0 rest, Space play, Ctrl+S save, Ctrl+Z undo, q quit.");
 
     try {
         app.parse(argc, argv);

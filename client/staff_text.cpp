@@ -46,6 +46,9 @@ std::string sgr(const Cell& cell) {
         case Ink::playback:
             codes = "31";
             break;
+        case Ink::mark:
+            codes = "1";
+            break;
     }
     const auto add = [&](const char* code) {
         codes += codes.empty() ? "" : ";";

@@ -1,10 +1,18 @@
 #include "client/editor/button_scheme.hpp"
 
 #include <algorithm>
+#include <cstdio>
+
+#include "client/editor/actions.hpp"
+#include "client/editor/status_line.hpp"
+#include "score/clef_xml.hpp"
 
 namespace vibscore::editor {
 
 namespace {
+
+// Every hint fits the narrowest screen the editor supports (40x12) whole.
+constexpr int kNarrowest = 40;
 
 const char* kQuitChoices[] = {"save and quit", "quit without saving", "cancel"};
 constexpr int kReplaceChoices = 3;  // another name, replace it, cancel
@@ -32,6 +40,25 @@ std::string replace_hint(const TakenName& taken) {
     return "\u2191\u2193choose Sel:ok (old one is lost)";
 }
 
+// What Select and Back do while browsing, naming the symbol Select would change.
+std::string browse_hint(const EditorModel& model) {
+    const Symbol* symbol = symbol_at(model.score(), model.cursor());
+    if (symbol == nullptr) {
+        return "S:new note B:play,go to,menu";
+    }
+    std::string named;
+    if (const auto* note = std::get_if<Note>(symbol)) {
+        named = std::to_string(note->number) + " " + length_name(note->length) + " s" +
+                std::to_string(note->string);
+    } else if (const auto* rest = std::get_if<Rest>(symbol)) {
+        named = length_name(rest->length) + " rest";
+    } else {
+        named = "blank";
+    }
+    const std::string hint = "S:change " + named + " B:play,go to,menu";
+    return columns_of(hint) <= kNarrowest ? hint : "S:change " + named + " B:more";
+}
+
 }  // namespace
 
 void ButtonScheme::set_playing(bool playing) {
@@ -42,8 +69,10 @@ void ButtonScheme::set_playing(bool playing) {
     }
 }
 
-Request ButtonScheme::press(Button button, EditorModel& model) {
+Request ButtonScheme::press(Button button, EditorModel& model, std::optional<Time> at) {
     switch (mode_) {
+        case Mode::tapping:
+            return tap(button, model, at);
         case Mode::browse:
             return browse(button, model);
         case Mode::browse_choices:
@@ -59,11 +88,85 @@ Request ButtonScheme::press(Button button, EditorModel& model) {
         case Mode::name_entry:
             return name_press(button);
         case Mode::replace_menu:
-            return replace_press(button);
+            return replace_press(button, model);
+        case Mode::use_for:
+            return use_for_press(button, model);
+        case Mode::clef_list:
+            return clef_list_press(button, model);
+        case Mode::clef_edit:
+            return clef_edit_press(button);
+        case Mode::clef_name:
+            return clef_name_press(button);
+        case Mode::clef_close:
+            return clef_close_press(button);
+        case Mode::assigned:
+            return assigned_press(button);
         case Mode::playing:
             return {Request::Kind::stop};
     }
     return {};
+}
+
+void ButtonScheme::release(Button button, Time at) {
+    if (mode_ == Mode::tapping && button == Button::select) {
+        taps_.release_select(at);
+    }
+}
+
+// Select taps a note, Down a rest; Up or Back ends tapping and writes the rhythm, Left drops
+// it. Presses without a time (the press planner's) tap nothing.
+Request ButtonScheme::tap(Button button, EditorModel& model, std::optional<Time> at) {
+    switch (button) {
+        case Button::select:
+            if (at) {
+                taps_.press_select(*at);
+            }
+            return {};
+        case Button::down:
+            if (at) {
+                taps_.press_rest(*at);
+            }
+            return {};
+        case Button::up:
+        case Button::back:
+            if (at) {
+                taps_.finish(*at);
+            }
+            end_tapping(model);
+            return {};
+        case Button::left:
+            taps_ = {};
+            mode_ = Mode::browse;
+            model.say("tapping dropped");
+            return {};
+        case Button::right:
+            return {};
+    }
+    return {};
+}
+
+void ButtonScheme::end_tapping(EditorModel& model) {
+    mode_ = Mode::browse;
+    const auto sounds = taps_.sounds();
+    taps_ = {};
+    if (sounds.empty()) {
+        model.say("nothing tapped");
+        return;
+    }
+    const std::string& clef = model.score().bars.at(model.cursor().bar).clef;
+    const KnownClef* known = clef_book_->find(clef);
+    const double clef_tempo = known ? known->clef.tempo : 0.0;
+    const Note proposed = model.proposed_note();
+    try {
+        const auto rhythm =
+            tapped_rhythm(sounds, clef_tempo, clef, proposed.string, proposed.number);
+        model.insert_bars(rhythm.bars);
+        char tempo[32];
+        std::snprintf(tempo, sizeof tempo, "%.2f", rhythm.tempo);
+        model.say(std::to_string(rhythm.notes) + " notes at " + tempo + " s a beat: S changes");
+    } catch (const std::exception& error) {
+        model.say(std::string("not tapped: ") + error.what());
+    }
 }
 
 Request ButtonScheme::browse(Button button, EditorModel& model) {
@@ -84,6 +187,9 @@ Request ButtonScheme::browse(Button button, EditorModel& model) {
             begin_entry(model);
             break;
         case Button::back:
+            // What the last action did is old news: the line now says what the choices are
+            // (a newcomer read "*crescendo" there, pressed Up to change the string and it played).
+            model.clear_message();
             mode_ = Mode::browse_choices;
             break;
     }
@@ -96,13 +202,13 @@ Request ButtonScheme::browse_choices(Button button, EditorModel& model) {
     mode_ = Mode::browse;
     switch (button) {
         case Button::up:
-            return perform(Action::play_from_start, model);
+            return perform({Action::play_from_start}, model);
         case Button::down:
-            return perform(Action::play_or_stop, model);
+            return perform({Action::play_or_stop}, model);
         case Button::left:
-            return perform(Action::to_first_bar, model);
+            return perform({Action::to_first_bar}, model);
         case Button::right:
-            return perform(Action::to_last_bar, model);
+            return perform({Action::to_last_bar}, model);
         case Button::select:
             mode_ = Mode::menu;
             return {};
@@ -167,7 +273,7 @@ Request ButtonScheme::main_menu_press(Button button, EditorModel& model) {
             break;
         case Button::select:
             mode_ = Mode::browse;
-            return perform(entries[static_cast<std::size_t>(main_.index())].action, model);
+            return perform({entries[static_cast<std::size_t>(main_.index())].action}, model);
     }
     return {};
 }
@@ -240,40 +346,30 @@ Request ButtonScheme::list_press(Button button, EditorModel& model) {
     }
 }
 
-Request ButtonScheme::perform(Action action, EditorModel& model) {
-    switch (action) {
-        case Action::choose_clef:
-            open_clef_menu(model);
-            return {};
-        case Action::open:
-            if (openable_->empty()) {
-                return {};
-            }
-            list_.set(last_open_, static_cast<int>(openable_->size()));
-            mode_ = Mode::open_menu;
-            return {};
-        case Action::quit:
-            if (model.modified()) {
-                list_.set(0, 3);
-                mode_ = Mode::quit_menu;
-                return {};
-            }
-            return {Request::Kind::quit};
-        case Action::play_or_stop:
-            return {Request::Kind::play, {}, model.cursor().bar};
-        case Action::play_from_start:
-            return {Request::Kind::play, {}, 0};
-        case Action::save:
-            return save_under(destination_, false);
-        case Action::save_as:
-            begin_name_entry(false);
-            return {};
-        case Action::new_score:
-            return {Request::Kind::new_score};
-        default:
-            model.apply({action});
-            return {};
+Request ButtonScheme::perform(const Command& command, EditorModel& model) {
+    const auto& record = record_of(command.action);
+    if (record.session != nullptr) {
+        return record.session(*this, model);
     }
+    model.apply(command);
+    return {};
+}
+
+void ButtonScheme::open_score_list() {
+    if (openable_->empty()) {
+        return;
+    }
+    list_.set(last_open_, static_cast<int>(openable_->size()));
+    mode_ = Mode::open_menu;
+}
+
+Request ButtonScheme::ask_quit(const EditorModel& model) {
+    if (!model.modified()) {
+        return {Request::Kind::quit};
+    }
+    list_.set(0, 3);
+    mode_ = Mode::quit_menu;
+    return {};
 }
 
 Request ButtonScheme::save_under(const std::string& name, bool then_quit) {
@@ -288,17 +384,238 @@ Request ButtonScheme::save_under(const std::string& name, bool then_quit) {
     }
     mode_ = Mode::browse;
     if (name == destination_) {
-        return {then_quit ? Request::Kind::save_and_quit : Request::Kind::save};
+        return {then_quit ? Request::Kind::save_and_quit : Request::Kind::save,
+                {},
+                0,
+                false,
+                pending_event_};
     }
-    return {Request::Kind::save_as, name, 0, then_quit};
+    return {Request::Kind::save_as, name, 0, then_quit, pending_event_};
 }
 
-void ButtonScheme::begin_name_entry(bool then_quit) {
+// Saving offers, before any name, the events the score could be for: the theme's events with
+// what each plays now, and last, none.
+void ButtonScheme::open_use_for(bool save_as) {
+    pending_save_as_ = save_as;
+    pending_event_.clear();
+    list_.set(0, static_cast<int>(events_->size()) + 1);
+    mode_ = Mode::use_for;
+}
+
+Request ButtonScheme::use_for_press(Button button, EditorModel& model) {
+    const int size = static_cast<int>(events_->size()) + 1;
+    switch (button) {
+        case Button::up:
+            list_.step(-1, size);
+            return {};
+        case Button::down:
+            list_.step(+1, size);
+            return {};
+        case Button::left:
+        case Button::right:
+            return {};
+        case Button::back:
+            mode_ = Mode::browse;
+            return {};
+        case Button::select:
+            break;
+    }
+    const auto chosen = static_cast<std::size_t>(list_.index());
+    if (chosen < events_->size()) {
+        pending_event_ = (*events_)[chosen].event;  // a name proposed from it, one Select
+        begin_name_entry(model, false);
+        return {};
+    }
+    if (pending_save_as_) {
+        begin_name_entry(model, false);
+        return {};
+    }
+    return save_under(destination_, false);
+}
+
+const ClefEditor* ButtonScheme::clef_editor() const {
+    const bool open =
+        mode_ == Mode::clef_edit || mode_ == Mode::clef_name || mode_ == Mode::clef_close;
+    return open ? &clef_editor_ : nullptr;
+}
+
+// "edit clefs...": the clefs the session could read, the score's own first.
+void ButtonScheme::open_clef_list(EditorModel& model) {
+    if (clef_book_->clefs().empty()) {
+        model.say("no clef could be read");
+        return;
+    }
+    int index = 0;
+    const std::string& current = model.score().bars.at(model.cursor().bar).clef;
+    for (std::size_t i = 0; i < clef_book_->clefs().size(); ++i) {
+        if (clef_book_->clefs()[i].declaration.id == current) {
+            index = static_cast<int>(i);
+        }
+    }
+    list_.set(index, static_cast<int>(clef_book_->clefs().size()));
+    mode_ = Mode::clef_list;
+}
+
+Request ButtonScheme::clef_list_press(Button button, EditorModel&) {
+    const int size = static_cast<int>(clef_book_->clefs().size());
+    switch (button) {
+        case Button::up:
+        case Button::down:
+            list_.step(button == Button::up ? -1 : 1, size);
+            return {};
+        case Button::left:
+        case Button::right:
+            return {};
+        case Button::back:
+            mode_ = Mode::menu;
+            return {};
+        case Button::select:
+            break;
+    }
+    const auto& chosen = clef_book_->clefs()[static_cast<std::size_t>(list_.index())];
+    clef_editor_ = ClefEditor(chosen.declaration.id, chosen.clef);
+    mode_ = Mode::clef_edit;
+    return {};
+}
+
+namespace {
+
+Request hearing(const ClefEditor& editor) {
+    Request request{Request::Kind::hear_clef, editor.id()};
+    request.document = write_clef(editor.clef());
+    request.string = editor.string();
+    request.number = editor.number();
+    return request;
+}
+
+}  // namespace
+
+Request ButtonScheme::clef_edit_press(Button button) {
+    switch (clef_editor_.press(button)) {
+        case ClefEditor::Outcome::editing:
+            return {};
+        case ClefEditor::Outcome::hear:
+            return hearing(clef_editor_);
+        case ClefEditor::Outcome::save_as:
+            begin_clef_name();
+            return {};
+        case ClefEditor::Outcome::close:
+            if (clef_editor_.modified()) {
+                list_.set(0, 3);
+                mode_ = Mode::clef_close;
+                return {};
+            }
+            mode_ = Mode::browse;
+            return {};
+    }
+    return {};
+}
+
+// A clef is saved under a new name each time: a shipped clef (or any other) is never saved
+// over.
+void ButtonScheme::begin_clef_name() {
+    std::vector<std::string> names;
+    for (const auto& known : clef_book_->clefs()) {
+        names.push_back(known.declaration.id);
+    }
+    name_.start({free_name(clef_editor_.id(), names)});
+    mode_ = Mode::clef_name;
+}
+
+Request ButtonScheme::clef_name_press(Button button) {
+    switch (name_.press(button)) {
+        case NameEntry::Outcome::typing:
+            return {};
+        case NameEntry::Outcome::cancelled:
+            mode_ = Mode::clef_edit;
+            return {};
+        case NameEntry::Outcome::done:
+            break;
+    }
+    if (clef_book_->find(name_.name()) != nullptr) {
+        name_.refuse(name_.name() + " exists: another name");
+        return {};
+    }
+    mode_ = Mode::browse;
+    Request request{Request::Kind::save_clef, name_.name()};
+    request.document = write_clef(clef_editor_.clef());
+    return request;
+}
+
+Request ButtonScheme::clef_close_press(Button button) {
+    switch (button) {
+        case Button::up:
+        case Button::down:
+            list_.step(button == Button::up ? -1 : 1, 3);
+            return {};
+        case Button::left:
+        case Button::right:
+            return {};
+        case Button::back:
+            mode_ = Mode::clef_edit;
+            return {};
+        case Button::select:
+            break;
+    }
+    switch (list_.index()) {
+        case 0:
+            begin_clef_name();
+            return {};
+        case 1:
+            mode_ = Mode::browse;  // the changes dropped
+            return {};
+        default:
+            mode_ = Mode::clef_edit;
+            return {};
+    }
+}
+
+void ButtonScheme::show_assigned(const std::string& event, const std::string& score) {
+    assigned_before_ = {event, "", "", false};
+    for (const auto& known : *events_) {
+        if (known.event == event) {
+            assigned_before_ = known;
+        }
+    }
+    assigned_score_ = score;
+    list_.set(0, 2);
+    mode_ = Mode::assigned;
+}
+
+Request ButtonScheme::assigned_press(Button button) {
+    switch (button) {
+        case Button::up:
+        case Button::down:
+            list_.step(button == Button::up ? -1 : 1, 2);
+            return {};
+        case Button::left:
+        case Button::right:
+            return {};
+        case Button::back:
+            mode_ = Mode::browse;
+            return {};
+        case Button::select:
+            break;
+    }
+    mode_ = Mode::browse;
+    if (list_.index() == 1) {
+        return {Request::Kind::keep_event, score_before(assigned_before_), 0, false,
+                assigned_before_.event};
+    }
+    return {};
+}
+
+void ButtonScheme::begin_name_entry(const EditorModel& model, bool then_quit) {
     std::vector<std::string> names;
     for (const auto& taken : *taken_) {
         names.push_back(taken.name);
     }
-    name_.start(free_name(destination_, names));
+    auto proposals = name_proposals(destination_, model.score().title, pending_event_, names);
+    if (never_saved_ && !pending_save_as_ && !pending_event_.empty()) {
+        // Saving a new score for an event: its own name is one of the choices too.
+        proposals.insert(proposals.begin() + 1, destination_);
+    }
+    name_.start(std::move(proposals));
     then_quit_ = then_quit;
     mode_ = Mode::name_entry;
 }
@@ -317,7 +634,7 @@ Request ButtonScheme::name_press(Button button) {
     return save_under(name_.name(), then_quit_);
 }
 
-Request ButtonScheme::replace_press(Button button) {
+Request ButtonScheme::replace_press(Button button, const EditorModel& model) {
     switch (button) {
         case Button::up:
             list_.step(-1, kReplaceChoices);
@@ -336,16 +653,20 @@ Request ButtonScheme::replace_press(Button button) {
     }
     switch (list_.index()) {
         case 0:
-            begin_name_entry(then_quit_);
+            begin_name_entry(model, then_quit_);
             return {};
         case 1: {
             mode_ = Mode::browse;
             const std::string name = replacing_.name;
             if (name == destination_) {
                 destination_ours_ = true;  // asked once; the next saves go there quietly
-                return {then_quit_ ? Request::Kind::save_and_quit : Request::Kind::save};
+                return {then_quit_ ? Request::Kind::save_and_quit : Request::Kind::save,
+                        {},
+                        0,
+                        false,
+                        pending_event_};
             }
-            return {Request::Kind::save_as, name, 0, then_quit_};
+            return {Request::Kind::save_as, name, 0, then_quit_, pending_event_};
         }
         default:
             mode_ = Mode::browse;
@@ -359,27 +680,20 @@ void ButtonScheme::leave_layers(EditorModel& model) {
     }
     mode_ = Mode::browse;
     enter_after_list_ = false;
+    taps_ = {};
 }
 
 Request ButtonScheme::command(const Command& command, EditorModel& model) {
     if (mode_ == Mode::playing) {
         return {Request::Kind::stop};
     }
-    leave_layers(model);
-    switch (command.action) {
-        case Action::choose_clef:
-        case Action::open:
-        case Action::quit:
-        case Action::play_or_stop:
-        case Action::play_from_start:
-        case Action::save:
-        case Action::save_as:
-        case Action::new_score:
-            return perform(command.action, model);
-        default:
-            model.apply(command);
-            return {};
+    if (mode_ == Mode::clef_list || clef_editor() != nullptr) {
+        // A letter key at 80x24 would otherwise drop the clef being edited without a word.
+        model.say("a clef is open: Back, Back closes it");
+        return {};
     }
+    leave_layers(model);
+    return perform(command, model);
 }
 
 ButtonScheme::MenuView ButtonScheme::menu_view(const EditorModel& model) const {
@@ -391,9 +705,10 @@ ButtonScheme::MenuView ButtonScheme::menu_view(const EditorModel& model) const {
                 view.lines.push_back(entry.label);
             }
             view.highlighted = main_.index();
-            const int group = entries[static_cast<std::size_t>(view.highlighted)].group;
+            const MenuGroup group = entries[static_cast<std::size_t>(view.highlighted)].group;
             view.title = "menu: " + std::string(group_name(group)) + " " +
-                         std::to_string(group + 1) + "/" + std::to_string(entries.back().group + 1);
+                         std::to_string(static_cast<int>(group) + 1) + "/" +
+                         std::to_string(menu_group_count);
         } break;
         case Mode::clef_menu:
             view.title = "clef of bar " + std::to_string(model.cursor().bar + 1);
@@ -414,10 +729,47 @@ ButtonScheme::MenuView ButtonScheme::menu_view(const EditorModel& model) const {
             break;
         case Mode::name_entry:
             view.title = "save as";
-            view.lines.push_back(name_.shown());
-            if (const auto problem = name_.problem(); !problem.empty()) {
-                view.lines.push_back(problem);
+            view.lines = name_.lines();
+            view.highlighted = name_.highlighted();
+            break;
+        case Mode::clef_list:
+            view.title = "edit clefs";
+            for (const auto& known : clef_book_->clefs()) {
+                char tempo[32];
+                std::snprintf(tempo, sizeof tempo, "%.2f s", known.clef.tempo);
+                view.lines.push_back(known.declaration.id + "  " +
+                                     std::string(to_string(known.clef.type)) + " " + tempo);
             }
+            view.highlighted = list_.index();
+            break;
+        case Mode::clef_name:
+            view.title = "save clef as";
+            view.lines = name_.lines();
+            view.highlighted = name_.highlighted();
+            break;
+        case Mode::clef_close:
+            view.title = clef_editor_.id() + " changed";
+            view.lines = {"save as...", "drop the changes", "cancel"};
+            view.highlighted = list_.index();
+            break;
+        case Mode::use_for:
+            view.title = "use for ...";
+            for (const auto& event : *events_) {
+                view.lines.push_back(event_label(event.event) + ": " +
+                                     (event.score.empty() ? "-" : event.score));
+            }
+            view.lines.push_back(pending_save_as_ ? "no event: a name..." : "no event: just save");
+            view.highlighted = list_.index();
+            break;
+        case Mode::assigned:
+            // Narrow screens: the title holds the event, the lines the two scores.
+            view.title = event_label(assigned_before_.event) + " plays:";
+            view.lines = {
+                assigned_score_ + " (ok)",
+                "keep as it was (" +
+                    (assigned_before_.score.empty() ? std::string("-") : assigned_before_.score) +
+                    ")"};
+            view.highlighted = list_.index();
             break;
         case Mode::replace_menu:
             view.title = replace_title(replacing_);
@@ -434,8 +786,7 @@ std::string ButtonScheme::hint(const EditorModel& model) const {
     // Short enough to share a 40-column status line with what is being entered.
     switch (mode_) {
         case Mode::browse:
-            return is_empty_position(model.score(), model.cursor()) ? "S:new note B:play,go to,menu"
-                                                                    : "S:change B:play,go to,menu";
+            return browse_hint(model);
         case Mode::browse_choices:
             return "\u2191play all \u2193play bar \u2190first \u2192last S:menu";
         case Mode::entry:
@@ -450,17 +801,24 @@ std::string ButtonScheme::hint(const EditorModel& model) const {
             return name_.hint();
         case Mode::replace_menu:
             return replace_hint(replacing_);
+        case Mode::tapping:
+            return "tap S:note \u2193rest \u2191 B:done \u2190drop";
+        case Mode::use_for:
+            return "\u2191\u2193choose Sel:save for it Back:close";
+        case Mode::clef_list:
+            return "\u2191\u2193choose Sel:edit Back:close";
+        case Mode::clef_edit:
+            return clef_editor_.hint();
+        case Mode::clef_name:
+            return name_.hint();
+        case Mode::clef_close:
+            return "\u2191\u2193choose Sel:ok";
+        case Mode::assigned:
+            return "\u2191\u2193choose Sel:ok";
         case Mode::playing:
             return "playing: any button stops";
     }
     return {};
-}
-
-std::string ButtonScheme::fingerprint() const {
-    return std::to_string(static_cast<int>(mode_)) + ',' +
-           std::to_string(static_cast<int>(steps_.step())) + ',' + std::to_string(main_.index()) +
-           ',' + std::to_string(list_.index()) + (enter_after_list_ ? ",e" : "") +
-           (mode_ == Mode::name_entry ? ',' + name_.shown() + (name_.more() ? "+" : "") : "");
 }
 
 }  // namespace vibscore::editor

@@ -110,6 +110,16 @@ std::uint64_t DaemonLink::play(const std::string& document, std::size_t start_ba
     });
 }
 
+std::uint64_t DaemonLink::audition(const std::string& document,
+                                   const std::map<std::string, std::string>& clefs) {
+    return guarded([&] {
+        std::map<std::string, sdbus::Variant> options;
+        options["clefs"] = sdbus::Variant(clefs);
+        options["usage"] = sdbus::Variant(std::string("touch"));
+        return proxy_->Play(document, options);
+    });
+}
+
 void DaemonLink::stop(std::uint64_t id) {
     guarded([&] {
         proxy_->Stop(id);
@@ -130,6 +140,10 @@ std::string DaemonLink::get(const std::string& kind, const std::string& name) {
 
 std::string DaemonLink::origin(const std::string& kind, const std::string& name) {
     return guarded([&] { return proxy_->Origin(kind, name); });
+}
+
+std::map<std::string, std::string> DaemonLink::actuator() {
+    return guarded([&] { return proxy_->Actuator(); });
 }
 
 std::vector<std::string> DaemonLink::list(const std::string& kind) {

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -40,12 +41,18 @@ class DaemonLink {
     DaemonLink& operator=(const DaemonLink&) = delete;
 
     std::uint64_t play(const std::string& document, std::size_t start_bar);
+    // Plays an inline score with clefs sent along (by the href the score declares them by),
+    // not followed: a clef heard while it is edited. A newer one takes over.
+    std::uint64_t audition(const std::string& document,
+                           const std::map<std::string, std::string>& clefs);
     void stop(std::uint64_t id);
     void compose(const std::string& name, const std::string& document);
     std::string get(const std::string& kind, const std::string& name);
     std::vector<std::string> list(const std::string& kind);
     // "shipped", "stored" or "stored-over-shipped" (Origin).
     std::string origin(const std::string& kind, const std::string& name);
+    // The actuator the daemon declares (Haptics1.Actuator), empty when none is.
+    std::map<std::string, std::string> actuator();
 
     // For poll(): the bus descriptor, the events to wait for, and how long at most (ms, -1
     // for no limit).

@@ -25,10 +25,14 @@ Score read_score_file(const std::filesystem::path& path) {
 }
 
 void write_score_file(const std::filesystem::path& path, const Score& score) {
+    write_document_file(path, write_score(score));
+}
+
+void write_document_file(const std::filesystem::path& path, const std::string& text) {
     const auto temporary = std::filesystem::path(path.string() + ".tmp");
     {
         std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-        out << write_score(score);
+        out << text;
         out.flush();
         if (!out) {
             throw std::runtime_error(temporary.string() +

@@ -26,6 +26,8 @@ Score read_score_file(const std::filesystem::path& path);
 // Writes a score file atomically (a temporary file renamed over it). Throws std::runtime_error
 // naming the file.
 void write_score_file(const std::filesystem::path& path, const Score& score);
+// Any document (a clef) likewise.
+void write_document_file(const std::filesystem::path& path, const std::string& text);
 
 // The clefs in the score file's directory (NAME.clef.xml: id NAME, href the file name).
 std::vector<ClefDeclaration> clefs_beside(const std::filesystem::path& score_file);

@@ -13,14 +13,20 @@ struct Editor {
     ButtonScheme scheme;
 
     Request press(Button button) { return scheme.press(button, model); }
+    // With the time it went down, for tapping a rhythm; a release likewise.
+    Request press_at(Button button, ButtonScheme::Time at) {
+        return scheme.press(button, model, at);
+    }
+    void release_at(Button button, ButtonScheme::Time at) { scheme.release(button, at); }
+    bool operator==(const Editor&) const = default;
     // An ncurses key code; keys that mean nothing are ignored.
-    Request key(int code) {
+    Request key(int code, std::optional<ButtonScheme::Time> at = std::nullopt) {
         const auto input = key_input(code);
         if (!input) {
             return {};
         }
         if (const auto* button = std::get_if<Button>(&*input)) {
-            return press(*button);
+            return scheme.press(*button, model, at);
         }
         return scheme.command(std::get<Command>(*input), model);
     }

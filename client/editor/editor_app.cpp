@@ -6,19 +6,25 @@
 #include <algorithm>
 #include <chrono>
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <optional>
 #include <set>
 
+#include "client/editor/actuator_feel.hpp"
 #include "client/editor/daemon_link.hpp"
 #include "client/editor/documents.hpp"
 #include "client/editor/editor.hpp"
 #include "client/editor/evdev_buttons.hpp"
+#include "client/editor/event_link.hpp"
 #include "client/editor/ncurses_view.hpp"
 #include "client/editor/phrase_book.hpp"
 #include "common/device_error.hpp"
 #include "common/monotonic_clock.hpp"
+#include "score/bundle.hpp"
+#include "score/clef_xml.hpp"
 #include "score/document_error.hpp"
+#include "score/registry_names.hpp"
 #include "score/score_xml.hpp"
 
 namespace vibscore::editor {
@@ -53,7 +59,13 @@ class Session {
             daemon_ = std::make_unique<DaemonLink>();
             registry_scores_ = daemon_->list("score");
             registry_clefs_ = daemon_->list("clef");
+            try {
+                actuator_ = daemon_->actuator();
+            } catch (const DaemonError&) {
+                // A daemon that declares none, or predates the property: no feel shown.
+            }
             read_registry_scores();
+            events_ = std::make_unique<EventLink>();
         } catch (const DaemonError& error) {
             // Files can still be edited; playing and the registry wait for the daemon.
             daemon_.reset();
@@ -75,10 +87,15 @@ class Session {
     void run() {
         Screen screen;
         while (running_) {
-            screen.draw(editor_->model, editor_->scheme, {source_.name, message_, playing_at_});
+            const ClefEditor* clef = editor_->scheme.clef_editor();
+            screen.draw(editor_->model, editor_->scheme,
+                        {source_.name, message_, playing_at_,
+                         clef != nullptr ? actuator_feel(clef->clef(), actuator_)
+                                         : std::vector<std::string>{}});
             wait_for_input();
             while (const auto code = screen.key()) {
-                handle(editor_->key(*code));
+                // A terminal's keys carry no time: now is when the key was read.
+                handle(editor_->key(*code, monotonic_now()));
             }
             read_buttons();
             serve_bus();
@@ -128,15 +145,20 @@ class Session {
         editor->model.learn_from(std::move(phrases));
         editor->scheme.set_openable(registry_scores_);
         editor->scheme.set_taken(taken_names(source));
+        editor->scheme.set_clef_book(read_clef_book(editor->model, source));
         // A file opened is the user's to save over; a registry name may be a shipped score.
-        editor->scheme.set_destination(name_of(source),
-                                       is_new || source.kind == ScoreSource::Kind::file);
+        const bool registry = source.kind == ScoreSource::Kind::registry;
+        editor->scheme.set_destination(name_of(source), is_new || !registry, is_new && registry);
+        // The feedback theme's events play registry scores: saving one offers them.
+        editor->scheme.set_events(registry ? event_scores() : std::vector<EventScore>{});
         if (editor_) {
             editor->model.carry_over(editor_->model);
         }
         editor_ = std::move(editor);
         source_ = source;
-        message_ = is_new ? "new score " + source_.name : "";
+        // A new score says so in the title of a roomy screen; at 40x12 the status line's hint
+        // (what Select and Back do) is what a newcomer needs before the first press.
+        message_.clear();
     }
 
     // Every score the daemon lists (shipped, stored, composed before) teaches the proposals,
@@ -149,6 +171,37 @@ class Session {
                 continue;  // `vibscore check` is where a broken score is reported
             }
         }
+    }
+
+    // The clefs the score may use, read where they are: the registry's through the daemon
+    // (Origin says which are shipped), a file score's beside it. One that does not read is left
+    // out: the daemon says what is wrong with it when it plays.
+    ClefBook read_clef_book(const EditorModel& model, const ScoreSource& source) const {
+        std::vector<KnownClef> known;
+        for (const auto& declaration : model.clef_choices()) {
+            try {
+                const auto beside =
+                    std::filesystem::path(source.name).parent_path() / declaration.href;
+                std::string text;
+                bool shipped = false;
+                if (source.kind == ScoreSource::Kind::file && std::filesystem::exists(beside)) {
+                    text = read_document_file(beside);
+                } else if (daemon_) {
+                    std::string name = std::filesystem::path(declaration.href).filename().string();
+                    if (name.ends_with(kClefSuffix)) {
+                        name.resize(name.size() - kClefSuffix.size());
+                    }
+                    text = daemon_->get("clef", name);
+                    shipped = daemon_->origin("clef", name) == "shipped";
+                } else {
+                    continue;
+                }
+                known.push_back({declaration, read_clef(text, declaration.href), shipped});
+            } catch (const std::exception&) {
+                continue;
+            }
+        }
+        return ClefBook(std::move(known));
     }
 
     // The names save-as asks about before saving under them, with what each is: the registry's
@@ -252,11 +305,16 @@ class Session {
     void read_buttons() {
         for (auto it = buttons_.begin(); it != buttons_.end();) {
             try {
-                for (const Button button : it->reader->read()) {
-                    handle(editor_->press(button));
+                it->reader->set_tapping(editor_->scheme.mode() == ButtonScheme::Mode::tapping);
+                for (const auto& event : it->reader->read_events()) {
+                    if (event.released) {
+                        editor_->release_at(event.button, event.at);
+                    } else {
+                        handle(editor_->press_at(event.button, event.at));
+                    }
                 }
                 if (const auto held = it->reader->expire(monotonic_now())) {
-                    handle(editor_->press(*held));
+                    handle(editor_->press_at(*held, monotonic_now()));
                 }
                 ++it;
             } catch (const DeviceError& error) {
@@ -305,17 +363,32 @@ class Session {
                 stop();
                 return;
             case Request::Kind::save:
-                save();
+                if (save()) {
+                    use_for(request.event, true);
+                }
                 return;
             case Request::Kind::save_and_quit:
                 if (save()) {
+                    use_for(request.event, false);
                     running_ = false;
                 }
                 return;
             case Request::Kind::save_as:
-                if (save_as(request.name) && request.then_quit) {
-                    running_ = false;
+                if (save_as(request.name)) {
+                    use_for(request.event, !request.then_quit);
+                    if (request.then_quit) {
+                        running_ = false;
+                    }
                 }
+                return;
+            case Request::Kind::keep_event:
+                keep_event(request.event, request.name);
+                return;
+            case Request::Kind::hear_clef:
+                hear_clef(request);
+                return;
+            case Request::Kind::save_clef:
+                save_clef(request);
                 return;
             case Request::Kind::quit:
                 running_ = false;
@@ -329,6 +402,95 @@ class Session {
         }
     }
 
+    // What each event of the feedback theme plays now; none when it cannot be read (the editor
+    // then saves as it did, and says why once).
+    std::vector<EventScore> event_scores() {
+        if (!events_) {
+            return {};
+        }
+        try {
+            return events_->events();
+        } catch (const std::exception& error) {
+            message_ = std::string("events: ") + error.what();
+            return {};
+        }
+    }
+
+    // Saved for `event`: from now on it plays the score just saved, for this user. `ask`: offer
+    // "keep as it was" (not when quitting).
+    void use_for(const std::string& event, bool ask) {
+        if (event.empty() || !events_) {
+            return;
+        }
+        try {
+            events_->assign(event, source_.name);
+            message_ = event_label(event) + " plays " + source_.name;
+            if (ask) {
+                editor_->scheme.show_assigned(event, source_.name);
+            }
+            editor_->scheme.set_events(event_scores());
+        } catch (const std::exception& error) {
+            message_ = "saved; not used for " + event_label(event) + ": " + error.what();
+        }
+    }
+
+    void keep_event(const std::string& event, const std::string& score) {
+        try {
+            events_->assign(event, score);
+            message_ = event_label(event) + " plays " +
+                       (score.empty() ? std::string("the theme's score") : score) + " again";
+            editor_->scheme.set_events(event_scores());
+        } catch (const std::exception& error) {
+            message_ = event_label(event) + ": " + error.what();
+        }
+    }
+
+    // The string at the number under the cursor, through the clef as it is being edited: a
+    // quarter note, sent with the clef inline, on the actuator at once.
+    void hear_clef(const Request& request) {
+        if (!daemon_) {
+            message_ = "cannot hear it: no daemon";
+            return;
+        }
+        const std::string href = "edited.clef.xml";
+        const std::string score = "<VibScore><Title>" + request.name +
+                                  "</Title><Clef id=\"edited\" href=\"" + href +
+                                  "\"/><Bar clef=\"edited\"><Note length=\"quarter\" number=\"" +
+                                  std::to_string(request.number) + "\" string=\"" +
+                                  std::to_string(request.string) + "\"/></Bar></VibScore>";
+        try {
+            daemon_->audition(score, {{href, request.document}});
+        } catch (const DaemonError& error) {
+            message_ = "cannot hear it: " + std::string(error.what());
+        }
+    }
+
+    // Stores the edited clef under a new name (the registry, or a file beside a file score) and
+    // the bars at the cursor use it.
+    void save_clef(const Request& request) {
+        const std::string href = request.name + std::string(kClefSuffix);
+        try {
+            const Clef clef = read_clef(request.document, href);
+            if (source_.kind == ScoreSource::Kind::file) {
+                const auto path = std::filesystem::path(source_.name).parent_path() / href;
+                write_document_file(path, request.document);
+            } else if (daemon_) {
+                daemon_->compose(request.name, request.document);
+            } else {
+                message_ = "clef not saved: no daemon";
+                return;
+            }
+            const ClefDeclaration declaration{request.name, href};
+            editor_->scheme.add_clef({declaration, clef, false});
+            editor_->model.add_available_clef(declaration);
+            editor_->model.set_bar_clef(request.name);
+            message_ = "clef " + request.name + " saved; bar " +
+                       std::to_string(editor_->model.cursor().bar + 1) + " uses it";
+        } catch (const std::exception& error) {
+            message_ = "clef not saved: " + std::string(error.what());
+        }
+    }
+
     void play(std::size_t bar) {
         if (!daemon_) {
             message_ = "cannot play: no daemon";
@@ -337,8 +499,7 @@ class Session {
         try {
             playback_ = daemon_->play(registry_document(editor_->model.score()), bar);
             editor_->scheme.set_playing(true);
-            playing_at_ = Position{bar, 0};
-            message_ = "playing bar " + std::to_string(bar + 1) + " on: any button stops";
+            playing_at_ = Position{bar, 0};  // the status line names the bar playing now
         } catch (const DaemonError& error) {
             message_ = "cannot play: " + std::string(error.what());
         }
@@ -427,6 +588,8 @@ class Session {
 
     EditOptions options_;
     std::unique_ptr<DaemonLink> daemon_;
+    std::map<std::string, std::string> actuator_;  // Haptics1.Actuator, for the clef window
+    std::unique_ptr<EventLink> events_;            // the feedback theme's events ("use for ...")
     std::vector<std::string> registry_scores_;
     std::vector<std::string> registry_clefs_;
     std::vector<NamedScore> learned_;  // the registry's scores the proposals learn from

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <set>
 
+#include "client/editor/actions.hpp"
 #include "client/editor/recurrence.hpp"
 
 namespace vibscore::editor {
@@ -32,13 +33,10 @@ void drop_clefs_no_longer_used(Score& score, const std::set<std::string>& used_b
 }  // namespace
 
 EditorModel::EditorModel(Score score, std::vector<ClefDeclaration> available_clefs)
-    : score_(std::make_shared<const Score>(std::move(score))),
-      saved_(score_),
-      available_clefs_(
-          std::make_shared<const std::vector<ClefDeclaration>>(std::move(available_clefs))) {
+    : score_(std::move(score)), saved_(score_), available_clefs_(std::move(available_clefs)) {
     if (score_->bars.empty()) {
         // The editor needs a bar to stand in; a score with none gets one with its first clef.
-        auto fresh = std::make_shared<Score>(*score_);
+        auto fresh = score_.copy();
         const auto& available = *available_clefs_;
         const std::string clef = !fresh->clefs.empty() ? fresh->clefs.front().id
                                  : !available.empty()  ? available.front().id
@@ -60,6 +58,14 @@ Score EditorModel::blank_score(std::string title, const ClefDeclaration& clef) {
     score.clefs.push_back(clef);
     score.bars.push_back(Bar{clef.id, {}});
     return score;
+}
+
+void EditorModel::add_available_clef(const ClefDeclaration& clef) {
+    auto clefs = *available_clefs_;
+    if (std::find(clefs.begin(), clefs.end(), clef) == clefs.end()) {
+        clefs.push_back(clef);
+        available_clefs_ = std::move(clefs);
+    }
 }
 
 void EditorModel::set_title(std::string title) {
@@ -187,7 +193,7 @@ Score& EditorModel::edit() {
     if (!in_entry_) {
         history_.record(snapshot());
     }
-    auto copy = std::make_shared<Score>(*score_);
+    auto copy = score_.copy();
     Score& score = *copy;
     score_ = std::move(copy);
     return score;
@@ -199,6 +205,7 @@ void EditorModel::restore(const Snapshot& snapshot) {
     string_ = snapshot.string;
     anchor_.reset();
     in_entry_ = false;
+    entry_proposed_ = false;
     land();
 }
 
@@ -366,7 +373,8 @@ bool EditorModel::begin_entry(Continuing continuing) {
         }
         cursor_ = {cursor_.bar + 1, 0};
     }
-    if (is_empty_position(*score_, cursor_)) {
+    entry_proposed_ = is_empty_position(*score_, cursor_);
+    if (entry_proposed_) {
         insert_symbol(edit(), cursor_, proposed_symbol());
         if (const Note* proposed = note_at(*score_, cursor_)) {
             const Note note = *proposed;  // edit() below may copy the score
@@ -504,6 +512,7 @@ void EditorModel::end_entry() {
         return;
     }
     in_entry_ = false;
+    entry_proposed_ = false;
     if (const Snapshot* before = history_.last(); before && *before->score == *score_) {
         history_.drop_last();  // opened and closed without a change
     }
@@ -656,6 +665,13 @@ bool EditorModel::set_length(Length length) {
     return done("block length " + length_name(length));
 }
 
+bool EditorModel::set_length_value(int value) {
+    if (value < 0 || value >= length_count) {
+        return refuse("no such length");
+    }
+    return set_length(static_cast<Length>(value));
+}
+
 bool EditorModel::toggle_dot() {
     const auto symbols = targets();
     if (symbols.empty()) {
@@ -739,6 +755,7 @@ bool EditorModel::copy() {
         return refuse("nothing here to copy");
     }
     clipboard_ = copy_block(*score_, Block{*at, {at->bar, at->symbol + 1}});
+    clipboard_.whole_bars = false;  // one symbol, even where it fills its bar
     return done("copied");
 }
 
@@ -766,6 +783,16 @@ bool EditorModel::paste() {
         cursor_ = marked->first;
     }
     anchor_.reset();
+    // Whole bars pasted at a bar line are bars again: bar 1 copied to the end of the score is
+    // a new last bar, not more beats in the last one.
+    const auto& bar = score.bars.at(cursor_.bar);
+    const bool at_bar_line =
+        !bar.symbols.empty() && (cursor_.symbol == 0 || cursor_.symbol == bar.symbols.size());
+    if (clipboard_.whole_bars && at_bar_line) {
+        cursor_ = paste_bars(score, cursor_, clipboard_);
+        land();
+        return done(clipboard_.bars.size() == 1 ? "bar pasted" : "bars pasted");
+    }
     cursor_ = paste_clip(score, cursor_, clipboard_);
     land();
     return done("pasted");
@@ -803,10 +830,19 @@ bool EditorModel::set_bar_clef(const std::string& id) {
         last = marked->end.symbol == 0 && marked->end.bar > first ? marked->end.bar - 1
                                                                   : marked->end.bar;
     }
+    return set_clef_of_bars(first, last, *chosen);
+}
+
+bool EditorModel::set_clef_of_bars(std::size_t first, std::size_t last,
+                                   const ClefDeclaration& clef) {
+    const std::string& id = clef.id;
+    if (first > last || last >= score_->bars.size()) {
+        return refuse("no such bars");
+    }
     const auto used_before = clefs_in_use(*score_);
     Score changed = *score_;
     if (changed.find_clef(id) == nullptr) {
-        changed.clefs.push_back(*chosen);
+        changed.clefs.push_back(clef);
     }
     for (std::size_t b = first; b <= last; ++b) {
         changed.bars[b].clef = id;
@@ -819,154 +855,40 @@ bool EditorModel::set_bar_clef(const std::string& id) {
     return done("clef " + id);
 }
 
+bool EditorModel::insert_bars(const std::vector<Bar>& bars) {
+    if (bars.empty()) {
+        return refuse("no bars to put in");
+    }
+    anchor_.reset();
+    Score& score = edit();
+    std::size_t first = cursor_.bar;
+    const auto& here = score.bars.at(cursor_.bar);
+    if (here.symbols.empty()) {
+        score.bars.erase(score.bars.begin() + static_cast<std::ptrdiff_t>(first));
+    } else if (cursor_.symbol == here.symbols.size()) {
+        first = cursor_.bar + 1;
+    } else if (cursor_.symbol > 0) {
+        split_bar_at(score, cursor_);
+        first = cursor_.bar + 1;
+    }
+    score.bars.insert(score.bars.begin() + static_cast<std::ptrdiff_t>(first), bars.begin(),
+                      bars.end());
+    cursor_ = {first, 0};
+    land();
+    return true;
+}
+
 // --- keyboard commands --------------------------------------------------------------------
 
 bool EditorModel::apply(const Command& command) {
-    switch (command.action) {
-        case Action::to_first_bar:
-            to_first_bar();
-            return true;
-        case Action::to_last_bar:
-            to_last_bar();
-            return true;
-        case Action::move_left:
-            move_left();
-            return true;
-        case Action::move_right:
-            move_right();
-            return true;
-        case Action::move_up:
-            move_up();
-            return true;
-        case Action::move_down:
-            move_down();
-            return true;
-        case Action::extend_left:
-            extend(-1);
-            return true;
-        case Action::extend_right:
-            extend(+1);
-            return true;
-        case Action::insert_note:
-            return insert_note(command.value);
-        case Action::insert_rest:
-            return insert_rest();
-        case Action::insert_blank:
-            return insert_blank();
-        case Action::split_bar:
-            return split_bar();
-        case Action::delete_symbol:
-            return delete_at_cursor();
-        case Action::crescendo:
-            return set_dynamics(Dynamics::crescendo);
-        case Action::decrescendo:
-            return set_dynamics(Dynamics::decrescendo);
-        case Action::no_dynamics:
-            return set_dynamics(Dynamics::none);
-        case Action::legato:
-            return tie(Tie::legato);
-        case Action::remove_legato:
-            return untie(Tie::legato);
-        case Action::portamento:
-            return tie(Tie::portamento);
-        case Action::remove_portamento:
-            return untie(Tie::portamento);
-        case Action::set_length:
-            if (command.value < 0 || command.value >= length_count) {
-                return refuse("no such length");
-            }
-            return set_length(static_cast<Length>(command.value));
-        case Action::toggle_dot:
-            return toggle_dot();
-        case Action::strings_up:
-            return shift_strings(+1);
-        case Action::strings_down:
-            return shift_strings(-1);
-        case Action::numbers_up:
-            return shift_numbers(+1);
-        case Action::numbers_down:
-            return shift_numbers(-1);
-        case Action::mark_block:
-            mark_block();
-            return true;
-        case Action::clear_block:
-            clear_block();
-            return true;
-        case Action::copy:
-            return copy();
-        case Action::cut:
-            return cut();
-        case Action::paste:
-            return paste();
-        case Action::undo:
-            return undo();
-        case Action::redo:
-            return redo();
-        case Action::choose_clef:
-        case Action::play_or_stop:
-        case Action::play_from_start:
-        case Action::save:
-        case Action::save_as:
-        case Action::open:
-        case Action::new_score:
-        case Action::quit:
-            break;
+    if (static_cast<int>(command.action) < 0 || static_cast<int>(command.action) >= action_count) {
+        return refuse("no such editing function");
     }
-    return refuse(std::string(to_string(command.action)) + " is not an editing function");
-}
-
-std::string EditorModel::fingerprint() const {
-    std::string text;
-    const auto number = [&](long long value) {
-        text += std::to_string(value);
-        text += ',';
-    };
-    for (const auto& clef : score_->clefs) {
-        text += clef.id + '=' + clef.href + ';';
+    const auto& record = record_of(command.action);
+    if (record.model == nullptr) {
+        return refuse(std::string(record.name) + " is not an editing function");
     }
-    const auto add_symbols = [&](const std::vector<Symbol>& symbols) {
-        for (const auto& symbol : symbols) {
-            if (const auto* note = std::get_if<Note>(&symbol)) {
-                text += 'N';
-                number(static_cast<int>(note->length));
-                number(note->number);
-                number(note->string);
-                number(static_cast<int>(note->dynamics));
-                number(note->legato);
-                number(note->portamento);
-            } else if (const auto* rest = std::get_if<Rest>(&symbol)) {
-                text += 'R';
-                number(static_cast<int>(rest->length));
-            } else {
-                text += 'B';
-            }
-        }
-    };
-    text += score_->title + '/';
-    for (const auto& bar : score_->bars) {
-        text += '|' + bar.clef + ':';
-        add_symbols(bar.symbols);
-    }
-    text += '#';
-    number(static_cast<long long>(cursor_.bar));
-    number(static_cast<long long>(cursor_.symbol));
-    number(string_);
-    number(static_cast<int>(length_));
-    number(number_);
-    number(rest_length_ ? static_cast<int>(*rest_length_) : -1);
-    number(in_entry_);
-    if (anchor_) {
-        text += 'A';
-        number(static_cast<long long>(anchor_->bar));
-        number(static_cast<long long>(anchor_->symbol));
-        number(anchor_sticky_);
-    }
-    text += 'C';
-    for (const auto& bar : clipboard_.bars) {
-        text += '|' + bar.clef + ':';
-        add_symbols(bar.symbols);
-    }
-    return text;
+    return record.model(*this, command.value);
 }
 
 }  // namespace vibscore::editor

@@ -8,6 +8,7 @@
 #include "client/editor/phrase_book.hpp"
 #include "client/editor/position.hpp"
 #include "client/editor/score_edits.hpp"
+#include "client/editor/shared_value.hpp"
 #include "client/editor/undo_history.hpp"
 #include "score/score.hpp"
 
@@ -16,7 +17,8 @@ namespace vibscore::editor {
 // The score being edited, the editing cursor (a position and the active string, thesis §4.2),
 // the block, the clipboard and undo. Every editing function of thesis Fig. 4.3 is a method here;
 // keys and buttons only choose which. A refused edit changes nothing and says why in message().
-// A value type: the press planner copies whole editors.
+// A value type, compared by value: the press planner copies whole editors and tells states
+// apart by ==.
 class EditorModel {
   public:
     // `available_clefs` are the clefs a bar may be given besides those the score declares.
@@ -37,12 +39,18 @@ class EditorModel {
     // Every clef a bar may use: the declared ones, then the available ones not declared.
     std::vector<ClefDeclaration> clef_choices() const;
     const std::string& message() const { return message_; }
+    // What was done is old news once the buttons turn to something else.
+    void clear_message() { message_.clear(); }
+    // News from around the model (a rhythm tapped, a clef chosen) on the same line.
+    void say(std::string news) { message_ = std::move(news); }
     bool modified() const { return *score_ != *saved_; }
     void mark_saved() { saved_ = score_; }
     void set_title(std::string title);
     // What a session keeps when another score is opened or a new one started: the clipboard,
     // so a bar copied in one score can be pasted into another.
     void carry_over(const EditorModel& previous) { clipboard_ = previous.clipboard_; }
+    // A clef bars may use from now on (one just saved).
+    void add_available_clef(const ClefDeclaration& clef);
     // The scores the proposals learn from besides the score itself (phrase_book.hpp).
     void learn_from(std::shared_ptr<const PhraseBook> phrases) { phrases_ = std::move(phrases); }
 
@@ -85,6 +93,7 @@ class EditorModel {
     bool tie(Tie tie);
     bool untie(Tie tie);
     bool set_length(Length length);
+    bool set_length_value(int value);  // a Length by its index, as a key gives it
     bool toggle_dot();
     bool shift_strings(int delta);
     bool shift_numbers(int delta);
@@ -96,6 +105,12 @@ class EditorModel {
     bool undo();
     bool redo();
     bool set_bar_clef(const std::string& id);
+    // Bars `first` to `last` play with `clef` (declared when the score does not yet).
+    bool set_clef_of_bars(std::size_t first, std::size_t last, const ClefDeclaration& clef);
+    // Whole bars (a tapped rhythm) put in as bars at the cursor, one undo step: an empty bar is
+    // replaced by them, at a bar line they go in before or after the bar, inside a bar it is
+    // split there. The cursor goes to their first symbol.
+    bool insert_bars(const std::vector<Bar>& bars);
 
     // The six-button entry of one symbol, undone as one step: begin_entry puts the proposed
     // symbol on an empty position (or takes the symbol under the cursor); the entry_ functions
@@ -116,10 +131,13 @@ class EditorModel {
     void entry_tie(Tie tie);                 // tied to the note before, or untied if it was
     void end_entry();
     void cancel_entry();
+    // While entering: whether the symbol open is one the score had (being changed), not a
+    // proposal for an empty position.
+    bool changing() const { return in_entry_ && !entry_proposed_; }
 
-    // A compact text of everything that decides what the next key or button does (not the
-    // undo history), for the press planner to recognise states it has seen.
-    std::string fingerprint() const;
+    // Every part of the state, compared by value: two editors that are equal answer every key
+    // and button alike (the press planner relies on it; tests/unit/editor_state_test.cpp).
+    bool operator==(const EditorModel&) const = default;
 
   private:
     Score& edit();  // records the state for undo, then gives the score to change
@@ -137,9 +155,9 @@ class EditorModel {
     bool refuse(std::string why);
     bool done(std::string what);
 
-    std::shared_ptr<const Score> score_;
-    std::shared_ptr<const Score> saved_;
-    std::shared_ptr<const std::vector<ClefDeclaration>> available_clefs_;
+    Shared<Score> score_;
+    Shared<Score> saved_;
+    Shared<std::vector<ClefDeclaration>> available_clefs_;
     std::shared_ptr<const PhraseBook> phrases_;
     UndoHistory history_;
     Position cursor_;
@@ -151,6 +169,7 @@ class EditorModel {
     bool anchor_sticky_ = false;  // marked from a menu: moving grows the block
     Clip clipboard_;
     bool in_entry_ = false;
+    bool entry_proposed_ = false;  // the open symbol is a proposal, not one the score had
     std::string message_;
 };
 

@@ -1,5 +1,7 @@
 #include "client/editor/entry_steps.hpp"
 
+#include <set>
+
 #include "client/editor/score_edits.hpp"
 
 namespace vibscore::editor {
@@ -95,9 +97,18 @@ EntrySteps::Outcome EntrySteps::string_more(Button button, EditorModel& model) {
 
 EntrySteps::Outcome EntrySteps::number_step(Button button, EditorModel& model) {
     const bool more = step_ == Step::number_more;
-    if (button == Button::back || (more && button == Button::select)) {
-        step_ = more ? Step::number : Step::number_more;
-        return Outcome::choosing;
+    switch (button) {
+        case Button::back:
+            step_ = more ? Step::number : Step::number_more;
+            return Outcome::choosing;
+        case Button::select:
+            if (more) {
+                step_ = Step::length;  // this number; the length is still to choose
+                return Outcome::choosing;
+            }
+            return Outcome::done;  // as in every step, Select enters what is shown
+        default:
+            break;
     }
     const int delta = delta_of(button);
     model.entry_number(more ? delta + (delta > 0 ? 2 : -2) : delta);
@@ -169,22 +180,30 @@ std::string EntrySteps::hint(const EditorModel& model) const {
     const auto s = [&](int delta) {
         return "s" + std::to_string(wrapped(string, delta, lowest_string, highest_string));
     };
-    const auto n = [&](int delta) {
-        return std::to_string(wrapped(number, delta, lowest_number, highest_number));
+    const auto number_at = [&](int delta) {
+        return wrapped(number, delta, lowest_number, highest_number);
     };
+    const auto n = [&](int delta) { return std::to_string(number_at(delta)); };
     const auto l = [&](int delta) { return length_name(stepped(length, delta)); };
     switch (step_) {
         case Step::string:
             return "\u2191" + s(1) + " \u2193" + s(-1) + " \u2192" + s(2) + " \u2190" + s(-2) +
                    " S:ok B:more";
         case Step::string_more:
-            return "\u2191" + s(3) + " S:" + s(0) + " \u2193rest \u2190rest.. \u2192bar B:done";
-        case Step::number:
+            return "\u2191" + s(3) + " S:" + s(0) + " \u2193rest \u2190rest.. \u2192bar B:leave";
+        case Step::number: {
+            // Back's four numbers named here too, so every number is on the screen.
+            std::set<int> behind_back{number_at(3), number_at(-3), number_at(4), number_at(-4)};
+            std::string others;
+            for (const int other : behind_back) {
+                others += (others.empty() ? "" : ",") + std::to_string(other);
+            }
             return "\u2191" + n(1) + " \u2193" + n(-1) + " \u2192" + n(2) + " \u2190" + n(-2) +
-                   " S:ok B:more";
+                   " S:ok B:" + others;
+        }
         case Step::number_more:
             return "\u2191" + n(3) + " \u2193" + n(-3) + " \u2192" + n(4) + " \u2190" + n(-4) +
-                   " B:back";
+                   " S:len B:back";
         case Step::length:
             return "\u2191" + l(1) + " \u2193" + l(-1) + " \u2192" + l(2) + " \u2190" + l(-2) +
                    " S:ok B:more";

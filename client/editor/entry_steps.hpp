@@ -9,12 +9,14 @@ namespace vibscore::editor {
 
 // Entering one symbol with the six buttons, in up to three steps: its string, its number, its
 // length. Every press chooses and most move on, so a changed note costs one press per thing
-// that changes. In every step Select keeps what is shown, Up and Down change it by one, Right
-// and Left by two, and Back turns to the step's other choices (Back there turns back).
-//   string          keep: the whole symbol as proposed, done   Up/Down/Right/Left: +1 -1 +2 -2
+// that changes. In every step Select enters the symbol as shown, Up and Down change this step's
+// part by one, Right and Left by two, and Back turns to the step's other choices (Back there
+// turns back), where Select keeps this part and goes on to the next step.
+//   string          Select: the whole symbol as shown, done   Up/Down/Right/Left: +1 -1 +2 -2
 //   string, more    Select: this string   Up: the opposite string (+3)   Down: a rest, done
 //                   Left: a rest of another length   Right: a new bar here   Back: leave entry
-//   number          Up/Down/Right/Left: +1 -1 +2 -2      more: +3 -3 +4 -4
+//   number          Select: done   Up/Down/Right/Left: +1 -1 +2 -2
+//   number, more    Select: this number   Up/Down/Right/Left: +3 -3 +4 -4
 //   length          Up/Down/Right/Left: longer, shorter, two longer, two shorter: done
 //                   more: Up dotted or not, Down the marks, Right/Left three longer/shorter
 //   marks           Up legato with the note before, Down portamento, Left decrescendo,
@@ -36,6 +38,8 @@ class EntrySteps {
     // What each button does in this step, with the values it gives (fits 40 columns with the
     // symbol's own description before it).
     std::string hint(const EditorModel& model) const;
+
+    bool operator==(const EntrySteps&) const = default;
 
   private:
     Outcome string_step(Button button, EditorModel& model);

@@ -46,8 +46,23 @@ bool repeats(Button button) {
 ButtonReader::ButtonReader(InputEvents& events, ButtonMap map, std::string device)
     : events_(events), map_(std::move(map)), device_(std::move(device)) {}
 
+void ButtonReader::set_tapping(bool tapping) {
+    tapping_ = tapping;
+    held_.reset();
+}
+
 std::vector<Button> ButtonReader::read() {
     std::vector<Button> presses;
+    for (const auto& event : read_events()) {
+        if (!event.released) {
+            presses.push_back(event.button);
+        }
+    }
+    return presses;
+}
+
+std::vector<ButtonEvent> ButtonReader::read_events() {
+    std::vector<ButtonEvent> presses;
     input_event event{};
     while (true) {
         const int status = events_.next_event(LIBEVDEV_READ_FLAG_NORMAL, event);
@@ -76,16 +91,23 @@ std::vector<Button> ButtonReader::read() {
     }
 }
 
-void ButtonReader::on_key(const input_event& event, std::vector<Button>& presses) {
+void ButtonReader::on_key(const input_event& event, std::vector<ButtonEvent>& presses) {
     const unsigned code = event.code;
     const auto now = stamp(event);
     const auto hold = std::chrono::milliseconds(map_.hold_ms());
     const auto short_button = map_.short_press(code);
+    if (tapping_ && short_button == Button::select) {
+        // Held is a note: the press and the release as they come, no long press.
+        if (event.value == 1 || event.value == 0) {
+            presses.push_back({Button::select, now, event.value == 0});
+        }
+        return;
+    }
     if (!map_.has_long_press(code)) {
         const bool press =
             event.value == 1 || (event.value == 2 && short_button && repeats(*short_button));
         if (press && short_button) {
-            presses.push_back(*short_button);
+            presses.push_back({*short_button, now});
         }
         return;
     }
@@ -94,7 +116,7 @@ void ButtonReader::on_key(const input_event& event, std::vector<Button>& presses
             if (held_ && !held_->fired) {
                 // Another key came first: the earlier one was a short press.
                 if (const auto earlier = map_.short_press(held_->code)) {
-                    presses.push_back(*earlier);
+                    presses.push_back({*earlier, now});
                 }
             }
             held_ = Held{code, now, false};
@@ -102,16 +124,16 @@ void ButtonReader::on_key(const input_event& event, std::vector<Button>& presses
         case 2:
             if (held_ && held_->code == code && !held_->fired && now - held_->since >= hold) {
                 held_->fired = true;
-                presses.push_back(*map_.long_press(code));
+                presses.push_back({*map_.long_press(code), now});
             }
             return;
         case 0:
             if (held_ && held_->code == code) {
                 if (!held_->fired) {
                     if (now - held_->since >= hold) {
-                        presses.push_back(*map_.long_press(code));
+                        presses.push_back({*map_.long_press(code), now});
                     } else if (short_button) {
-                        presses.push_back(*short_button);
+                        presses.push_back({*short_button, held_->since});
                     }
                 }
                 held_.reset();

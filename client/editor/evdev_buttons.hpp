@@ -38,6 +38,14 @@ class EvdevDevice final : public InputEvents {
     EvdevNode node_;
 };
 
+// A button pressed, or let go, and when (the kernel's stamp on the monotonic clock).
+struct ButtonEvent {
+    Button button = Button::select;
+    std::chrono::microseconds at{};
+    bool released = false;
+    bool operator==(const ButtonEvent&) const = default;
+};
+
 // Turns key events into button presses through a ButtonMap. A key with only a short-press
 // button presses it at once (and again on auto-repeat, for the four arrows). A key that also
 // has a long-press button gives its short button when released before hold_ms and its long
@@ -49,13 +57,18 @@ class ButtonReader {
     // Every press waiting on the device, in order. Throws DeviceError when the
     // device fails (unplugged, read error).
     std::vector<Button> read();
+    // The same with their times, and (while tapping) the Select key's releases.
+    std::vector<ButtonEvent> read_events();
+    // While a rhythm is tapped, the key that gives Select reports its presses and releases as
+    // they happen (held is a note), never as a long press.
+    void set_tapping(bool tapping);
     // The long press of a key held since before now - hold_ms (`now` on the monotonic clock).
     std::optional<Button> expire(std::chrono::microseconds now);
     // How long from now until a held key becomes a long press; nullopt when none is held.
     std::optional<std::chrono::microseconds> until_long(std::chrono::microseconds now) const;
 
   private:
-    void on_key(const input_event& event, std::vector<Button>& presses);
+    void on_key(const input_event& event, std::vector<ButtonEvent>& presses);
 
     struct Held {
         unsigned code;
@@ -66,6 +79,7 @@ class ButtonReader {
     ButtonMap map_;
     std::string device_;
     std::optional<Held> held_;
+    bool tapping_ = false;
 };
 
 }  // namespace vibscore::editor

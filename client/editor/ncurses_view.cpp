@@ -16,7 +16,7 @@ namespace {
 
 // Colour pairs: one per ink for each background an overlay can give it.
 enum Background { bg_default, bg_cursor, bg_selected, bg_playing, backgrounds };
-constexpr int kInks = static_cast<int>(Ink::playback) + 1;
+constexpr int kInks = static_cast<int>(Ink::mark) + 1;
 
 short foreground(Ink ink) {
     switch (ink) {
@@ -38,6 +38,8 @@ short foreground(Ink ink) {
             return COLOR_BLACK;
         case Ink::playback:
             return COLOR_RED;
+        case Ink::mark:
+            return COLOR_WHITE;
     }
     return COLOR_WHITE;
 }
@@ -79,7 +81,7 @@ attr_t attributes(const Cell& cell) {
         overlay = bg_cursor;
     }
     attr_t attr = has_colors() ? COLOR_PAIR(pair_of(cell.ink, overlay)) : A_NORMAL;
-    if (cell.ink == Ink::head || cell.ink == Ink::rest) {
+    if (cell.ink == Ink::head || cell.ink == Ink::rest || cell.ink == Ink::mark) {
         attr |= A_BOLD;
     }
     if (cell.ink == Ink::line || cell.ink == Ink::length) {
@@ -150,6 +152,8 @@ void Screen::draw(const EditorModel& model, const ButtonScheme& scheme, const Vi
     options.playing = status.playing;
     if (scheme.mode() == ButtonScheme::Mode::entry) {
         options.entering = model.cursor();
+        // Changing runs on from symbol to symbol: the staff says which kind is open.
+        options.cursor_label = model.changing() ? "change" : "new";
     }
     const auto layout = layout_staff(model.score(), options);
 
@@ -161,22 +165,32 @@ void Screen::draw(const EditorModel& model, const ButtonScheme& scheme, const Vi
     const int focus_x = std::max(layout.x_of(focus), 0);
     first_column_ = scroll_to_show(first_column_, cols, focus_x, layout.width);
 
-    for (int row = 0; row < staff_height; ++row) {
-        move(top + row, 0);
-        for (int x = first_column_; x < first_column_ + cols && x < layout.width; ++x) {
-            const Cell& cell =
-                layout.rows[static_cast<std::size_t>(row)][static_cast<std::size_t>(x)];
-            attrset(attributes(cell));
-            addstr(cell.glyph.c_str());
+    if (const ClefEditor* clef = scheme.clef_editor()) {
+        // A clef's window where the staff was: the field under the cursor marked '>'.
+        const auto lines = clef->lines(cols, staff_height, status.feel);
+        for (int row = 0; row < static_cast<int>(lines.size()); ++row) {
+            const auto& line = lines[static_cast<std::size_t>(row)];
+            attrset(line.starts_with(">") ? A_BOLD : A_NORMAL);
+            mvaddstr(top + row, 0, line.c_str());
+        }
+    } else {
+        for (int row = 0; row < staff_height; ++row) {
+            move(top + row, 0);
+            for (int x = first_column_; x < first_column_ + cols && x < layout.width; ++x) {
+                const Cell& cell =
+                    layout.rows[static_cast<std::size_t>(row)][static_cast<std::size_t>(x)];
+                attrset(attributes(cell));
+                addstr(cell.glyph.c_str());
+            }
         }
     }
     attrset(A_NORMAL);
 
     const std::string dirty = model.modified() ? "*" : "";
     const std::string news = !status.message.empty() ? status.message : model.message();
-    const std::string hint = scheme.mode() == ButtonScheme::Mode::entry
-                                 ? symbol_entered(model) + " " + scheme.hint(model)
-                                 : scheme.hint(model);
+    const StatusParts parts = status_of(model, scheme, news, status.playing);
+    const std::string hint =
+        parts.entering.empty() ? parts.hint : parts.entering + " " + parts.hint;
     if (roomy) {
         const auto& bars = model.score().bars;
         const std::string title =
@@ -185,7 +199,7 @@ void Screen::draw(const EditorModel& model, const ButtonScheme& scheme, const Vi
         attrset(A_BOLD);
         mvaddstr(0, 0, fit(title, cols).c_str());
         attrset(A_NORMAL);
-        mvaddstr(rows - 2, 0, fit(news, cols).c_str());
+        mvaddstr(rows - 2, 0, fit(parts.message, cols).c_str());
         if (rows >= staff_rows + 4 && cols >= columns_of(keyboard_hint())) {
             attrset(A_DIM);
             mvaddstr(rows - 3, 0, keyboard_hint().c_str());
@@ -194,7 +208,7 @@ void Screen::draw(const EditorModel& model, const ButtonScheme& scheme, const Vi
         mvaddstr(rows - 1, 0, fit(hint, cols).c_str());
         attrset(A_NORMAL);
     } else {
-        mvaddstr(rows - 1, 0, status_line(status_of(model, scheme, news), cols).c_str());
+        mvaddstr(rows - 1, 0, status_line(parts, cols).c_str());
     }
     const auto menu = scheme.menu_view(model);
     if (!menu.lines.empty()) {

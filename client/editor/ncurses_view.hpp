@@ -2,6 +2,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "client/editor/button_scheme.hpp"
 #include "client/editor/editor_model.hpp"
@@ -13,6 +14,9 @@ struct ViewStatus {
     std::string name;                 // the registry name or file being edited
     std::string message;              // the editor's own news (saved, playback ended, errors)
     std::optional<Position> playing;  // the playback cursor
+    // Beside each string in a clef's window, what the daemon's actuator gives there (string 1
+    // first), where it declares one.
+    std::vector<std::string> feel;
 };
 
 // The terminal while the editor runs: curses started in the constructor and ended in the

@@ -255,13 +255,24 @@ Clip copy_block(const Score& score, const Block& block) {
                             bar.symbols.begin() + static_cast<std::ptrdiff_t>(to));
         clip.bars.push_back(std::move(part));
     }
+    // Whole bars: from a bar's first symbol to the end of a bar, or to the start of the next
+    // (the bar line, which bars have anyway).
+    if (block.first.symbol == 0 && block.end.symbol == 0 && clip.bars.size() > 1 &&
+        clip.bars.back().symbols.empty()) {
+        clip.bars.pop_back();
+        clip.whole_bars = true;
+    } else {
+        clip.whole_bars = block.first.symbol == 0 &&
+                          block.end.symbol == score.bars.at(block.end.bar).symbols.size();
+    }
     return clip;
 }
 
-Position paste_clip(Score& score, Position at, const Clip& clip) {
-    if (clip.bars.empty()) {
-        return at;
-    }
+namespace {
+
+// The clip as it goes into `score`: ties with fresh serials, so they tie only among
+// themselves; clefs the score does not declare replaced by `here_clef`.
+Clip fresh_clip(const Score& score, const Clip& clip, const std::string& here_clef) {
     Clip fresh = clip;
     for (const Tie tie : {Tie::legato, Tie::portamento}) {
         std::map<std::int64_t, std::int64_t> renamed;
@@ -276,12 +287,33 @@ Position paste_clip(Score& score, Position at, const Clip& clip) {
             }
         }
     }
-    const std::string& here_clef = score.bars.at(at.bar).clef;
     for (auto& bar : fresh.bars) {
         if (score.find_clef(bar.clef) == nullptr) {
             bar.clef = here_clef;  // copied from a score that declared other clefs
         }
     }
+    return fresh;
+}
+
+}  // namespace
+
+Position paste_bars(Score& score, Position at, const Clip& clip) {
+    if (clip.bars.empty()) {
+        return at;
+    }
+    const Clip fresh = fresh_clip(score, clip, score.bars.at(at.bar).clef);
+    const std::size_t first = at.symbol == 0 ? at.bar : at.bar + 1;
+    score.bars.insert(score.bars.begin() + static_cast<std::ptrdiff_t>(first), fresh.bars.begin(),
+                      fresh.bars.end());
+    const std::size_t last = first + fresh.bars.size() - 1;
+    return {last, score.bars[last].symbols.size()};
+}
+
+Position paste_clip(Score& score, Position at, const Clip& clip) {
+    if (clip.bars.empty()) {
+        return at;
+    }
+    const Clip fresh = fresh_clip(score, clip, score.bars.at(at.bar).clef);
     split_bar_at(score, at);
     Position end{at.bar, at.symbol};
     for (std::size_t i = 0; i < fresh.bars.size(); ++i) {

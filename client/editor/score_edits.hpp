@@ -64,8 +64,11 @@ void join_with_next(Score& score, std::size_t bar);
 void erase_block(Score& score, const Block& block);
 
 // Copied symbols: bars[0] continues the bar pasted into; each further bar starts a new bar.
+// A clip of whole bars (from the first symbol of a bar to the last of the same or a later one)
+// pastes as bars where it goes in at a bar line.
 struct Clip {
     std::vector<Bar> bars;
+    bool whole_bars = false;
     bool empty() const;
     bool operator==(const Clip&) const = default;
 };
@@ -73,6 +76,9 @@ Clip copy_block(const Score& score, const Block& block);
 // Pastes before `at`, giving the clip's ties fresh serials so they tie only among themselves.
 // Returns the position just after the pasted symbols.
 Position paste_clip(Score& score, Position at, const Clip& clip);
+// Pastes a clip's bars as bars of their own at a bar line: before bar `at.bar` when `at` is its
+// first position, after it when `at` is its end. Returns the end of the last bar pasted.
+Position paste_bars(Score& score, Position at, const Clip& clip);
 
 // Lengths in the order a user steps through them with Left/Right: plain lengths from 32th to
 // whole; a dotted length steps to the next dotted one (or the plain one where none exists).

@@ -16,6 +16,8 @@ constexpr const char* kSustain = "━";
 constexpr const char* kDot = "·";
 constexpr const char* kRest = "▬";
 constexpr const char* kPlayback = "●";
+constexpr const char* kCursorMark = "▲";
+constexpr const char* kBlockMark = "═";
 constexpr int kEndWidth = 2;
 
 int plain_width(Length length) {
@@ -246,13 +248,21 @@ StaffLayout layout_staff(const Score& score, const LayoutOptions& options) {
         }
     }
     layout.spans.push_back({Span::Kind::bar_line, score.bars.size(), 0, x, 1});
-    layout.width = x + 1;
+    const int staff_width = x + 1;
+    layout.width = staff_width;
+    if (options.cursor && !options.cursor_label.empty()) {
+        // Room for the cursor's label after the last bar line when the cursor is near it.
+        if (const Span* span = span_at(layout, *options.cursor)) {
+            layout.width =
+                std::max(layout.width, span->x + 2 + static_cast<int>(options.cursor_label.size()));
+        }
+    }
     layout.rows.assign(staff_rows,
                        std::vector<Cell>(static_cast<std::size_t>(layout.width), Cell{}));
 
     Painter paint(layout);
     for (int row = row_top_string; row < row_top_string + 6; ++row) {
-        for (int column = 0; column < layout.width; ++column) {
+        for (int column = 0; column < staff_width; ++column) {
             paint.put(row, column, kStaffLine, Ink::line);
         }
     }
@@ -304,15 +314,8 @@ StaffLayout layout_staff(const Score& score, const LayoutOptions& options) {
                     for (int row = row_top_string; row < row_top_string + 6; ++row) {
                         paint.overlay(row, column, overlay_selected);
                     }
+                    paint.put(row_playback, column, kBlockMark, Ink::mark);
                 }
-            }
-        }
-    }
-    if (options.playing) {
-        if (const Span* span = span_at(layout, *options.playing)) {
-            paint.put(row_playback, span->x, kPlayback, Ink::playback);
-            for (int row = row_top_string; row < row_top_string + 6; ++row) {
-                paint.overlay(row, span->x, overlay_playing);
             }
         }
     }
@@ -323,6 +326,16 @@ StaffLayout layout_staff(const Score& score, const LayoutOptions& options) {
             }
             paint.overlay(row_of_string(std::clamp(options.cursor_string, 1, 6)), span->x,
                           overlay_cursor);
+            paint.put(row_playback, span->x, kCursorMark, Ink::mark);
+            paint.text(row_playback, span->x + 1, options.cursor_label, Ink::mark);
+        }
+    }
+    if (options.playing) {
+        if (const Span* span = span_at(layout, *options.playing)) {
+            paint.put(row_playback, span->x, kPlayback, Ink::playback);
+            for (int row = row_top_string; row < row_top_string + 6; ++row) {
+                paint.overlay(row, span->x, overlay_playing);
+            }
         }
     }
     return layout;

@@ -28,6 +28,7 @@ enum class Ink : std::uint8_t {
     clef_exact,  // exactly four (white)
     clef_more,   // more than four (magenta)
     playback,    // the playback cursor
+    mark,  // under the staff: the editing cursor's ▲ (and what it is doing), the block's ═
 };
 
 // Marks laid over the ink.
@@ -47,14 +48,16 @@ struct Cell {
 };
 
 // Rows from the top: the clef box with the bar's beat count, the dynamics, the six strings
-// (string 6, the highest pitch, on top), ties, lengths and the playback cursor.
+// (string 6, the highest pitch, on top), ties, lengths, and the marks row: the playback
+// cursor, the editing cursor and the block, drawn as glyphs so a monochrome terminal (or a
+// capture of the screen) shows them too.
 enum StaffRow : int {
     row_clef = 0,
     row_dynamics = 1,
     row_top_string = 2,
     row_ties = 8,
     row_lengths = 9,
-    row_playback = 10,
+    row_playback = 10,  // the marks row
     staff_rows = 11,
 };
 constexpr int row_of_string(int string) {
@@ -78,6 +81,8 @@ struct LayoutOptions {
     // The symbol still being entered: drawn, but not counted in its bar's beats until it is
     // entered (a newcomer read a full bar while the last note was only proposed).
     std::optional<Position> entering;
+    // Written after the cursor's ▲: what the open symbol is ("new", "change").
+    std::string cursor_label;
 };
 
 struct StaffLayout {

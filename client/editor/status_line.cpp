@@ -78,15 +78,23 @@ std::string symbol_entered(const EditorModel& model) {
     return "";
 }
 
-StatusParts status_of(const EditorModel& model, const ButtonScheme& scheme,
-                      const std::string& news) {
+StatusParts status_of(const EditorModel& model, const ButtonScheme& scheme, const std::string& news,
+                      std::optional<Position> playing) {
     using Mode = ButtonScheme::Mode;
     const Mode mode = scheme.mode();
-    const bool in_a_list = mode == Mode::menu || mode == Mode::clef_menu ||
-                           mode == Mode::open_menu || mode == Mode::quit_menu ||
-                           mode == Mode::name_entry || mode == Mode::replace_menu;
+    if (mode == Mode::playing) {
+        // "playing bar 1" read as "now in bar 1" while the cursor moved through bar 4: the bar
+        // is the one playing now.
+        std::string hint = scheme.hint(model);
+        if (playing) {
+            hint = "playing bar " + std::to_string(playing->bar + 1) + "/" +
+                   std::to_string(model.score().bars.size()) + ": any button stops";
+        }
+        return {model.modified(), "", "", hint, 0, 0};
+    }
+    const bool news_shown = mode == Mode::browse || mode == Mode::entry;
     return {model.modified(),
-            in_a_list ? "" : news,
+            news_shown ? news : "",
             mode == Mode::entry ? symbol_entered(model) : "",
             scheme.hint(model),
             model.cursor().bar + 1,

@@ -22,6 +22,20 @@ UndoHistory::Stack UndoHistory::without_bottom(const Stack& stack) {
     return rebuilt;
 }
 
+bool UndoHistory::same(const Entry* a, const Entry* b) {
+    for (; a != b; a = a->below.get(), b = b->below.get()) {
+        if (a == nullptr || b == nullptr || a->depth != b->depth || !(a->snapshot == b->snapshot)) {
+            return false;
+        }
+    }
+    return true;
+}
+
+bool UndoHistory::operator==(const UndoHistory& other) const {
+    return limit_ == other.limit_ && same(undo_.get(), other.undo_.get()) &&
+           same(redo_.get(), other.redo_.get());
+}
+
 void UndoHistory::record(Snapshot before) {
     undo_ = push(std::move(undo_), std::move(before));
     if (undo_->depth > limit_) {

@@ -5,15 +5,17 @@
 #include <optional>
 
 #include "client/editor/position.hpp"
+#include "client/editor/shared_value.hpp"
 #include "score/score.hpp"
 
 namespace vibscore::editor {
 
 // What undo brings back: the score and where the cursor stood.
 struct Snapshot {
-    std::shared_ptr<const Score> score;
+    Shared<Score> score;
     Position cursor;
     int string = 1;
+    bool operator==(const Snapshot&) const = default;
 };
 
 // Undo and redo stacks of snapshots, the oldest dropped beyond `limit` steps. The stacks are
@@ -33,12 +35,16 @@ class UndoHistory {
 
     const Snapshot* last() const { return undo_ ? &undo_->snapshot : nullptr; }
 
+    // Equal when both stacks hold equal snapshots (shared parts are not compared again).
+    bool operator==(const UndoHistory& other) const;
+
   private:
     struct Entry {
         Snapshot snapshot;
         std::shared_ptr<const Entry> below;
         std::size_t depth;
     };
+    static bool same(const Entry* a, const Entry* b);
     using Stack = std::shared_ptr<const Entry>;
     static Stack push(Stack stack, Snapshot snapshot);
     static Stack without_bottom(const Stack& stack);

@@ -49,14 +49,14 @@ TEST(WrongUsage, EachEndsWithTheReadmesStatusAndAMessageNamingWhatIsWrong) {
         {"VIBSCORE",
          {"frobnicate"},
          2,
-         "vibscore: unknown command \"frobnicate\"; the commands are: check render convert info "
-         "play stop "
+         "vibscore: unknown command \"frobnicate\"; the commands are: check render convert clef "
+         "info play stop "
          "list get compose delete drivers driver show assign edit"},
         {"VIBSCORE",
          {"lsit"},
          2,
          "vibscore: unknown command \"lsit\" (did you mean list?); the commands are: check render "
-         "convert "
+         "convert clef "
          "info play stop list get compose delete drivers driver show assign edit"},
         {"VIBSCORE",
          {"play", "x", "--usage", "bogus"},

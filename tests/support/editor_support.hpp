@@ -2,8 +2,10 @@
 
 #include <curses.h>
 
+#include <algorithm>
 #include <initializer_list>
 #include <ostream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -98,6 +100,44 @@ inline std::vector<editor::Button> to_menu_entry(editor::Editor& editor, const s
         presses.push_back(editor::Button::down);
     }
     return presses;
+}
+
+// From browsing: the fewest presses that open the menu (Back, Select) and bring `label` under
+// the highlight (Up, Down, and Left/Right between groups), and the Select that does it; pressed
+// on `editor`, which is then where a real editor given them will be.
+inline std::vector<editor::Button> menu_presses(editor::Editor& editor, const std::string& label) {
+    using editor::Button;
+    std::vector<Button> presses{Button::back, Button::select};
+    editor.press(Button::back);
+    editor.press(Button::select);
+    struct Way {
+        editor::Editor at;
+        std::vector<Button> presses;
+    };
+    std::vector<Way> ways{{editor, {}}};
+    for (std::size_t i = 0; i < ways.size() && i < 4096; ++i) {
+        if (highlighted(ways[i].at) == label) {
+            for (const Button button : ways[i].presses) {
+                editor.press(button);
+                presses.push_back(button);
+            }
+            editor.press(Button::select);
+            presses.push_back(Button::select);
+            return presses;
+        }
+        for (const Button button : {Button::up, Button::down, Button::left, Button::right}) {
+            Way next{ways[i].at, ways[i].presses};
+            next.at.press(button);
+            next.presses.push_back(button);
+            const bool seen = std::any_of(ways.begin(), ways.end(), [&](const Way& way) {
+                return highlighted(way.at) == highlighted(next.at);
+            });
+            if (!seen) {
+                ways.push_back(std::move(next));
+            }
+        }
+    }
+    throw std::runtime_error("no menu line \"" + label + "\"");
 }
 
 inline int ctrl(char letter) {

@@ -1,7 +1,7 @@
 // The six-button scheme: button presses in, score out.
 #include <gtest/gtest.h>
 
-#include "client/editor/press_planner.hpp"
+#include "client/editor/planner/press_planner.hpp"
 #include "tests/support/editor_support.hpp"
 
 namespace vibscore {
@@ -51,8 +51,8 @@ TEST(EditorButtons, EachPressChoosesAndEnteringGoesOnToTheNextProposal) {
               "6 \u2193"
               "4 \u2192"
               "7 \u2190"
-              "3 S:ok B:more");
-    press(editor, {U, D});  // number 6; one length shorter, and done
+              "3 S:ok B:1,2,8,9");  // Back's numbers named too: every number is on the screen
+    press(editor, {U, D});          // number 6; one length shorter, and done
     EXPECT_EQ(symbol(editor, 0), (Symbol{Note{Length::eighth, 6, 4}}));
     // The next position's proposal is open at once: the same note again.
     EXPECT_EQ(editor.scheme.mode(), ButtonScheme::Mode::entry);
@@ -100,7 +100,7 @@ TEST(EditorButtons, RestsComeFromTheStringStepsOtherChoicesAndKeepTheirOwnLength
     press(editor, {S, S});           // a quarter note
     press(editor, {B, D});           // a rest as long, done
     press(editor, {B, L, D});        // a rest, one length shorter: an 8th
-    press(editor, {B, S, S, S});     // a note: its length is still the quarter
+    press(editor, {B, S, S});        // a note: its length is still the quarter
     press(editor, {B, D});           // a rest: the 8th, the last rest's length
     press(editor, {B, L, B, U, U});  // a rest, dotted, one longer: a dotted quarter
     EXPECT_EQ(entered(editor),
@@ -112,7 +112,7 @@ TEST(EditorButtons, RestsComeFromTheStringStepsOtherChoicesAndKeepTheirOwnLength
 
 TEST(EditorButtons, TheProposalContinuesTheHairpinTiesAndTheStepInNumber) {
     auto editor = fresh_editor();
-    press(editor, {S, B, S, S, B, D, L, S});  // this string and number; marks: decrescendo
+    press(editor, {S, B, S, B, S, B, D, L, S});  // this string, this number; marks: decrescendo
     EXPECT_EQ(nth_note(editor, 0).dynamics, Dynamics::decrescendo);
     press(editor, {B, S, D, S});  // the same string, number 4
     EXPECT_EQ(nth_note(editor, 1).dynamics, Dynamics::decrescendo);
@@ -121,17 +121,17 @@ TEST(EditorButtons, TheProposalContinuesTheHairpinTiesAndTheStepInNumber) {
     press(editor, {S, B, D});  // a rest parts the fade; each note's own hairpin carries over
     EXPECT_EQ(nth_note(editor, 4).dynamics, Dynamics::decrescendo);
     EXPECT_EQ(nth_note(editor, 4).number, 3);
-    press(editor, {S, U, S, B, D, U, S});  // string 4, legato with the note before
+    press(editor, {S, U, B, S, B, D, U, S});  // string 4, legato with the note before
     EXPECT_NE(nth_note(editor, 5).legato, 0);
     EXPECT_EQ(nth_note(editor, 4).legato, nth_note(editor, 5).legato);
     EXPECT_EQ(nth_note(editor, 6).legato, nth_note(editor, 5).legato);
-    press(editor, {U, S, B, D, U, S});  // legato again takes it off
+    press(editor, {U, B, S, B, D, U, S});  // legato again takes it off
     EXPECT_EQ(nth_note(editor, 6).legato, 0);
 }
 
 TEST(EditorButtons, TheProposalRepeatsWhatFollowedBeforeAndTiesAsBefore) {
     auto editor = fresh_editor();       // string 3, number 5, quarter
-    press(editor, {S, D, S, D});        // string 2, number 5, an 8th
+    press(editor, {S, D, B, S, D});     // string 2, number 5, an 8th
     press(editor, {U, U, B, D, U, S});  // string 3, number 6, legato with the note before
     press(editor, {B, D});              // a rest as long
     press(editor, {D, D, S});           // string 2, number 5: the first note again
@@ -155,12 +155,48 @@ TEST(EditorButtons, SelectOnANoteChangesItAndGoesOnThroughTheNotesAfterIt) {
     press(editor, {S, S, B, S, U, S, B, B});  // two notes: 5 and 6
     press(editor, {L, L, S});
     EXPECT_EQ(editor.scheme.mode(), ButtonScheme::Mode::entry);
-    press(editor, {U, S, S});  // the first moves to string 4
+    press(editor, {U, S});  // the first moves to string 4, entered as shown
     EXPECT_EQ(editor.model.cursor(), (Position{0, 1}));
     press(editor, {S, B, B});  // the second is kept; leaving drops only the proposal after it
     EXPECT_EQ(editor.model.score().bars,
               bars("<Bar clef=\"lra\"><Note length=\"quarter\" number=\"5\" string=\"4\"/>"
                    "<Note length=\"quarter\" number=\"6\" string=\"3\"/></Bar>"));
+}
+
+TEST(EditorButtons, SelectEntersTheSymbolAsShownInEveryStep) {
+    // S:ok entered the whole note in the string step but only kept the number in the number
+    // step: one rule now, and Back, Select keeps a step's part and goes on.
+    auto editor = fresh_editor();  // string 3, number 5, quarter
+    press(editor, {S, U, S});      // string 4; Select in the number step: entered
+    EXPECT_EQ(entered(editor).at(0), (Symbol{Note{Length::quarter, 5, 4}}));
+    EXPECT_EQ(editor.model.cursor(), (Position{0, 1}));
+    EXPECT_EQ(editor.scheme.entry_step(), Step::string);
+    press(editor, {B, S, B});  // this string, then the number's other choices
+    EXPECT_EQ(editor.scheme.hint(editor.model), "\u21918 \u21932 \u21929 \u21901 S:len B:back");
+    press(editor, {S});  // this number: on to the length
+    EXPECT_EQ(editor.scheme.entry_step(), Step::length);
+    press(editor, {S});  // and Select enters it there too
+    EXPECT_EQ(entered(editor).at(1), (Symbol{Note{Length::quarter, 5, 4}}));
+}
+
+TEST(EditorButtons, ChangingSaysSoAndRunsOnOnlyThroughTheScoresOwnSymbols) {
+    // A newcomer changed a note and did not see that the next symbol was open for changing.
+    auto editor = fresh_editor();
+    testing::type(editor, "56");
+    press(editor, {L, L, S});
+    EXPECT_TRUE(editor.model.changing());
+    press(editor, {U, S});  // changed, entered: the 6 is open now, for changing too
+    EXPECT_EQ(editor.model.cursor(), (Position{0, 1}));
+    EXPECT_TRUE(editor.model.changing());
+    press(editor, {S});  // kept: the end of the bar, a proposal
+    EXPECT_FALSE(editor.model.changing());
+    press(editor, {B});
+    EXPECT_EQ(editor.scheme.hint(editor.model),
+              "\u2191s6 S:s3 \u2193rest \u2190rest.. \u2192bar B:leave");
+    press(editor, {B});
+    EXPECT_EQ(editor.scheme.mode(), ButtonScheme::Mode::browse);
+    EXPECT_FALSE(editor.model.changing());
+    EXPECT_EQ(editor.model.score().bars[0].symbols.size(), 2u);
 }
 
 TEST(EditorButtons, EachEnteredSymbolIsOneUndoStep) {
@@ -212,7 +248,7 @@ TEST(EditorButtons, ChangingNotesRunsOnFromAFullBarIntoTheNextBarsNotes) {
     ASSERT_EQ(editor.model.score().bars.size(), 2u);
     press(editor, {L, L, L, L, L, L});  // back to the first note
     EXPECT_EQ(editor.model.cursor(), (Position{0, 0}));
-    press(editor, {S, U, S, S, S, S, S});  // change the first note; keep the other three
+    press(editor, {S, U, S, S, S, S});  // change the first note; keep the other three
     // On from the end of the full bar: the note of the second bar, not a fifth beat.
     EXPECT_EQ(editor.model.cursor(), (Position{1, 0}));
     EXPECT_EQ(editor.model.score().bars[0].symbols.size(), 4u);
@@ -256,6 +292,8 @@ TEST(EditorButtons, TheMenuActsOnTheSymbolJustEnteredAndRemembersTheChoice) {
     auto editor = fresh_editor();
     press(editor, {S, S, B, B, B, S});  // a note, leave; the other choices, the menu
     EXPECT_EQ(editor.scheme.mode(), ButtonScheme::Mode::menu);
+    EXPECT_EQ(highlighted(editor), "tap a rhythm");  // the first line, a newcomer's first look
+    press(editor, {D});
     EXPECT_EQ(highlighted(editor), "decrescendo  >");
     press(editor, {D, S});
     EXPECT_EQ(std::get<Note>(editor.model.score().bars[0].symbols[0]).dynamics,
@@ -268,20 +306,20 @@ TEST(EditorButtons, TheMenuActsOnTheSymbolJustEnteredAndRemembersTheChoice) {
 
 TEST(EditorButtons, LeftAndRightJumpBetweenMenuGroupsAndTheListWraps) {
     auto editor = fresh_editor();
-    press(editor, {B, S, R});
+    press(editor, {B, S, R, R});
     EXPECT_EQ(highlighted(editor), "legato with previous");
     press(editor, {R});
     EXPECT_EQ(highlighted(editor), "dotted / not dotted");
     press(editor, {L});
     EXPECT_EQ(highlighted(editor), "legato with previous");
-    press(editor, {L, U});
+    press(editor, {L, L, U});
     EXPECT_EQ(highlighted(editor), "quit");
 }
 
 TEST(EditorButtons, TiesFromTheMenu) {
     auto editor = fresh_editor();
     press(editor, {S, S, B, S, U, S, B, B});  // two notes
-    press(editor, {B, S, R, S});              // legato with previous
+    press(editor, {B, S, R, R, S});           // legato with previous
     press(editor, {S, S, B, B});              // the proposal continues the tie
     press(editor, {B, S, D, S});              // the menu reopens on legato: portamento is next
     const auto& symbols = editor.model.score().bars[0].symbols;
@@ -296,14 +334,15 @@ TEST(EditorButtons, LeftFromInsideAGroupGoesToThePreviousGroupAndTheTitleNamesIt
     // A newcomer pressed Left three times from "bar clef..." and landed on a hairpin.
     auto editor = fresh_editor();
     to_menu_entry(editor, "bar clef...");
-    EXPECT_EQ(editor.scheme.menu_view(editor.model).title, "menu: symbol, bar 3/7");
+    EXPECT_EQ(editor.scheme.menu_view(editor.model).title, "menu: symbol, bar 4/8");
     press(editor, {L});
     EXPECT_EQ(highlighted(editor), "legato with previous");
-    EXPECT_EQ(editor.scheme.menu_view(editor.model).title, "menu: ties 2/7");
-    press(editor, {L, L});
+    EXPECT_EQ(editor.scheme.menu_view(editor.model).title, "menu: ties 3/8");
+    press(editor, {L, L, L});
     EXPECT_EQ(highlighted(editor), "save");
     press(editor, {R});
-    EXPECT_EQ(highlighted(editor), "decrescendo  >");
+    EXPECT_EQ(highlighted(editor), "tap a rhythm");
+    EXPECT_EQ(editor.scheme.menu_view(editor.model).title, "menu: enter 1/8");
 }
 
 TEST(EditorButtons, ABlockMarkedWithButtonsIsCopiedPastedAndRaised) {
@@ -427,7 +466,7 @@ TEST(EditorButtons, TheMenuGoesToTheFirstAndLastBarAndPlaysFromTheStart) {
     press(editor, {S, S, S, S, S, S, S, S, S, S, B, B});  // nine quarters: three bars
     ASSERT_EQ(editor.model.score().bars.size(), 3u);
     to_menu_entry(editor, "to the first bar");
-    EXPECT_EQ(editor.scheme.menu_view(editor.model).title, "menu: play, go to, undo 6/7");
+    EXPECT_EQ(editor.scheme.menu_view(editor.model).title, "menu: play, go to, undo 7/8");
     EXPECT_EQ(editor.press(S).kind, Request::Kind::none);
     EXPECT_EQ(editor.model.cursor(), (Position{0, 0}));
     to_menu_entry(editor, "to the last bar");

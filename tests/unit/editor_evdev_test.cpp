@@ -202,5 +202,29 @@ TEST(EvdevDevice, OpeningSomethingThatIsNoDeviceNamesIt) {
     EXPECT_THROW(editor::EvdevDevice("/nonexistent/event0", false), drivers::DeviceError);
 }
 
+TEST(ButtonReader, WhileTappingThePowerKeyGivesItsPressesAndReleasesWithTheirTimes) {
+    // On a phone's map the power key is Select short and Back long: while a rhythm is tapped,
+    // held is a note, so it reports when it went down and when it came up, never Back.
+    FakeEvents events;
+    ButtonReader reader(events, ButtonMap::phone(), "phone");
+    reader.set_tapping(true);
+    events.key(KEY_POWER, 1, 1000);
+    events.key(KEY_POWER, 2, 1600);  // auto-repeat past the hold time: still the same note
+    events.key(KEY_POWER, 0, 1800);
+    events.key(KEY_VOLUMEUP, 1, 2000);  // another key as ever: a short press is Up, done
+    events.key(KEY_VOLUMEUP, 0, 2100);
+    const auto read = reader.read_events();
+    ASSERT_EQ(read.size(), 3u);
+    EXPECT_EQ(read[0], (editor::ButtonEvent{Button::select, milliseconds(1000), false}));
+    EXPECT_EQ(read[1], (editor::ButtonEvent{Button::select, milliseconds(1800), true}));
+    EXPECT_EQ(read[2], (editor::ButtonEvent{Button::up, milliseconds(2000), false}));
+    EXPECT_FALSE(reader.expire(milliseconds(5000)));
+    // Tapping over, a long press is Back again.
+    reader.set_tapping(false);
+    events.key(KEY_POWER, 1, 6000);
+    events.key(KEY_POWER, 0, 6700);
+    EXPECT_EQ(reader.read(), std::vector<Button>{Button::back});
+}
+
 }  // namespace
 }  // namespace vibscore

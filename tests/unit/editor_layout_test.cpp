@@ -192,6 +192,47 @@ TEST(StaffLayout, TheEditorsCursorBlockAndPlaybackCursor) {
     EXPECT_EQ(layout_staff(score).x_of({0, 2}), -1);
 }
 
+TEST(StaffLayout, TheCursorAndTheBlockAreMarkedWithGlyphsNotOnlyColour) {
+    // Colour alone is lost on a monochrome terminal and in a capture of the screen.
+    const auto score = score_of(
+        "<Bar clef=\"lra\"><Note length=\"quarter\" number=\"1\" string=\"2\"/>"
+        "<Rest length=\"8th\"/><Note length=\"quarter\" number=\"3\" string=\"2\"/></Bar>");
+    LayoutOptions options;
+    options.end_positions = true;
+    options.cursor = Position{0, 2};
+    options.block = editor::Block{{0, 0}, {0, 2}};
+    const auto layout = layout_staff(score, options);
+    const std::string marks = row_text(layout, editor::row_playback);
+    const int cursor_x = layout.x_of({0, 2});
+    EXPECT_EQ(cell(layout, editor::row_playback, cursor_x).glyph, "▲") << marks;
+    for (int x = layout.x_of({0, 0}); x < layout.x_of({0, 2}); ++x) {
+        EXPECT_EQ(cell(layout, editor::row_playback, x).glyph, "═") << marks;
+    }
+    EXPECT_EQ(cell(layout, editor::row_playback, cursor_x + 1).glyph, " ") << marks;
+    // show draws neither.
+    EXPECT_EQ(row_text(layout_staff(score), editor::row_playback).find_first_not_of(' '),
+              std::string::npos);
+}
+
+TEST(StaffLayout, TheCursorsLabelSaysWhatTheOpenSymbolIsEvenAtTheEndOfTheStaff) {
+    const auto score = score_of(
+        "<Bar clef=\"lra\"><Note length=\"16th\" number=\"1\" "
+        "string=\"2\"/></Bar>");
+    LayoutOptions options;
+    options.end_positions = true;
+    options.cursor = Position{0, 0};
+    options.cursor_label = "change";
+    const auto layout = layout_staff(score, options);
+    const std::string marks = row_text(layout, editor::row_playback);
+    EXPECT_NE(marks.find("▲change"), std::string::npos) << marks;
+    // The staff lines stop at the last bar line; the label may reach past it.
+    options.cursor = Position{0, 1};
+    const auto at_end = layout_staff(score, options);
+    EXPECT_NE(row_text(at_end, editor::row_playback).find("▲change"), std::string::npos);
+    const std::string line = row_text(at_end, row_of_string(1));
+    EXPECT_TRUE(line.ends_with("│ ") || line.ends_with("│")) << line;
+}
+
 TEST(StaffLayout, SystemsBreakAtBarLinesAndRepeatThem) {
     Score score = score_of("");
     for (int b = 0; b < 6; ++b) {

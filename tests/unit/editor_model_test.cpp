@@ -227,16 +227,46 @@ TEST(EditorKeys, CopyPasteGivesThePastedTiesFreshSerials) {
 
 TEST(EditorKeys, ABlockAcrossBarsPastesAsBars) {
     auto editor = fresh_editor();
-    type(editor, "1`2");
-    // From the start of bar 1 to the end of bar 2.
-    type(editor, {KEY_SLEFT, KEY_SLEFT, KEY_SLEFT, KEY_SLEFT, ctrl('C')});
-    type(editor, {KEY_RIGHT, KEY_RIGHT, KEY_RIGHT, ctrl('V')});  // the end of bar 2
+    type(editor, "1`23");
+    // From the end of bar 1 to the end of bar 2: its bar line and bar 2's notes.
+    type(editor, {KEY_SLEFT, KEY_SLEFT, KEY_SLEFT, ctrl('C')});
+    ASSERT_EQ(editor.model.cursor(), (Position{0, 1}));
+    type(editor, {KEY_RIGHT, KEY_RIGHT, ctrl('V')});  // inside bar 2, before its 3
     EXPECT_EQ(editor.model.score().bars,
               bars("<Bar clef=\"lra\"><Note number=\"1\" string=\"3\" length=\"quarter\"/></Bar>"
+                   "<Bar clef=\"lra\"><Note number=\"2\" string=\"3\" length=\"quarter\"/></Bar>"
                    "<Bar clef=\"lra\"><Note number=\"2\" string=\"3\" length=\"quarter\"/>"
-                   "<Note number=\"1\" string=\"3\" length=\"quarter\"/></Bar>"
-                   "<Bar clef=\"lra\"><Note number=\"2\" string=\"3\" length=\"quarter\"/>"
-                   "</Bar>"));
+                   "<Note number=\"3\" string=\"3\" length=\"quarter\"/>"
+                   "<Note number=\"3\" string=\"3\" length=\"quarter\"/></Bar>"));
+}
+
+TEST(EditorKeys, WholeBarsPastedAtTheEndOfTheScoreAreNewBars) {
+    // A newcomer copied bar 1 to the end: it went into the last bar, which then had 8 beats.
+    auto editor = fresh_editor();
+    type(editor, "1234`5678");
+    type(editor, {KEY_HOME});
+    for (int i = 0; i < 4; ++i) {
+        type(editor, {KEY_SRIGHT});  // bar 1, its first to its last symbol
+    }
+    type(editor, {ctrl('C'), KEY_END, ctrl('V')});
+    const auto& score = editor.model.score();
+    ASSERT_EQ(score.bars.size(), 3u);
+    EXPECT_EQ(score.bars[2], score.bars[0]);
+    EXPECT_EQ(editor.model.cursor(), (Position{2, 4}));  // the end of the pasted bar
+    EXPECT_EQ(editor.model.message(), "bar pasted");
+    // At the start of a bar the bars go in before it; inside a bar, into it.
+    type(editor, {KEY_HOME, ctrl('V')});
+    ASSERT_EQ(editor.model.score().bars.size(), 4u);
+    EXPECT_EQ(editor.model.score().bars[0], editor.model.score().bars[1]);
+    type(editor, {KEY_RIGHT, KEY_RIGHT, ctrl('V')});  // between 3 and 4 of bar 2
+    ASSERT_EQ(editor.model.score().bars.size(), 4u);
+    EXPECT_EQ(editor.model.score().bars[1].symbols.size(), 8u);
+    // One note copied is a note, even where it fills its bar.
+    auto single = fresh_editor();
+    type(single, "1`2");
+    type(single, {KEY_HOME, ctrl('C'), KEY_END, ctrl('V')});
+    EXPECT_EQ(single.model.score().bars.size(), 2u);
+    EXPECT_EQ(single.model.score().bars[1].symbols.size(), 2u);
 }
 
 TEST(EditorKeys, CutRemovesTheBlockAndItsBarLines) {

@@ -1,6 +1,8 @@
 // The bottom line of a 40x12 screen: what the buttons do is never cut.
 #include <gtest/gtest.h>
 
+#include <set>
+
 #include "client/editor/score_edits.hpp"
 #include "client/editor/status_line.hpp"
 #include "tests/support/editor_support.hpp"
@@ -65,20 +67,24 @@ TEST(StatusLine, EveryHintFitsFortyColumns) {
 
 TEST(StatusLine, SaveAsHintsFitFortyColumnsAndHideTheLastAction) {
     auto editor = fresh_editor();
+    editor.model.set_title("My Ringtone");  // proposed too: a list of names first
     editor.scheme.set_taken({{"ringtone", editor::TakenName::What::shipped}});
     editor.scheme.set_destination("ringtone", false);
     testing::to_menu_entry(editor, "save as...");
-    press(editor, {S});  // the name entry
-    for (const bool more : {false, true}) {
-        if (more) {
-            press(editor, {B});  // delete, insert, cancel
+    press(editor, {S});  // the proposals, then every level of typing
+    for (const auto& presses : std::vector<std::vector<Button>>{
+             {}, {R}, {U}, {U}, {B}, {U}, {B}, {R}, {B}, {L}, {B}, {B}, {D}}) {
+        for (const auto button : presses) {
+            editor.press(button);
         }
+        ASSERT_EQ(editor.scheme.mode(), editor::ButtonScheme::Mode::name_entry);
         const auto parts = status_of(editor.model, editor.scheme, "undone");
         EXPECT_EQ(parts.message, "");
         const auto line = status_line(parts, kSmallWidth);
         EXPECT_NE(line.find(parts.hint), std::string::npos) << "cut: " << line;
     }
-    press(editor, {B});  // cancelled
+    press(editor, {B, B, B, B});  // back to letters, more, the proposals; cancelled
+    ASSERT_EQ(editor.scheme.mode(), editor::ButtonScheme::Mode::browse);
     testing::to_menu_entry(editor, "save");
     press(editor, {S});  // ringtone is shipped: another name, store yours over it, cancel
     const auto parts = status_of(editor.model, editor.scheme, "undone");
@@ -103,7 +109,7 @@ TEST(StatusLine, TheShortestLengthIsA32nd) {
     auto editor = fresh_editor();
     editor.model.set_length(Length::thirty_second);
     EXPECT_EQ(editor.model.message(), "length 32nd");
-    press(editor, {S, U, S});  // a 32nd note on string 4, at its length step
+    press(editor, {S, U, B, S});  // a 32nd note on string 4, this number, at its length step
     ASSERT_EQ(editor.scheme.entry_step(), editor::EntrySteps::Step::length);
     EXPECT_EQ(editor::symbol_entered(editor.model), "5 32nd s4");
     const auto hint = editor.scheme.hint(editor.model);
@@ -143,6 +149,77 @@ TEST(StatusLine, AProposalOnAnotherStringThanTheLastNoteIsInCapitals) {
     model.begin_entry();
     model.entry_string(-2);  // the thumb's own choice
     EXPECT_EQ(editor::symbol_entered(model), "5 quarter s3");
+}
+
+TEST(StatusLine, AfterAMenuActionBackShowsTheChoicesNotTheOldNews) {
+    // A newcomer saw "*crescendo" on the line through Back, Back, Back, pressed Up to change the
+    // string, and the score played: the line never said the choices were open.
+    auto editor = fresh_editor();
+    press(editor, {S, S, B, B});  // a note
+    testing::to_menu_entry(editor, "crescendo  <");
+    press(editor, {S});
+    ASSERT_EQ(editor.model.message(), "crescendo");
+    press(editor, {B});
+    ASSERT_EQ(editor.scheme.mode(), editor::ButtonScheme::Mode::browse_choices);
+    const auto line =
+        status_line(status_of(editor.model, editor.scheme, editor.model.message()), kSmallWidth);
+    EXPECT_TRUE(line.starts_with("*\u2191play all \u2193play bar")) << line;
+    press(editor, {B});  // back to browsing: what Select and Back do, not the old news
+    const auto browsing =
+        status_line(status_of(editor.model, editor.scheme, editor.model.message()), kSmallWidth);
+    EXPECT_TRUE(browsing.starts_with("*S:new note")) << browsing;
+}
+
+TEST(StatusLine, BrowsingNamesTheSymbolSelectWouldChange) {
+    auto editor = fresh_editor();
+    testing::type(editor, "5");
+    testing::type(editor, "&0");  // an 8th rest
+    press(editor, {L});
+    EXPECT_EQ(editor.scheme.hint(editor.model), "S:change 8th rest B:play,go to,menu");
+    press(editor, {L});
+    EXPECT_EQ(editor.scheme.hint(editor.model), "S:change 5 quarter s3 B:play,go to,menu");
+    // Where the whole name does not fit 40 columns, Back's choices are named shorter.
+    editor.model.set_length(Length::quarter_dot);
+    testing::type(editor, "9");
+    press(editor, {L});
+    const auto hint = editor.scheme.hint(editor.model);
+    EXPECT_EQ(hint, "S:change 9 quarter_dot s3 B:more");
+    EXPECT_LE(columns_of(hint), kSmallWidth);
+}
+
+TEST(StatusLine, TheNumberStepNamesEveryNumberOnTheScreen) {
+    // Numbers more than two away were hidden behind "B:more": a wrong proposal cost 4-5 presses.
+    for (int number = 1; number <= 9; ++number) {
+        auto editor = fresh_editor();
+        editor.model.insert_note(number);
+        press(editor, {S, B, S});  // the same note again; this string: its number step
+        ASSERT_EQ(editor.scheme.entry_step(), editor::EntrySteps::Step::number);
+        const auto hint = editor.scheme.hint(editor.model);
+        std::set<int> shown{number};
+        for (const char c : hint) {
+            if (c >= '1' && c <= '9') {
+                shown.insert(c - '0');
+            }
+        }
+        EXPECT_EQ(shown.size(), 9u) << hint;
+        const auto line = status_line(status_of(editor.model, editor.scheme, ""), kSmallWidth);
+        EXPECT_NE(line.find(hint), std::string::npos) << line;
+    }
+}
+
+TEST(StatusLine, WhilePlayingTheLineNamesTheBarPlayingNow) {
+    // "playing bar 1 on" read as "now in bar 1" while the playback cursor was in bar 4.
+    auto editor = fresh_editor();
+    press(editor, {S, S, S, S, S, S, S, S, S, S, B, B});  // two full bars and one note
+    editor.scheme.set_playing(true);
+    const auto parts = status_of(editor.model, editor.scheme, "", editor::Position{2, 0});
+    EXPECT_EQ(status_line(parts, kSmallWidth), "*playing bar 3/3: any button stops");
+}
+
+TEST(StatusLine, ANewScoreShowsWhatTheButtonsDoBeforeTheFirstPress) {
+    const auto editor = fresh_editor();
+    const auto line = status_line(status_of(editor.model, editor.scheme, ""), kSmallWidth);
+    EXPECT_TRUE(line.starts_with("S:new note B:play,go to,menu")) << line;
 }
 
 TEST(StatusLine, AFullKeyboardsScreenNamesTheDigitKeysInOneLine) {

@@ -1,9 +1,11 @@
-#include "client/editor/press_planner.hpp"
+#include "client/editor/planner/press_planner.hpp"
 
+#include <algorithm>
 #include <deque>
 #include <string>
 #include <unordered_set>
 
+#include "client/editor/planner/editor_hash.hpp"
 #include "client/editor/score_edits.hpp"
 
 namespace vibscore::editor {
@@ -55,10 +57,6 @@ std::vector<Token> tokens(const Score& score) {
 
 bool same_music(const Score& a, const Score& b) {
     return a.bars == b.bars && a.clefs == b.clefs;
-}
-
-std::string state_key(const Editor& editor) {
-    return editor.model.fingerprint() + '@' + editor.scheme.fingerprint();
 }
 
 }  // namespace
@@ -122,7 +120,7 @@ std::optional<Node> next_step(const Editor& from, const Score& target, Measure m
                               std::size_t state_limit, std::size_t& states_seen) {
     const int reached = measure(from, target);
     std::deque<Node> queue;
-    std::unordered_set<std::string> seen{state_key(from)};
+    std::unordered_set<Editor, EditorHash> seen{from};
     queue.push_back({from, {}});
     while (!queue.empty()) {
         Node node = std::move(queue.front());
@@ -133,7 +131,7 @@ std::optional<Node> next_step(const Editor& from, const Score& target, Measure m
                 continue;  // files, playback and quitting are not entering
             }
             next.presses.push_back(button);
-            if (!seen.insert(state_key(next.editor)).second) {
+            if (!seen.insert(next.editor).second) {
                 continue;
             }
             ++states_seen;
@@ -167,6 +165,86 @@ int progress(const Editor& editor, const Score& target) {
     }
     without_open.bars.pop_back();
     return entered_prefix(without_open, target);
+}
+
+namespace {
+
+int agreeing_prefix(const Editor& editor, const Score& target) {
+    const auto have = tokens(editor.model.score());
+    const auto want = tokens(target);
+    int agree = 0;
+    while (static_cast<std::size_t>(agree) < have.size() &&
+           static_cast<std::size_t>(agree) < want.size() &&
+           have[static_cast<std::size_t>(agree)] == want[static_cast<std::size_t>(agree)]) {
+        ++agree;
+    }
+    // Only changes count: a symbol or bar line more or less (a proposal opened past the end,
+    // a bar split) is no nearer.
+    return have.size() == want.size() ? agree : -1;
+}
+
+}  // namespace
+
+PressPlan plan_changes(const Editor& start, const Score& target, std::size_t state_limit) {
+    PressPlan plan;
+    Editor current = start;
+    while (!finished(current, target)) {
+        auto step = next_step(current, target, agreeing_prefix, state_limit, plan.states_seen);
+        if (!step) {
+            return plan;
+        }
+        current = std::move(step->editor);
+        plan.presses.insert(plan.presses.end(), step->presses.begin(), step->presses.end());
+    }
+    plan.reached = true;
+    return plan;
+}
+
+PressPlan plan_name(const NameEntry& start, const std::string& name) {
+    PressPlan plan;
+    struct Step {
+        NameEntry entry;
+        std::vector<Button> presses;
+    };
+    const auto on_the_way = [&](const NameEntry& entry) {
+        const std::string& now = entry.name();
+        if (entry.untouched() || name.starts_with(now)) {
+            return true;
+        }
+        for (const auto& line : start.lines()) {
+            if (line.starts_with(now) || line.starts_with("[" + now)) {
+                return true;
+            }
+        }
+        return false;
+    };
+    std::vector<NameEntry> seen{start};
+    std::deque<Step> queue{{start, {}}};
+    while (!queue.empty()) {
+        const Step from = std::move(queue.front());
+        queue.pop_front();
+        for (const Button button : all_buttons) {
+            Step next{from.entry, from.presses};
+            const auto outcome = next.entry.press(button);
+            next.presses.push_back(button);
+            ++plan.states_seen;
+            if (outcome == NameEntry::Outcome::done) {
+                if (next.entry.name() == name) {
+                    plan.presses = std::move(next.presses);
+                    plan.reached = true;
+                    return plan;
+                }
+                continue;
+            }
+            if (outcome == NameEntry::Outcome::cancelled || !on_the_way(next.entry) ||
+                std::find(seen.begin(), seen.end(), next.entry) != seen.end()) {
+                continue;
+            }
+            seen.push_back(next.entry);
+            queue.push_back(std::move(next));
+        }
+    }
+    return plan;
 }
 
 PressPlan plan_presses(const Editor& start, const Score& target, std::size_t state_limit) {

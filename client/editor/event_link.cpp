@@ -1,0 +1,113 @@
+#include "client/editor/event_link.hpp"
+
+#include <sdbus-c++/sdbus-c++.h>
+
+#include <cstdlib>
+
+#include "dbus/sdbus_compat.hpp"
+#include "feedback/feedbackd_theme.hpp"
+#include "feedback/profile.hpp"
+#include "feedback/theme.hpp"
+#include "feedback/user_scores.hpp"
+#include "feedback1-proxy.h"
+
+#ifndef VIBSCORE_FEEDBACK_THEME
+#define VIBSCORE_FEEDBACK_THEME "/usr/share/vibscore/feedback/default.json"
+#endif
+
+namespace vibscore::editor {
+
+namespace {
+
+constexpr const char* kFeedbackName = "org.sigxcpu.Feedback";
+constexpr const char* kFeedbackPath = "/org/sigxcpu/Feedback";
+
+// The theme vibscore-feedback reads when it starts.
+std::string theme_path() {
+    const char* chosen = std::getenv("FEEDBACK_THEME");
+    return chosen != nullptr && *chosen != '\0' ? chosen : VIBSCORE_FEEDBACK_THEME;
+}
+
+}  // namespace
+
+class EventLink::Live : public sdbus::ProxyInterfaces<org::vibscore::Feedback1_proxy> {
+  public:
+    explicit Live(std::unique_ptr<sdbus::IConnection> connection)
+        : ProxyInterfaces(*connection, dbus::service_name(kFeedbackName),
+                          dbus::object_path(kFeedbackPath)),
+          connection_(std::move(connection)) {
+        registerProxy();
+    }
+    ~Live() { unregisterProxy(); }
+
+  private:
+    void onEventScoresChanged() override {}
+    std::unique_ptr<sdbus::IConnection> connection_;
+};
+
+EventLink::EventLink() {
+    try {
+        auto live = std::make_unique<Live>(sdbus::createSessionBusConnection());
+        live->EventScores();  // vibscore-feedback answers, or the file is used
+        live_ = std::move(live);
+    } catch (const sdbus::Error&) {
+        live_.reset();
+    }
+}
+
+EventLink::~EventLink() = default;
+
+std::vector<EventScore> EventLink::events() {
+    std::vector<EventScore> events;
+    if (live_) {
+        try {
+            for (const auto& entry : live_->EventScores()) {
+                events.push_back({entry.get<0>(), entry.get<1>(), entry.get<2>(), entry.get<3>()});
+            }
+            return events;
+        } catch (const sdbus::Error& error) {
+            throw std::runtime_error("vibscore-feedback: " + error.getMessage());
+        }
+    }
+    try {
+        std::vector<Diagnostic> warnings;
+        const auto theme =
+            feedback::load_theme(theme_path(), feedback::ThemeSearch::from_environment());
+        const auto chosen = feedback::read_user_scores(feedback::user_scores_path(), warnings);
+        for (const auto& [event, levels] : theme.events()) {
+            const auto* entry = theme.lookup(event, feedback::Profile::full);
+            EventScore score{event, entry ? entry->score : "", entry ? entry->score : "", false};
+            if (const auto mine = chosen.find(event); mine != chosen.end()) {
+                score.score = mine->second;
+                score.assigned = true;
+            }
+            events.push_back(score);
+        }
+        for (const auto& [event, score] : chosen) {
+            if (!theme.events().contains(event)) {
+                events.push_back({event, score, "", true});
+            }
+        }
+        return events;
+    } catch (const std::exception& error) {
+        throw std::runtime_error(error.what());
+    }
+}
+
+void EventLink::assign(const std::string& event, const std::string& score) {
+    if (live_) {
+        try {
+            live_->AssignScore(event, score);
+            return;
+        } catch (const sdbus::Error& error) {
+            throw std::runtime_error("vibscore-feedback: " + error.getMessage());
+        }
+    }
+    try {
+        feedback::store_user_score(feedback::user_scores_path(), event, score);
+    } catch (const std::exception& error) {
+        throw std::runtime_error(error.what());
+    }
+}
+
+}  // namespace vibscore::editor
