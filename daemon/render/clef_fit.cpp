@@ -255,7 +255,8 @@ std::optional<Band> full_strength_band(const actuator::Declaration& declaration,
     const double g = strength * declaration.rated_drive;  // the gain full drive needs
     Band band{kLowestPitchHz, kHighestPitchHz};
     if (g > 0.0) {
-        // G(f) >= g, with y = (f/f0)^2:  y^2 + (1/Q^2 - 2) y + 1 - 1/(Q g)^2 <= 0.
+        // actuator::Physics::lra_gain(f) >= g solved for f, with y = (f/f0)^2:
+        //   y^2 + (1/Q^2 - 2) y + 1 - 1/(Q g)^2 <= 0.
         const double inv_q2 = 1.0 / (declaration.q * declaration.q);
         const double b = inv_q2 - 2.0;
         const double c = 1.0 - inv_q2 / (g * g);
