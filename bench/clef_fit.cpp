@@ -25,8 +25,12 @@
 #include "daemon/render/performance.hpp"
 #include "score/bundle.hpp"
 #include "score/score_xml.hpp"
+#include "tests/support/example_actuators.hpp"
 
 namespace {
+
+using vibscore::testing::example_erm;
+using vibscore::testing::example_lra;
 
 using namespace vibscore;
 using actuator::Declaration;
@@ -38,26 +42,6 @@ constexpr double kTail = 0.3;
 const std::vector<std::string> kTactons{
     "alarm",    "failure", "notification-calendar", "notification-mail", "notification-message",
     "ringtone", "success", "touch-click",           "touch-tick"};
-
-Declaration issue_erm() {
-    Declaration d;
-    d.kind = actuator::Kind::erm;
-    d.rated_drive = 0.7;
-    d.spin_up_s = 0.040;
-    d.spin_down_s = 0.080;
-    d.brake = actuator::Brake::reverse;
-    return d;
-}
-
-Declaration issue_lra() {
-    Declaration d;
-    d.kind = actuator::Kind::lra;
-    d.rated_drive = 0.7;
-    d.resonance_hz = 175.0;
-    d.q = 15.0;
-    d.brake = actuator::Brake::reverse;
-    return d;
-}
 
 ScoreBundle fitted(const ScoreBundle& written, const Declaration& declared) {
     return bind_clefs(ParsedScore{written.score, written.where}, written.file,
@@ -181,8 +165,8 @@ int main(int argc, char** argv) {
     app.add_option("--clefs", clefs, "the shipped clefs and scores");
     CLI11_PARSE(app, argc, argv);
 
-    const std::vector<std::pair<std::string, Declaration>> actuators{{"erm", issue_erm()},
-                                                                     {"lra", issue_lra()}};
+    const std::vector<std::pair<std::string, Declaration>> actuators{{"erm", example_erm()},
+                                                                     {"lra", example_lra()}};
     std::printf(
         "strength lost (per note: written peak the produced strength never reaches while "
         "it sounds, length-weighted)\n");

@@ -31,8 +31,12 @@
 #include "score/clef_xml.hpp"
 #include "score/score_xml.hpp"
 #include "tests/support/daemon_fixture.hpp"
+#include "tests/support/example_actuators.hpp"
 
 namespace {
+
+using vibscore::testing::example_erm;
+using vibscore::testing::example_lra;
 
 using namespace vibscore;
 using actuator::Declaration;
@@ -76,26 +80,6 @@ struct Piece {
     std::string name;
     ScoreBundle bundle;
 };
-
-Declaration issue_erm() {
-    Declaration d;
-    d.kind = actuator::Kind::erm;
-    d.rated_drive = 0.7;
-    d.spin_up_s = 0.040;
-    d.spin_down_s = 0.080;
-    d.brake = actuator::Brake::reverse;
-    return d;
-}
-
-Declaration issue_lra(double f0 = 175.0, double q = 15.0) {
-    Declaration d;
-    d.kind = actuator::Kind::lra;
-    d.rated_drive = 0.7;
-    d.resonance_hz = f0;
-    d.q = q;
-    d.brake = actuator::Brake::reverse;
-    return d;
-}
 
 // A sine clef's strings moved inside an LRA's band (where it gives more than 1/sqrt(2) of its
 // strength: f0 +- f0/2Q), evenly, in their order: "a clef whose strings sit inside its band".
@@ -374,8 +358,8 @@ int main(int argc, char** argv) {
         "felt as a dip to half; error: median\nenvelope error; taps: gaps felt between "
         "the ten taps\n");
 
-    const Declaration erm = issue_erm();
-    const Declaration lra = issue_lra();
+    const Declaration erm = example_erm();
+    const Declaration lra = example_lra();
     const Totals erm_off = run(all, erm, erm, false), erm_on = run(all, erm, erm, true);
     const Totals lra_off = run(all, lra, lra, false), lra_on = run(all, lra, lra, true);
     print_header("the issue's actuators");
@@ -415,7 +399,7 @@ int main(int argc, char** argv) {
         quick ? std::vector<double>{60, 150} : std::vector<double>{60, 80, 110, 150};
     for (const double up : spin_ups) {
         for (const double down : spin_downs) {
-            Declaration d = issue_erm();
+            Declaration d = example_erm();
             d.spin_up_s = up / 1000.0;
             d.spin_down_s = down / 1000.0;
             const Totals on = run(all, d, d, true);
@@ -436,7 +420,7 @@ int main(int argc, char** argv) {
         quick ? std::vector<double>{8, 25} : std::vector<double>{8, 15, 20, 25};
     for (const double f0 : f0s) {
         for (const double q : qs) {
-            const Declaration d = issue_lra(f0, q);
+            const Declaration d = example_lra(f0, q);
             const Totals on = run(all, d, d, true);
             const Totals off = run(all, d, d, false);
             char label[64];
@@ -458,14 +442,14 @@ int main(int argc, char** argv) {
     };
     std::vector<Mismatch> mismatches;
     for (const auto& [up, down] : {std::pair{30.0, 60.0}, std::pair{60.0, 150.0}}) {
-        Declaration truth = issue_erm();
+        Declaration truth = example_erm();
         truth.spin_up_s = up / 1000.0;
         truth.spin_down_s = down / 1000.0;
         mismatches.push_back(
-            {up < 40 ? "ERM is 30/60 ms" : "ERM is 60/150 ms", issue_erm(), truth});
+            {up < 40 ? "ERM is 30/60 ms" : "ERM is 60/150 ms", example_erm(), truth});
     }
-    mismatches.push_back({"LRA is 170 Hz Q 12", issue_lra(), issue_lra(170.0, 12.0)});
-    mismatches.push_back({"LRA is 180 Hz Q 20", issue_lra(), issue_lra(180.0, 20.0)});
+    mismatches.push_back({"LRA is 170 Hz Q 12", example_lra(), example_lra(170.0, 12.0)});
+    mismatches.push_back({"LRA is 180 Hz Q 20", example_lra(), example_lra(180.0, 20.0)});
     for (const auto& m : mismatches) {
         const Totals off = run(all, m.declared, m.truth, false);
         const Totals on = run(all, m.declared, m.truth, true);

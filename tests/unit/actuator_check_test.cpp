@@ -10,11 +10,15 @@
 
 #include "daemon/render/actuator_check.hpp"
 #include "daemon/render/actuator_response.hpp"
+#include "tests/support/example_actuators.hpp"
 #include "tests/support/run_command.hpp"
 #include "tests/support/support.hpp"
 
 namespace vibscore {
 namespace {
+
+using vibscore::testing::example_erm;
+using vibscore::testing::example_lra;
 
 using ::testing::AllOf;
 using ::testing::HasSubstr;
@@ -22,24 +26,6 @@ using ::testing::IsEmpty;
 using testing::required_env;
 using testing::run_command;
 using testing::TempDir;
-
-actuator::Declaration issue_lra() {
-    actuator::Declaration d;
-    d.kind = actuator::Kind::lra;
-    d.rated_drive = 0.7;
-    d.resonance_hz = 175.0;
-    d.q = 15.0;
-    d.brake = actuator::Brake::reverse;
-    return d;
-}
-
-actuator::Declaration issue_erm() {
-    actuator::Declaration d;
-    d.kind = actuator::Kind::erm;
-    d.rated_drive = 0.7;
-    d.brake = actuator::Brake::reverse;
-    return d;
-}
 
 ScoreBundle score_on(double frequency, const std::string& notes) {
     return testing::bundle_from(
@@ -54,9 +40,9 @@ std::vector<render::ActuatorWarning> warnings(const ScoreBundle& bundle,
 }
 
 TEST(ActuatorCheck, ALongNoteAtResonanceAsksNothingImpossible) {
-    EXPECT_THAT(
-        warnings(score_on(175.0, "<Note length=\"half\" number=\"2\" string=\"1\"/>"), issue_lra()),
-        IsEmpty());
+    EXPECT_THAT(warnings(score_on(175.0, "<Note length=\"half\" number=\"2\" string=\"1\"/>"),
+                         example_lra()),
+                IsEmpty());
 }
 
 TEST(ActuatorCheck, ANoteTooShortEvenWithOverdriveIsNamedWithItsNumbers) {
@@ -64,7 +50,7 @@ TEST(ActuatorCheck, ANoteTooShortEvenWithOverdriveIsNamedWithItsNumbers) {
     const auto found = warnings(score_on(175.0,
                                          "<Note length=\"half\" number=\"1\" string=\"1\"/>"
                                          "<Note length=\"32th\" number=\"2\" string=\"1\"/>"),
-                                issue_erm());
+                                example_erm());
     ASSERT_EQ(found.size(), 1u);
     EXPECT_EQ(found[0].bar, 1u);
     EXPECT_EQ(found[0].note, 2u);
@@ -73,16 +59,16 @@ TEST(ActuatorCheck, ANoteTooShortEvenWithOverdriveIsNamedWithItsNumbers) {
                                 "reaches 0."),
                       HasSubstr("even with overdrive (90 % takes 40 ms at full drive)")));
     // Long enough, and it is not named.
-    EXPECT_THAT(
-        warnings(score_on(175.0, "<Note length=\"8th\" number=\"2\" string=\"1\"/>"), issue_erm()),
-        IsEmpty());
+    EXPECT_THAT(warnings(score_on(175.0, "<Note length=\"8th\" number=\"2\" string=\"1\"/>"),
+                         example_erm()),
+                IsEmpty());
 }
 
 TEST(ActuatorCheck, AnLraStringWhereFullDriveGivesLessThanHalfIsNamedOnce) {
     const auto found = warnings(score_on(175.0,
                                          "<Note length=\"half\" number=\"1\" string=\"2\"/>"
                                          "<Note length=\"half\" number=\"2\" string=\"2\"/>"),
-                                issue_lra());
+                                example_lra());
     // 235 Hz: full drive gives 0.12 (G = 0.083 over rated-drive 0.7), the score asks 1 there.
     ASSERT_FALSE(found.empty());
     EXPECT_THAT(render::describe(found[0]),

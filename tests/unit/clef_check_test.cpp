@@ -9,11 +9,15 @@
 #include "daemon/render/clef_fit.hpp"
 #include "score/bundle.hpp"
 #include "score/clef_xml.hpp"
+#include "tests/support/example_actuators.hpp"
 #include "tests/support/run_command.hpp"
 #include "tests/support/support.hpp"
 
 namespace vibscore {
 namespace {
+
+using vibscore::testing::example_erm;
+using vibscore::testing::example_lra;
 
 using ::testing::AllOf;
 using ::testing::Contains;
@@ -23,24 +27,6 @@ using ::testing::Not;
 using testing::required_env;
 using testing::run_command;
 using testing::TempDir;
-
-actuator::Declaration issue_lra(double q = 15.0) {
-    actuator::Declaration d;
-    d.kind = actuator::Kind::lra;
-    d.rated_drive = 0.7;
-    d.resonance_hz = 175.0;
-    d.q = q;
-    d.brake = actuator::Brake::reverse;
-    return d;
-}
-
-actuator::Declaration issue_erm() {
-    actuator::Declaration d;
-    d.kind = actuator::Kind::erm;
-    d.rated_drive = 0.7;
-    d.brake = actuator::Brake::reverse;
-    return d;
-}
 
 std::filesystem::path shipped(const std::string& name) {
     return std::filesystem::path(required_env("VIBSCORE_CLEFS")) / name;
@@ -64,7 +50,7 @@ std::size_t count_with(const std::vector<std::string>& warnings, const std::stri
 
 TEST(ClefWarnings, NameEachLraPhoneStringFullDriveLeavesShortAndEachPairTooClose) {
     const auto warnings =
-        render::clef_warnings(load_clef_file(shipped("lra-phone.clef.xml")), issue_lra());
+        render::clef_warnings(load_clef_file(shipped("lra-phone.clef.xml")), example_lra());
     // 170 Hz is the one string within the band where full drive gives strength 1.
     EXPECT_EQ(count_with(warnings, "full drive gives strength"), 5u);
     EXPECT_THAT(warnings, Contains(HasSubstr("string 6 (235 Hz): full drive gives strength 0.12, "
@@ -79,13 +65,13 @@ TEST(ClefWarnings, NameEachLraPhoneStringFullDriveLeavesShortAndEachPairTooClose
 
 TEST(ClefWarnings, SayAnErmHasNoPitchInOneLine) {
     const auto warnings =
-        render::clef_warnings(load_clef_file(shipped("lra-phone.clef.xml")), issue_erm());
+        render::clef_warnings(load_clef_file(shipped("lra-phone.clef.xml")), example_erm());
     ASSERT_EQ(warnings.size(), 1u);
     EXPECT_THAT(warnings[0], HasSubstr("strings 1-6 (155 Hz to 235 Hz): an ERM has no pitch"));
 }
 
 TEST(ClefWarnings, AcceptAStringAtTheBandsEdgeAndWarnJustOutside) {
-    const auto lra = issue_lra();
+    const auto lra = example_lra();
     const auto band = render::full_strength_band(lra, 1.0);
     ASSERT_TRUE(band);
     EXPECT_THAT(render::clef_warnings(sine_clef({band->high_hz * (1 - 1e-6)}), lra), IsEmpty());
@@ -95,7 +81,7 @@ TEST(ClefWarnings, AcceptAStringAtTheBandsEdgeAndWarnJustOutside) {
 }
 
 TEST(ClefWarnings, AcceptStringsExactlyTheDistinctRatioApartAndWarnCloser) {
-    const auto wide = issue_lra(1.0);
+    const auto wide = example_lra(175.0, 1.0);
     EXPECT_THAT(render::clef_warnings(sine_clef({100, 120}, {0.5}), wide), IsEmpty());
     EXPECT_EQ(
         count_with(render::clef_warnings(sine_clef({100, 119.9}, {0.5}), wide), "strings 1 and 2"),
@@ -108,7 +94,7 @@ TEST(ClefWarnings, NameANumberBeyondFullDriveOnAShapeClef) {
     clef.tempo = 0.2;
     clef.numbers = {1.0 / 0.7, 1.5};
     clef.strings = {{0.0, {{0.0, 1.0}, {1.0, 1.0}}}};
-    const auto warnings = render::clef_warnings(clef, issue_erm());
+    const auto warnings = render::clef_warnings(clef, example_erm());
     ASSERT_EQ(warnings.size(), 1u);
     EXPECT_THAT(warnings[0], HasSubstr("number 2 (strength 1.5): out of reach, full drive gives "
                                        "1.43"));
@@ -120,16 +106,16 @@ TEST(ClefWarnings, NameWigglesAndPulsesTheActuatorCannotFollow) {
     clef.tempo = 0.2;
     clef.numbers = {1.0};
     clef.strings = {{0.0, {{0.0, 0.0}, {0.025, 1.0}, {0.05, 0.0}, {1.0, 0.0}}}};
-    EXPECT_THAT(render::clef_warnings(clef, issue_erm()),
+    EXPECT_THAT(render::clef_warnings(clef, example_erm()),
                 Contains(HasSubstr("string 1: a 5 ms rise or fall, faster than the ERM follows")));
     const auto rough =
-        render::clef_warnings(load_clef_file(shipped("erm-rough.clef.xml")), issue_erm());
+        render::clef_warnings(load_clef_file(shipped("erm-rough.clef.xml")), example_erm());
     EXPECT_THAT(rough, Contains(HasSubstr("string 6: 10 ms pulses reach strength 0.32 of 1")));
     EXPECT_THAT(rough, Not(Contains(HasSubstr("string 1:"))));  // 60 ms pulses: reached
 }
 
 TEST(ClefWarnings, AreNoneForEveryShippedSineClefOnceFitted) {
-    for (const auto& d : {issue_erm(), issue_lra()}) {
+    for (const auto& d : {example_erm(), example_lra()}) {
         for (const char* name : {"lra-phone", "lra-phone-140bpm", "shaker-sine-high",
                                  "shaker-sine-linear", "shaker-sine-low"}) {
             const auto fit =
@@ -161,7 +147,7 @@ TEST(ClientClefFit, WritesTheFittedClefAndSaysWhatChanged) {
     EXPECT_THAT(result.err, HasSubstr("too narrow for 6 strings"));
     const Clef fitted = load_clef_file(out);
     EXPECT_EQ(fitted,
-              render::fit_clef(load_clef_file(shipped("lra-phone.clef.xml")), issue_lra()).clef);
+              render::fit_clef(load_clef_file(shipped("lra-phone.clef.xml")), example_lra()).clef);
     EXPECT_THAT(testing::read_file(out), HasSubstr("<!-- Fitted by vibscore clef fit from"));
     // What it wrote passes the check with no warning for that actuator.
     const auto check = run_command({vibscore(), "check", out.string(), "--actuator", board});

@@ -12,35 +12,19 @@
 #include "score/clef_xml.hpp"
 #include "score/document_error.hpp"
 #include "score/score_xml.hpp"
+#include "tests/support/example_actuators.hpp"
 #include "tests/support/run_command.hpp"
 
 namespace vibscore {
 namespace {
 
+using vibscore::testing::example_erm;
+using vibscore::testing::example_lra;
+
 using render::ClefFit;
 using render::fit_clef;
 using ::testing::HasSubstr;
 using ::testing::IsEmpty;
-
-actuator::Declaration issue_lra(double q = 15.0) {
-    actuator::Declaration d;
-    d.kind = actuator::Kind::lra;
-    d.rated_drive = 0.7;
-    d.resonance_hz = 175.0;
-    d.q = q;
-    d.brake = actuator::Brake::reverse;
-    return d;
-}
-
-actuator::Declaration issue_erm() {
-    actuator::Declaration d;
-    d.kind = actuator::Kind::erm;
-    d.rated_drive = 0.7;
-    d.spin_up_s = 0.040;
-    d.spin_down_s = 0.080;
-    d.brake = actuator::Brake::reverse;
-    return d;
-}
 
 Clef sine_clef(std::vector<double> frequencies, std::vector<double> numbers = {0.2, 0.6, 1.0}) {
     Clef clef;
@@ -75,7 +59,7 @@ double gain(const actuator::Declaration& d, double f) {
 // --- the full-strength band ---
 
 TEST(AFullStrengthBand, EndsWhereFullDriveGivesExactlyTheStrength) {
-    const auto lra = issue_lra();
+    const auto lra = example_lra();
     const auto band = render::full_strength_band(lra, 1.0);
     ASSERT_TRUE(band);
     EXPECT_NEAR(gain(lra, band->low_hz), 0.7, 1e-9);
@@ -87,7 +71,7 @@ TEST(AFullStrengthBand, EndsWhereFullDriveGivesExactlyTheStrength) {
 }
 
 TEST(AFullStrengthBand, IsTheResonanceAloneAtTheStrongestFullDriveGivesAndNothingBeyond) {
-    const auto lra = issue_lra();
+    const auto lra = example_lra();
     // Q 15 peaks a hair off f0 above 1: the strongest is 1/rated x that peak.
     const double peak = 1.0 / std::sqrt(1.0 - 1.0 / (4.0 * 15.0 * 15.0));
     const auto at = render::full_strength_band(lra, peak / 0.7 * (1.0 - 1e-9));
@@ -97,20 +81,20 @@ TEST(AFullStrengthBand, IsTheResonanceAloneAtTheStrongestFullDriveGivesAndNothin
 }
 
 TEST(AFullStrengthBand, StaysWhereSkinFeelsPitch) {
-    const auto band = render::full_strength_band(issue_lra(1.0), 0.1);
+    const auto band = render::full_strength_band(example_lra(175.0, 1.0), 0.1);
     ASSERT_TRUE(band);
     EXPECT_EQ(band->low_hz, render::kLowestPitchHz);
     EXPECT_EQ(band->high_hz, render::kHighestPitchHz);
 }
 
 TEST(AFullStrengthBand, DoesNotExistForAnErm) {
-    EXPECT_FALSE(render::full_strength_band(issue_erm(), 1.0));
+    EXPECT_FALSE(render::full_strength_band(example_erm(), 1.0));
 }
 
 // --- strings placed as pitch ---
 
 TEST(FittingASineClef, SpreadsTheStringsAcrossAWideBandInTheirWrittenOrder) {
-    const auto lra = issue_lra(1.5);
+    const auto lra = example_lra(175.0, 1.5);
     const auto fit = fit_clef(lra_phone(), lra);
     ASSERT_EQ(fit.strings, ClefFit::Strings::pitch);
     ASSERT_TRUE(fit.band);
@@ -129,7 +113,7 @@ TEST(FittingASineClef, SpreadsTheStringsAcrossAWideBandInTheirWrittenOrder) {
 }
 
 TEST(FittingASineClef, KeepsTheWrittenOrderWhenItIsNotAscending) {
-    const auto fit = fit_clef(sine_clef({235, 155, 200}), issue_lra(1.5));
+    const auto fit = fit_clef(sine_clef({235, 155, 200}), example_lra(175.0, 1.5));
     ASSERT_EQ(fit.strings, ClefFit::Strings::pitch);
     EXPECT_GT(fit.clef.strings[0].frequency, fit.clef.strings[2].frequency);
     EXPECT_GT(fit.clef.strings[2].frequency, fit.clef.strings[1].frequency);
@@ -137,7 +121,7 @@ TEST(FittingASineClef, KeepsTheWrittenOrderWhenItIsNotAscending) {
 
 TEST(FittingASineClef, LeavesStringsTheActuatorAlreadyPlaysAsWritten) {
     const Clef written = sine_clef({60, 100, 180});
-    const auto fit = fit_clef(written, issue_lra(1.5));
+    const auto fit = fit_clef(written, example_lra(175.0, 1.5));
     EXPECT_EQ(fit.strings, ClefFit::Strings::as_written);
     EXPECT_EQ(fit.clef, written);
     EXPECT_THAT(fit.notes, IsEmpty());
@@ -145,12 +129,12 @@ TEST(FittingASineClef, LeavesStringsTheActuatorAlreadyPlaysAsWritten) {
 }
 
 TEST(FittingASineClef, MovesStringsThatAreInTheBandButTooClose) {
-    const auto fit = fit_clef(sine_clef({150, 170, 220}), issue_lra(1.5));
+    const auto fit = fit_clef(sine_clef({150, 170, 220}), example_lra(175.0, 1.5));
     EXPECT_EQ(fit.strings, ClefFit::Strings::pitch);
 }
 
 TEST(FittingASineClef, PlacesAsManyDistinctStringsAsTheBandHoldsAndTurnsOneMoreIntoRoughness) {
-    const auto lra = issue_lra(3.0);
+    const auto lra = example_lra(175.0, 3.0);
     const auto band = render::full_strength_band(lra, 1.0);
     ASSERT_TRUE(band);
     const auto fits = static_cast<std::size_t>(std::floor(std::log(band->high_hz / band->low_hz) /
@@ -168,13 +152,13 @@ TEST(FittingASineClef, PlacesAsManyDistinctStringsAsTheBandHoldsAndTurnsOneMoreI
 }
 
 TEST(FittingASineClef, PutsALoneStringOutsideTheBandAtResonance) {
-    const auto fit = fit_clef(sine_clef({235}), issue_lra());
+    const auto fit = fit_clef(sine_clef({235}), example_lra());
     ASSERT_EQ(fit.strings, ClefFit::Strings::pitch);
     EXPECT_EQ(fit.clef.strings[0].frequency, 175.0);
 }
 
 TEST(FittingASineClef, WithoutCompensationPlacesStringsWhereRatedDriveKeepsNinetyPercent) {
-    auto lra = issue_lra(1.0);
+    auto lra = example_lra(175.0, 1.0);
     lra.compensation = false;
     const auto fit = fit_clef(lra_phone(), lra);
     ASSERT_EQ(fit.strings, ClefFit::Strings::pitch);
@@ -186,7 +170,7 @@ TEST(FittingASineClef, WithoutCompensationPlacesStringsWhereRatedDriveKeepsNinet
 // --- roughness ---
 
 TEST(FittingASineClef, TurnsStringsIntoRoughnessOnAHighQLra) {
-    const auto fit = fit_clef(lra_phone(), issue_lra());
+    const auto fit = fit_clef(lra_phone(), example_lra());
     ASSERT_EQ(fit.strings, ClefFit::Strings::roughness);
     EXPECT_EQ(fit.clef.type, ClefType::line);
     EXPECT_EQ(fit.clef.tempo, 0.2);
@@ -197,13 +181,13 @@ TEST(FittingASineClef, TurnsStringsIntoRoughnessOnAHighQLra) {
 }
 
 TEST(FittingASineClef, TurnsStringsIntoRoughnessOnAnErm) {
-    const auto fit = fit_clef(lra_phone(), issue_erm());
+    const auto fit = fit_clef(lra_phone(), example_erm());
     ASSERT_EQ(fit.strings, ClefFit::Strings::roughness);
     EXPECT_THAT(fit.notes.back(), HasSubstr("an ERM has no pitch"));
 }
 
 TEST(RoughnessPeriods, AreTheThesisPeriodsOnAnActuatorFastEnough) {
-    auto quick = issue_erm();
+    auto quick = example_erm();
     quick.spin_up_s = 0.001;
     const auto periods = render::roughness_periods_s(quick, 6, 1.0);
     const std::vector<double> thesis{0.120, 0.100, 0.080, 0.060, 0.040, 0.020};
@@ -214,7 +198,7 @@ TEST(RoughnessPeriods, AreTheThesisPeriodsOnAnActuatorFastEnough) {
 }
 
 TEST(RoughnessPeriods, LengthenSoTheActuatorReachesFullStrengthInHalfAPeriod) {
-    for (const auto& d : {issue_erm(), issue_lra()}) {
+    for (const auto& d : {example_erm(), example_lra()}) {
         const auto periods = render::roughness_periods_s(d, 6, 1.0);
         const double reach = render::time_to_strength_s(d, 1.0);
         EXPECT_GT(reach, 0.010);  // neither follows the thesis' 20 ms
@@ -228,7 +212,7 @@ TEST(RoughnessPeriods, LengthenSoTheActuatorReachesFullStrengthInHalfAPeriod) {
 }
 
 TEST(RoughnessPeriods, KeepTheThesisPeriodWhereItIsJustLongEnough) {
-    auto d = issue_erm();
+    auto d = example_erm();
     d.spin_up_s = 0.001;
     // The shortest thesis period (20 ms) against a reach of just under and just over 10 ms.
     const double per_constant = render::time_to_strength_s(d, 1.0) / 0.001;
@@ -239,14 +223,14 @@ TEST(RoughnessPeriods, KeepTheThesisPeriodWhereItIsJustLongEnough) {
 }
 
 TEST(RoughnessPeriods, AreNoneForALoneString) {
-    EXPECT_THAT(render::roughness_periods_s(issue_erm(), 1, 1.0), IsEmpty());
-    const auto fit = fit_clef(sine_clef({200}), issue_erm());
+    EXPECT_THAT(render::roughness_periods_s(example_erm(), 1, 1.0), IsEmpty());
+    const auto fit = fit_clef(sine_clef({200}), example_erm());
     ASSERT_EQ(fit.clef.strings.size(), 1u);
     EXPECT_EQ(fit.clef.strings[0].points, (std::vector<ClefPoint>{{0.0, 1.0}, {1.0, 1.0}}));
 }
 
 TEST(ARoughnessString, IsAHalfOnHalfOffSquareWaveOfItsPeriod) {
-    auto quick = issue_erm();
+    auto quick = example_erm();
     quick.spin_up_s = 0.001;
     const auto fit = fit_clef(lra_phone(), quick);
     // String 6, 20 ms at a 0.2 s quarter: ten periods, on for the first 10 ms of each.
@@ -263,7 +247,7 @@ TEST(ARoughnessString, IsAHalfOnHalfOffSquareWaveOfItsPeriod) {
 }
 
 TEST(ARoughnessString, ThatCannotBeWrittenIsRefusedNamingTheString) {
-    auto quick = issue_erm();
+    auto quick = example_erm();
     quick.spin_up_s = 0.001;
     Clef clef = lra_phone();
     // 20 ms periods: 2048 halves of 10 ms fit a 20.48 s quarter, one more does not.
@@ -282,16 +266,16 @@ TEST(ARoughnessString, ThatCannotBeWrittenIsRefusedNamingTheString) {
 // --- numbers ---
 
 TEST(FittingAClef, KeepsTheNumbersStrengths) {
-    for (const auto& d : {issue_erm(), issue_lra(), issue_lra(1.5)}) {
+    for (const auto& d : {example_erm(), example_lra(), example_lra(175.0, 1.5)}) {
         EXPECT_EQ(fit_clef(lra_phone(), d).clef.numbers, lra_phone().numbers);
     }
 }
 
 TEST(FittingAClef, BringsANumberBeyondFullDriveDownToFullDriveAndSaysSo) {
     const double full = 1.0 / 0.7;
-    const auto kept = fit_clef(sine_clef({175}, {0.5, full}), issue_erm());
+    const auto kept = fit_clef(sine_clef({175}, {0.5, full}), example_erm());
     EXPECT_EQ(kept.clef.numbers[1], full);
-    const auto cut = fit_clef(sine_clef({175}, {0.5, full * (1.0 + 1e-9), 2.0}), issue_erm());
+    const auto cut = fit_clef(sine_clef({175}, {0.5, full * (1.0 + 1e-9), 2.0}), example_erm());
     EXPECT_DOUBLE_EQ(cut.clef.numbers[1], full);
     EXPECT_DOUBLE_EQ(cut.clef.numbers[2], full);
     EXPECT_THAT(cut.notes[1], HasSubstr("number 3: strength 2 is beyond full drive"));
@@ -318,7 +302,7 @@ TEST(FittingAShapeClef, SmoothsAWiggleTheErmCannotFollowAndSaysSo) {
     // A 10 ms tent on a 0.2 s quarter: 5 ms up, 5 ms down.
     const Clef written =
         line_clef({{{0.0, 0.0}, {0.025, 1.0}, {0.05, 0.0}, {1.0, 0.0}}, {{0.0, 0.5}, {1.0, 0.5}}});
-    const auto erm = issue_erm();
+    const auto erm = example_erm();
     const auto fit = fit_clef(written, erm);
     ASSERT_EQ(fit.strings, ClefFit::Strings::smoothed);
     ASSERT_EQ(fit.notes.size(), 1u);
@@ -339,7 +323,7 @@ TEST(FittingAShapeClef, SmoothsAWiggleTheErmCannotFollowAndSaysSo) {
 }
 
 TEST(FittingAShapeClef, KeepsAWiggleJustSlowEnoughAndSmoothsOneJustTooFast) {
-    const auto erm = issue_erm();
+    const auto erm = example_erm();
     const double follows = render::shortest_followed_s(erm, 1.0) / 0.2;  // normalised
     const auto tent = [](double half) {
         return line_clef({{{0.0, 0.0}, {half, 1.0}, {2.0 * half, 0.0}, {1.0, 0.0}}});
@@ -351,7 +335,7 @@ TEST(FittingAShapeClef, KeepsAWiggleJustSlowEnoughAndSmoothsOneJustTooFast) {
 TEST(FittingAShapeClef, KeepsSquareWavesTheyAreDeliberateOnOffDrive) {
     auto clefs = std::filesystem::path(testing::required_env("VIBSCORE_CLEFS"));
     const Clef rough = load_clef_file(clefs / "erm-rough.clef.xml");
-    const auto fit = fit_clef(rough, issue_erm());
+    const auto fit = fit_clef(rough, example_erm());
     EXPECT_EQ(fit.strings, ClefFit::Strings::as_written);
     EXPECT_EQ(fit.clef, rough);
 }
@@ -373,7 +357,7 @@ std::vector<std::filesystem::path> shipped(const char* suffix) {
 TEST(ShippedClefs, EachFitsBothExampleActuatorsAndReadsBack) {
     const auto clefs = shipped(".clef.xml");
     ASSERT_GE(clefs.size(), 9u);
-    for (const auto& d : {issue_erm(), issue_lra()}) {
+    for (const auto& d : {example_erm(), example_lra()}) {
         for (const auto& path : clefs) {
             const Clef written = load_clef_file(path);
             const auto fit = fit_clef(written, d);
@@ -398,14 +382,14 @@ TEST(ShippedClefs, LraPhoneBecomesRoughnessOnBothExampleActuators) {
     });
     ASSERT_NE(lra_phone_path, path.end());
     const Clef written = load_clef_file(*lra_phone_path);
-    EXPECT_EQ(fit_clef(written, issue_lra()).strings, ClefFit::Strings::roughness);
-    EXPECT_EQ(fit_clef(written, issue_erm()).strings, ClefFit::Strings::roughness);
+    EXPECT_EQ(fit_clef(written, example_lra()).strings, ClefFit::Strings::roughness);
+    EXPECT_EQ(fit_clef(written, example_erm()).strings, ClefFit::Strings::roughness);
 }
 
 TEST(ShippedScores, EachStaysValidThroughItsFittedClefs) {
     const auto scores = shipped(".score.xml");
     ASSERT_GE(scores.size(), 20u);
-    for (const auto& d : {issue_erm(), issue_lra()}) {
+    for (const auto& d : {example_erm(), example_lra()}) {
         for (const auto& path : scores) {
             const ScoreBundle written = load_score_file(path);
             EXPECT_NO_THROW(bind_clefs(read_score(read_document_file(path), path.string()),

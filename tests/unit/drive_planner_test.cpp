@@ -12,10 +12,14 @@
 #include "daemon/render/cue_adaptation.hpp"
 #include "daemon/render/drive_planner.hpp"
 #include "daemon/render/performance.hpp"
+#include "tests/support/example_actuators.hpp"
 #include "tests/support/support.hpp"
 
 namespace vibscore::render {
 namespace {
+
+using vibscore::testing::example_erm;
+using vibscore::testing::example_lra;
 
 using actuator::Brake;
 using actuator::Declaration;
@@ -25,26 +29,6 @@ using actuator::Physics;
 constexpr double kRated = 0.7;
 constexpr double kFull = 1.0 / kRated;  // strength at full scale
 constexpr double kUp = 0.040, kDown = 0.080;
-
-Declaration erm(Brake brake = Brake::reverse) {
-    Declaration d;
-    d.kind = Kind::erm;
-    d.rated_drive = kRated;
-    d.spin_up_s = kUp;
-    d.spin_down_s = kDown;
-    d.brake = brake;
-    return d;
-}
-
-Declaration lra(Brake brake = Brake::reverse) {
-    Declaration d;
-    d.kind = Kind::lra;
-    d.rated_drive = kRated;
-    d.resonance_hz = 175.0;
-    d.q = 15.0;
-    d.brake = brake;
-    return d;
-}
 
 const double kTau = actuator::lra_time_constant_s(175.0, 15.0);
 
@@ -66,7 +50,7 @@ double strength_at(const Declaration& d, const std::vector<Cue>& drives, double 
 }
 
 TEST(DrivePlanner, StrengthOneIsTheRatedDrive) {
-    DrivePlanner planner(erm(), {.compensation = false});
+    DrivePlanner planner(example_erm(), {.compensation = false});
     EXPECT_THAT(plan(planner, 0.0, 1.0, 1.0), ::testing::ElementsAre(DriveIs(0.0, kRated, 0.0)));
     EXPECT_THAT(plan(planner, 1.0, 2.0, 0.5), ::testing::ElementsAre(DriveIs(1.0, 0.35, 0.0)));
     // Compensation off still never exceeds full scale.
@@ -74,17 +58,17 @@ TEST(DrivePlanner, StrengthOneIsTheRatedDrive) {
 }
 
 TEST(DrivePlanner, AnOnsetIsOverdrivenExactlyAsLongAsTheModelTakesThenHeld) {
-    DrivePlanner planner(erm(), {});
+    DrivePlanner planner(example_erm(), {});
     const auto drives = plan(planner, 0.0, 1.0, 1.0);
     const double overdrive = kUp * std::log(kFull / (kFull - 1.0));
     ASSERT_THAT(drives,
                 ::testing::ElementsAre(DriveIs(0.0, 1.0, 0.0), DriveIs(overdrive, kRated, 1e-12)));
-    EXPECT_NEAR(strength_at(erm(), drives, overdrive), 1.0, 1e-5);
+    EXPECT_NEAR(strength_at(example_erm(), drives, overdrive), 1.0, 1e-5);
     EXPECT_NEAR(Physics::strength(planner.carry().state), 1.0, 1e-9);
 }
 
 TEST(DrivePlanner, OverdriveStartsFromWhereTheActuatorIsMidDecay) {
-    DrivePlanner planner(erm(Brake::none), {});
+    DrivePlanner planner(example_erm(Brake::none), {});
     plan(planner, 0.0, 1.0, 1.0);
     plan(planner, 1.0, 1.02, 0.0);  // coasts 20 ms: down to e^(-1/4)
     const double left = std::exp(-0.020 / kDown);
@@ -96,31 +80,31 @@ TEST(DrivePlanner, OverdriveStartsFromWhereTheActuatorIsMidDecay) {
 
 TEST(DrivePlanner, OverdriveNeverOutlastsItsNoteNorTheModelsNeed) {
     // A note shorter than the overdrive it would need: full scale throughout, and no more.
-    DrivePlanner planner(erm(), {});
+    DrivePlanner planner(example_erm(), {});
     const double needed = kUp * std::log(kFull / (kFull - 1.0));
     EXPECT_THAT(plan(planner, 0.0, needed * 0.5, 1.0),
                 ::testing::ElementsAre(DriveIs(0.0, 1.0, 0.0)));
     // The edge: an overdrive just above the shortest one backends resolve is kept ...
     const double min_pulse = PlannerOptions{}.min_pulse_s;
     const double just_above = kFull - (kFull - 0.5) * std::exp(-(min_pulse * 1.01) / kUp);
-    DrivePlanner above(erm(), {});
+    DrivePlanner above(example_erm(), {});
     plan(above, 0.0, 1.0, 0.5);
     EXPECT_THAT(plan(above, 1.0, 2.0, just_above),
                 ::testing::ElementsAre(DriveIs(1.0, 1.0, 0.0),
                                        DriveIs(1.0 + min_pulse * 1.01, just_above * kRated, 1e-9)));
     // ... one just below it goes straight to the hold.
     const double just_below = kFull - (kFull - 0.5) * std::exp(-(min_pulse * 0.99) / kUp);
-    DrivePlanner below(erm(), {});
+    DrivePlanner below(example_erm(), {});
     plan(below, 0.0, 1.0, 0.5);
     EXPECT_THAT(plan(below, 1.0, 2.0, just_below),
                 ::testing::ElementsAre(DriveIs(1.0, just_below * kRated, 0.0)));
 }
 
 TEST(DrivePlanner, NeverAboveFullScaleAndWhatIsOutOfReachIsDrivenFull) {
-    DrivePlanner planner(erm(), {});
+    DrivePlanner planner(example_erm(), {});
     EXPECT_THAT(plan(planner, 0.0, 1.0, 2.0), ::testing::ElementsAre(DriveIs(0.0, 1.0, 0.0)));
     // The last strength full scale holds is reached, and held at full scale.
-    DrivePlanner edge(erm(), {});
+    DrivePlanner edge(example_erm(), {});
     const auto drives = plan(edge, 0.0, 1.0, kFull);
     for (const auto& cue : drives) {
         EXPECT_LE(std::abs(cue.amplitude), 1.0);
@@ -128,7 +112,7 @@ TEST(DrivePlanner, NeverAboveFullScaleAndWhatIsOutOfReachIsDrivenFull) {
 }
 
 TEST(DrivePlanner, AnEndIsBrakedBackwardsForExactlyAsLongAsItTakesToStop) {
-    DrivePlanner planner(erm(), {.reverse = true});
+    DrivePlanner planner(example_erm(), {.reverse = true});
     plan(planner, 0.0, 1.0, 1.0);
     const auto drives = plan(planner, 1.0, INFINITY, 0.0);
     const double brake = kUp * std::log((1.0 + kFull) / kFull);
@@ -137,7 +121,7 @@ TEST(DrivePlanner, AnEndIsBrakedBackwardsForExactlyAsLongAsItTakesToStop) {
 }
 
 TEST(DrivePlanner, AFallIsBrakedToTheWrittenLevelThenHeld) {
-    DrivePlanner planner(erm(), {.reverse = true});
+    DrivePlanner planner(example_erm(), {.reverse = true});
     plan(planner, 0.0, 1.0, 1.0);
     const auto drives = plan(planner, 1.0, 2.0, 0.5);
     const double brake = kUp * std::log((1.0 + kFull) / (0.5 + kFull));
@@ -146,7 +130,7 @@ TEST(DrivePlanner, AFallIsBrakedToTheWrittenLevelThenHeld) {
 }
 
 TEST(DrivePlanner, WithoutReverseAFallCoastsToTheWrittenLevel) {
-    DrivePlanner planner(erm(Brake::none), {.reverse = false});
+    DrivePlanner planner(example_erm(Brake::none), {.reverse = false});
     plan(planner, 0.0, 1.0, 1.0);
     const auto drives = plan(planner, 1.0, 2.0, 0.5);
     EXPECT_THAT(drives, ::testing::ElementsAre(DriveIs(1.0, 0.0, 0.0),
@@ -154,46 +138,46 @@ TEST(DrivePlanner, WithoutReverseAFallCoastsToTheWrittenLevel) {
 }
 
 TEST(DrivePlanner, WithoutReverseANoteEndsEarlySoItsFeltEndIsOnTime) {
-    DrivePlanner planner(erm(Brake::none), {.reverse = false});
+    DrivePlanner planner(example_erm(Brake::none), {.reverse = false});
     const auto drives = plan(planner, 0.0, 1.0, 1.0, 0.0, true);
     // Long enough to settle: the drive stops spin-down x ln 2 early, so the strength is half the
     // written one exactly at the written end.
     ASSERT_EQ(drives.size(), 3u);
     EXPECT_NEAR(drives[2].at, 1.0 - kDown * std::log(2.0), 1e-9);
     EXPECT_EQ(drives[2].amplitude, 0.0);
-    EXPECT_NEAR(strength_at(erm(Brake::none), drives, 1.0), 0.5, 1e-5);
+    EXPECT_NEAR(strength_at(example_erm(Brake::none), drives, 1.0), 0.5, 1e-5);
     EXPECT_NEAR(Physics::strength(planner.carry().state), 0.5, 1e-9);
 }
 
 TEST(DrivePlanner, ANoteTooShortToLingerKeepsAllItsDrive) {
-    DrivePlanner planner(erm(Brake::none), {.reverse = false});
+    DrivePlanner planner(example_erm(Brake::none), {.reverse = false});
     // 5 ms at full scale from rest: strength 0.16 at the end, below half of 1.
     EXPECT_THAT(plan(planner, 0.0, 0.005, 1.0, 0.0, true),
                 ::testing::ElementsAre(DriveIs(0.0, 1.0, 0.0)));
 }
 
 TEST(DrivePlanner, WithReverseANoteKeepsItsDriveToTheWrittenEnd) {
-    DrivePlanner planner(erm(), {.reverse = true});
+    DrivePlanner planner(example_erm(), {.reverse = true});
     const auto drives = plan(planner, 0.0, 1.0, 1.0, 0.0, true);
     EXPECT_EQ(drives.size(), 2u);
     EXPECT_EQ(drives.back().amplitude, kRated);
 }
 
 TEST(DrivePlanner, AnLraIsDrivenHarderAwayFromItsResonance) {
-    DrivePlanner planner(lra(), {});
+    DrivePlanner planner(example_lra(), {});
     plan(planner, 0.0, 1.0, 0.5, 181.0);
     const double gain = Physics::lra_gain(181.0, 175.0, 15.0);
     EXPECT_NEAR(planner.carry().drive.amplitude, 0.5 * kRated / gain, 1e-12);
     EXPECT_EQ(planner.carry().drive.frequency_hz, 181.0);
     EXPECT_NEAR(Physics::strength(planner.carry().state), 0.5, 0.01);
     // Beyond what full scale gives there: full scale, and the strength stays short.
-    DrivePlanner far(lra(), {});
+    DrivePlanner far(example_lra(), {});
     plan(far, 0.0, 1.0, 0.5, 235.0);
     EXPECT_EQ(far.carry().drive.amplitude, 1.0);
 }
 
 TEST(DrivePlanner, AnLraIsBrakedInAntiPhaseAtItsOwnFrequency) {
-    DrivePlanner planner(lra(), {.reverse = true});
+    DrivePlanner planner(example_lra(), {.reverse = true});
     plan(planner, 0.0, 1.0, 1.0, 175.0);
     const auto drives = plan(planner, 1.0, INFINITY, 0.0, 0.0);
     const double brake = kTau * std::log((1.0 + kFull) / kFull);
@@ -203,7 +187,7 @@ TEST(DrivePlanner, AnLraIsBrakedInAntiPhaseAtItsOwnFrequency) {
 }
 
 TEST(DrivePlanner, TheScaleIsThePlaybacksIntensity) {
-    DrivePlanner planner(erm(), {.scale = 0.5, .compensation = false});
+    DrivePlanner planner(example_erm(), {.scale = 0.5, .compensation = false});
     EXPECT_THAT(plan(planner, 0.0, 1.0, 1.0), ::testing::ElementsAre(DriveIs(0.0, 0.35, 0.0)));
 }
 
@@ -215,7 +199,8 @@ TEST(DrivePlanner, KeepsItsLimitsOverAnyEnvelope) {
     std::uniform_real_distribution<double> strength(0.0, 1.6), length(0.001, 0.15),
         frequency(150.0, 200.0);
     for (const Declaration& declared :
-         {erm(Brake::reverse), erm(Brake::none), lra(Brake::reverse), lra(Brake::none)}) {
+         {example_erm(Brake::reverse), example_erm(Brake::none),
+          example_lra(175.0, 15.0, Brake::reverse), example_lra(175.0, 15.0, Brake::none)}) {
         const bool reverse = declared.brake == Brake::reverse;
         DrivePlanner planner(declared, {.reverse = reverse});
         const Physics physics(declared);
@@ -304,7 +289,7 @@ double lowest(const std::vector<double>& values, std::size_t from, std::size_t t
 }
 
 TEST(ActuatorDrives, LegatoAndPortamentoStayContinuousWhileTheDefaultSilenceIsFelt) {
-    for (const Declaration& declared : {erm(), lra()}) {
+    for (const Declaration& declared : {example_erm(), example_lra()}) {
         // Two quarter notes (200 ms each) from strength 1 to 0.5: tied, glided, or separated by
         // the default silence (30 ms at the first note's end).
         const auto legato = felt(
@@ -331,7 +316,7 @@ TEST(ActuatorDrives, AHairpinIsFollowedStepByStep) {
     // A crescendo from silence to 1 over a half note (400 ms), then a decrescendo back to
     // silence over another: once the actuator has caught up (20 ms), it stays within a few
     // hundredths of the written ramp.
-    for (const Declaration& declared : {erm(), lra()}) {
+    for (const Declaration& declared : {example_erm(), example_lra()}) {
         const auto hairpin = felt(
             "<Note length=\"half\" number=\"2\" string=\"2\" dynamics=\"crescendo\" "
             "legato=\"1\"/>"
@@ -351,16 +336,16 @@ TEST(ActuatorDrives, BrakeOnlyWhereTheBackendCanAndTheBoardIsDeclaredTo) {
     const auto has_negative = [](const std::vector<Cue>& cues) {
         return std::any_of(cues.begin(), cues.end(), [](const Cue& c) { return c.amplitude < 0; });
     };
-    EXPECT_TRUE(has_negative(adapt_cues(note, 1.0, declared(erm(Brake::reverse), true))));
-    EXPECT_FALSE(has_negative(adapt_cues(note, 1.0, declared(erm(Brake::reverse), false))));
-    EXPECT_FALSE(has_negative(adapt_cues(note, 1.0, declared(erm(Brake::none), true))));
+    EXPECT_TRUE(has_negative(adapt_cues(note, 1.0, declared(example_erm(Brake::reverse), true))));
+    EXPECT_FALSE(has_negative(adapt_cues(note, 1.0, declared(example_erm(Brake::reverse), false))));
+    EXPECT_FALSE(has_negative(adapt_cues(note, 1.0, declared(example_erm(Brake::none), true))));
 }
 
 TEST(ActuatorDrives, PositionsStayInTimeOrderAmongThePlannedDrives) {
     const auto cues =
         adapt_cues({drive(0.0, 1.0), position(0.0, 0), drive(0.2, 0.0), position(0.2, 1),
                     position(0.3, 2), drive(0.3, 0.8), drive(0.5, 0.0)},
-                   0.5, declared(erm()));
+                   0.5, declared(example_erm()));
     EXPECT_TRUE(std::is_sorted(cues.begin(), cues.end(),
                                [](const Cue& a, const Cue& b) { return a.at < b.at; }));
     EXPECT_EQ(std::count_if(cues.begin(), cues.end(),
@@ -371,12 +356,12 @@ TEST(ActuatorDrives, PositionsStayInTimeOrderAmongThePlannedDrives) {
 TEST(ActuatorDrives, OnlyTheLastPassBrakesBeyondItsEndAndTheNextPassGoesOnFromThere) {
     const std::vector<Cue> note{drive(0.0, 1.0), drive(0.1, 0.0)};  // ends where the pass ends
     auto carry = std::make_shared<PlannerCarry>();
-    const auto first = adapt_cues(note, 0.1, declared(erm()));
+    const auto first = adapt_cues(note, 0.1, declared(example_erm()));
     EXPECT_GT(first.back().at, 0.1);  // one pass, the last: the brake runs on after it
 
     AdaptedCueStream repeated(
         std::make_unique<CueListStream>(std::make_shared<const std::vector<Cue>>(note)), 0.1,
-        declared(erm()), PassLink{carry, false});
+        declared(example_erm()), PassLink{carry, false});
     const auto pass = collect(repeated);
     for (const Cue& cue : pass) {
         EXPECT_LT(cue.at, 0.1);
@@ -386,7 +371,7 @@ TEST(ActuatorDrives, OnlyTheLastPassBrakesBeyondItsEndAndTheNextPassGoesOnFromTh
     // The next pass starts with a rest: it brakes what the last one left spinning.
     AdaptedCueStream next(std::make_unique<CueListStream>(std::make_shared<const std::vector<Cue>>(
                               std::vector<Cue>{drive(0.2, 1.0), drive(0.3, 0.0)})),
-                          0.3, declared(erm()), PassLink{carry, true});
+                          0.3, declared(example_erm()), PassLink{carry, true});
     const auto after = collect(next);
     ASSERT_FALSE(after.empty());
     EXPECT_EQ(after.front().at, 0.0);
@@ -394,7 +379,7 @@ TEST(ActuatorDrives, OnlyTheLastPassBrakesBeyondItsEndAndTheNextPassGoesOnFromTh
 }
 
 TEST(ActuatorDrives, OnOffActuatorsGetOverdriveAndTheEarlyEndAsPulses) {
-    CueAdaptation adaptation = declared(erm(Brake::none), false);
+    CueAdaptation adaptation = declared(example_erm(Brake::none), false);
     adaptation.amplitude = false;
     const auto cues = adapt_cues({drive(0.0, 0.5), drive(0.4, 0.0)}, 0.4, adaptation);
     ASSERT_GE(cues.size(), 3u);

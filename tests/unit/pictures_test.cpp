@@ -26,12 +26,16 @@
 #include "daemon/render/actuator_response.hpp"
 #include "daemon/render/waveform.hpp"
 #include "score/bundle.hpp"
+#include "tests/support/example_actuators.hpp"
 #include "tests/support/run_command.hpp"
 #include "tests/support/support.hpp"
 #include "tests/unit/picture_ink.hpp"
 
 namespace vibscore {
 namespace {
+
+using vibscore::testing::example_erm;
+using vibscore::testing::example_lra;
 
 using pictures::Layers;
 using pictures::ResponsePicture;
@@ -799,18 +803,6 @@ TEST(SignalPicture, NumbersEachBarWithinItsOwnWidth) {
 
 // --- Actuator response ---------------------------------------------------------------------
 
-// The feel issue's ERM (issue 22): spin-up 40 ms, spin-down 80 ms, rated-drive 0.7, braked by
-// reverse drive.
-actuator::Declaration issue_erm() {
-    actuator::Declaration erm;
-    erm.kind = actuator::Kind::erm;
-    erm.spin_up_s = 0.040;
-    erm.spin_down_s = 0.080;
-    erm.rated_drive = 0.7;
-    erm.brake = actuator::Brake::reverse;
-    return erm;
-}
-
 render::ActuatorResponse response_of(const render::Performance& performance,
                                      const actuator::Declaration& declared) {
     render::ResponseOptions options;
@@ -877,7 +869,7 @@ int ink_near(const Image& ink, const ResponsePicture& picture, double t, double 
 }
 
 TEST(ResponsePicture, DrawsEachStrengthWhereItIsInItsOwnLayer) {
-    const Felt felt(load_score_file(shipped("alarm.score.xml")), issue_erm(), "alarm");
+    const Felt felt(load_score_file(shipped("alarm.score.xml")), example_erm(), "alarm");
     const auto& picture = felt.picture;
     EXPECT_EQ(Image::of(picture).width(), 960);
     EXPECT_EQ(Image::of(picture).height(), 340);
@@ -902,7 +894,7 @@ TEST(ResponsePicture, DrawsEachStrengthWhereItIsInItsOwnLayer) {
 }
 
 TEST(ResponsePicture, ShowsTheUncompensatedErmRingingOnWhereTheCompensatedOneStops) {
-    const Felt felt(load_score_file(shipped(kResponseDocScore)), issue_erm(), "message");
+    const Felt felt(load_score_file(shipped(kResponseDocScore)), example_erm(), "message");
     const double at = felt.performance.duration() + 0.04;
     const auto off = Image::ink_of(felt.picture, ResponsePicture::uncompensated);
     const auto on = Image::ink_of(felt.picture, ResponsePicture::compensated);
@@ -931,7 +923,7 @@ int pixels_of(const Image& image, const double* ink) {
 }
 
 TEST(ResponsePicture, TellsTheThreeTracesApartByColourAndTheLegendShowsEach) {
-    const Felt felt(load_score_file(shipped("alarm.score.xml")), issue_erm(), "alarm");
+    const Felt felt(load_score_file(shipped("alarm.score.xml")), example_erm(), "alarm");
     const double* inks[] = {ResponsePicture::written_ink, ResponsePicture::uncompensated_ink,
                             ResponsePicture::compensated_ink};
     const ResponsePicture::Layer traces[] = {
@@ -952,15 +944,10 @@ TEST(ResponsePicture, TellsTheThreeTracesApartByColourAndTheLegendShowsEach) {
 }
 
 TEST(ResponsePicture, KeepsEveryMarkApart) {
-    actuator::Declaration lra;
-    lra.kind = actuator::Kind::lra;
-    lra.resonance_hz = 175;
-    lra.q = 15;
-    lra.rated_drive = 0.7;
-    lra.brake = actuator::Brake::reverse;
+    const actuator::Declaration lra = example_lra();
     Layers inked = 0;
     {
-        const Felt felt(load_score_file(shipped("alarm.score.xml")), issue_erm(), "alarm");
+        const Felt felt(load_score_file(shipped("alarm.score.xml")), example_erm(), "alarm");
         inked |= expect_apart(felt.picture, kResponseLayers, kResponseMayMeet);
     }
     {
@@ -974,7 +961,7 @@ TEST(ResponsePicture, KeepsEveryMarkApart) {
 
 TEST(GoldenComparison, FailsWhenTheCompensatedStrengthMovesOrVanishes) {
     const auto golden_png = shipped("..") / "docs" / "pictures" / kResponseDocPicture;
-    const Felt felt(load_score_file(shipped(kResponseDocScore)), issue_erm(),
+    const Felt felt(load_score_file(shipped(kResponseDocScore)), example_erm(),
                     load_score_file(shipped(kResponseDocScore)).score.title);
     const auto drawn = Image::of(felt.picture);
     const testing::GoldenCheck check(felt.picture);
