@@ -291,6 +291,26 @@ void ButtonScheme::open_clef_menu(const EditorModel& model) {
     mode_ = Mode::clef_menu;
 }
 
+// The buttons of every list of choices: Up and Down move through `size` choices, Left and Right
+// do nothing, Back goes to `back_to`. True for Select, whose choice the caller carries out.
+bool ButtonScheme::choosing(Button button, int size, Mode back_to) {
+    switch (button) {
+        case Button::up:
+        case Button::down:
+            list_.step(button == Button::up ? -1 : 1, size);
+            return false;
+        case Button::left:
+        case Button::right:
+            return false;
+        case Button::back:
+            mode_ = back_to;
+            return false;
+        case Button::select:
+            return true;
+    }
+    return false;
+}
+
 Request ButtonScheme::list_press(Button button, EditorModel& model) {
     const int size = mode_ == Mode::clef_menu   ? static_cast<int>(model.clef_choices().size())
                      : mode_ == Mode::open_menu ? static_cast<int>(openable_->size())
@@ -404,21 +424,8 @@ void ButtonScheme::open_use_for(bool save_as) {
 
 Request ButtonScheme::use_for_press(Button button, EditorModel& model) {
     const int size = static_cast<int>(events_->size()) + 1;
-    switch (button) {
-        case Button::up:
-            list_.step(-1, size);
-            return {};
-        case Button::down:
-            list_.step(+1, size);
-            return {};
-        case Button::left:
-        case Button::right:
-            return {};
-        case Button::back:
-            mode_ = Mode::browse;
-            return {};
-        case Button::select:
-            break;
+    if (!choosing(button, size, Mode::browse)) {
+        return {};
     }
     const auto chosen = static_cast<std::size_t>(list_.index());
     if (chosen < events_->size()) {
@@ -458,19 +465,8 @@ void ButtonScheme::open_clef_list(EditorModel& model) {
 
 Request ButtonScheme::clef_list_press(Button button, EditorModel&) {
     const int size = static_cast<int>(clef_book_->clefs().size());
-    switch (button) {
-        case Button::up:
-        case Button::down:
-            list_.step(button == Button::up ? -1 : 1, size);
-            return {};
-        case Button::left:
-        case Button::right:
-            return {};
-        case Button::back:
-            mode_ = Mode::menu;
-            return {};
-        case Button::select:
-            break;
+    if (!choosing(button, size, Mode::menu)) {
+        return {};
     }
     const auto& chosen = clef_book_->clefs()[static_cast<std::size_t>(list_.index())];
     clef_editor_ = ClefEditor(chosen.declaration.id, chosen.clef);
@@ -543,19 +539,8 @@ Request ButtonScheme::clef_name_press(Button button) {
 }
 
 Request ButtonScheme::clef_close_press(Button button) {
-    switch (button) {
-        case Button::up:
-        case Button::down:
-            list_.step(button == Button::up ? -1 : 1, 3);
-            return {};
-        case Button::left:
-        case Button::right:
-            return {};
-        case Button::back:
-            mode_ = Mode::clef_edit;
-            return {};
-        case Button::select:
-            break;
+    if (!choosing(button, 3, Mode::clef_edit)) {
+        return {};
     }
     switch (list_.index()) {
         case 0:
@@ -583,19 +568,8 @@ void ButtonScheme::show_assigned(const std::string& event, const std::string& sc
 }
 
 Request ButtonScheme::assigned_press(Button button) {
-    switch (button) {
-        case Button::up:
-        case Button::down:
-            list_.step(button == Button::up ? -1 : 1, 2);
-            return {};
-        case Button::left:
-        case Button::right:
-            return {};
-        case Button::back:
-            mode_ = Mode::browse;
-            return {};
-        case Button::select:
-            break;
+    if (!choosing(button, 2, Mode::browse)) {
+        return {};
     }
     mode_ = Mode::browse;
     if (list_.index() == 1) {
@@ -635,21 +609,8 @@ Request ButtonScheme::name_press(Button button) {
 }
 
 Request ButtonScheme::replace_press(Button button, const EditorModel& model) {
-    switch (button) {
-        case Button::up:
-            list_.step(-1, kReplaceChoices);
-            return {};
-        case Button::down:
-            list_.step(+1, kReplaceChoices);
-            return {};
-        case Button::left:
-        case Button::right:
-            return {};
-        case Button::back:
-            mode_ = Mode::browse;
-            return {};
-        case Button::select:
-            break;
+    if (!choosing(button, kReplaceChoices, Mode::browse)) {
+        return {};
     }
     switch (list_.index()) {
         case 0:

@@ -178,6 +178,7 @@ class ButtonScheme {
     Request ask_quit(const EditorModel& model);
     void leave_layers(EditorModel& model);
     Request name_press(Button button);
+    bool choosing(Button button, int size, Mode back_to);
     Request replace_press(Button button, const EditorModel& model);
     // Saves under `name`, or asks first when it is taken.
     Request save_under(const std::string& name, bool then_quit);
