@@ -10,11 +10,47 @@
 namespace vibscore::daemon {
 
 ActuatorHost::ActuatorHost(const DaemonConfig& config)
-    : config_(config),
-      driver_(config.driver),
-      settings_(config.settings_of(config.driver)),
-      drivers_dir_(config.drivers_dir),
-      actuator_(open(driver_, settings_, drivers_dir_)) {}
+    : config_(config), drivers_dir_(config.drivers_dir), configured_(config.driver) {
+    auto opened = open_naming(config.driver, configured_reason());
+    driver_ = opened.driver;
+    settings_ = config.settings_of(opened.driver);
+    auto_fell_back_ = opened.fell_back;
+    reason_ = opened.reason;
+    actuator_ = std::move(opened.actuator);
+}
+
+std::string ActuatorHost::configured_reason() const {
+    const std::string where = config_.where("daemon", "driver");  // "file:line: " or ""
+    return (where.empty() ? "configured: " : "configured at " + where) +
+           "driver = " + config_.driver;
+}
+
+drivers::AutoChoice ActuatorHost::open_naming(const std::string& driver,
+                                              const std::string& reason) const {
+    const auto open_configured = [this](const std::string& name) {
+        return open(name, config_.settings_of(name), config_.drivers_dir);
+    };
+    if (driver != drivers::kAutoDriver) {
+        return {driver, reason, false, open_configured(driver)};
+    }
+    // "file:line: " as "file:line" (or "" when the settings came from no file).
+    const auto at = [this](const std::string& section, const std::string& key) {
+        const std::string where = config_.where(section, key);
+        return where.substr(0, where.rfind(": "));
+    };
+    std::map<std::string, std::string> sections;
+    for (const auto& [name, settings] : config_.driver_settings) {
+        sections[name] = at(name, "");
+    }
+    auto choice = drivers::choose_driver(drivers::auto_search(
+        at("daemon", "driver"), sections, config_.settings_of("evdev"), open_configured));
+    if (choice.fell_back) {
+        log::warning(choice.reason);
+    } else {
+        log::info(choice.reason);
+    }
+    return choice;
+}
 
 std::unique_ptr<drivers::Actuator> ActuatorHost::open(
     const std::string& driver, const DriverSettingsMap& settings,
@@ -31,8 +67,17 @@ std::vector<drivers::DriverInfo> ActuatorHost::drivers() const {
 }
 
 void ActuatorHost::switch_to(const std::string& driver) {
+    switch_running(
+        driver,
+        "switched at run time (SwitchDriver, vibscore driver " + driver +
+            "); a reload or a restart returns to the configuration's driver = " + config_.driver,
+        false);
+}
+
+void ActuatorHost::switch_running(const std::string& driver, const std::string& reason,
+                                  bool follows_config) {
     try {
-        open_in_place_of_running(driver);
+        open_in_place_of_running(driver, reason, follows_config);
     } catch (...) {
         if (changed_) {
             changed_();
@@ -44,8 +89,8 @@ void ActuatorHost::switch_to(const std::string& driver) {
     }
 }
 
-void ActuatorHost::open_in_place_of_running(const std::string& driver) {
-    const DriverSettingsMap settings = config_.settings_of(driver);
+void ActuatorHost::open_in_place_of_running(const std::string& driver, const std::string& reason,
+                                            bool follows_config) {
     const std::filesystem::path drivers_dir = config_.drivers_dir;
     // The player must never point at a closed backend, not even for a moment.
     drivers::DisconnectedActuator switching("switching to driver " + driver);
@@ -54,11 +99,13 @@ void ActuatorHost::open_in_place_of_running(const std::string& driver) {
         player_->replace_actuator(switching);
     }
     actuator_.reset();
+    drivers::AutoChoice opened;
     try {
-        actuator_ = open(driver, settings, drivers_dir);
+        opened = open_naming(driver, reason);
     } catch (const std::exception& error) {
         log::error("driver " + driver + " failed to open (" + error.what() + "); reopening " +
                    driver_);
+        follows_config_ = false;  // a reload tries the configuration's driver again
         try {
             actuator_ = open(driver_, settings_, drivers_dir_);
         } catch (const std::exception& reopen_error) {
@@ -67,6 +114,8 @@ void ActuatorHost::open_in_place_of_running(const std::string& driver) {
                 " would not reopen (" + reopen_error.what() + ")");
             driver_ = "none";
             settings_.clear();
+            reason_ = "driver " + driver + " failed to open (" + error.what() +
+                      ") and the one before would not reopen (" + reopen_error.what() + ")";
             log::error(std::string("no actuator until the next switch or reload: ") +
                        reopen_error.what());
         }
@@ -75,21 +124,29 @@ void ActuatorHost::open_in_place_of_running(const std::string& driver) {
         }
         throw;
     }
+    actuator_ = std::move(opened.actuator);
     if (player_) {
         player_->replace_actuator(*actuator_);
     }
-    driver_ = driver;
-    settings_ = settings;
+    driver_ = opened.driver;
+    settings_ = config_.settings_of(opened.driver);
     drivers_dir_ = drivers_dir;
-    log::info("driver is now " + driver);
+    reason_ = opened.reason;
+    auto_fell_back_ = opened.fell_back;
+    follows_config_ = follows_config;
+    if (follows_config) {
+        configured_ = config_.driver;
+    }
+    log::info("driver is now " + driver_);
 }
 
 bool ActuatorHost::follow_config() {
-    const bool differs = config_.driver != driver_ ||
-                         config_.settings_of(config_.driver) != settings_ ||
+    const bool differs = config_.driver != configured_ || !follows_config_ ||
+                         (config_.driver == drivers::kAutoDriver && auto_fell_back_) ||
+                         config_.settings_of(driver_) != settings_ ||
                          config_.drivers_dir != drivers_dir_;
     if (differs) {
-        switch_to(config_.driver);
+        switch_running(config_.driver, configured_reason(), true);
     }
     return differs;
 }

@@ -9,6 +9,7 @@
 
 #include "daemon/config.hpp"
 #include "daemon/drivers/actuator.hpp"
+#include "daemon/drivers/auto_driver.hpp"
 #include "daemon/drivers/available.hpp"
 #include "daemon/player.hpp"
 
@@ -22,13 +23,17 @@ using DriverSettingsMap = std::map<std::string, std::string>;
 // be requested twice).
 class ActuatorHost {
   public:
-    // Opens config.driver with its settings. `config` is the daemon's running configuration:
-    // every later switch reads the settings and the drivers directory there, so it must outlive
-    // the host (a reload replaces its contents, then calls follow_config()).
+    // Opens config.driver with its settings ("auto": the backend drivers::choose_driver finds).
+    // `config` is the daemon's running configuration: every later switch reads the settings and
+    // the drivers directory there, so it must outlive the host (a reload replaces its contents,
+    // then calls follow_config()).
     explicit ActuatorHost(const DaemonConfig& config);
 
     drivers::Actuator& actuator() { return *actuator_; }
     const std::string& driver() const { return driver_; }
+    // Why driver() runs, for people (the DriverReason property): the configuration, what auto
+    // found or searched, or a run-time switch.
+    const std::string& reason() const { return reason_; }
     drivers::Capabilities capabilities() const { return actuator_->capabilities(); }
     // The built-in backends, then the driver modules of the configured drivers directory.
     std::vector<drivers::DriverInfo> drivers() const;
@@ -45,14 +50,23 @@ class ActuatorHost {
     void switch_to(const std::string& driver);
 
     // After the running configuration changed: switches to its driver when the driver, its
-    // settings or the drivers directory differ from what runs. Returns whether it switched.
+    // settings or the drivers directory differ from what runs, or what runs came from a
+    // run-time switch. With driver = auto it chooses again when the last choice fell back to
+    // sim (a device may have appeared since). Returns whether it switched.
     bool follow_config();
 
   private:
+    // What runs and why: `driver` opened (or, for "auto", what it chose) in place of the
+    // running backend. Changes nothing when it throws.
+    void switch_running(const std::string& driver, const std::string& reason, bool follows_config);
+    void open_in_place_of_running(const std::string& driver, const std::string& reason,
+                                  bool follows_config);
+    drivers::AutoChoice open_naming(const std::string& driver, const std::string& reason) const;
+    // The reason of a driver the configuration names.
+    std::string configured_reason() const;
     std::unique_ptr<drivers::Actuator> open(const std::string& driver,
                                             const DriverSettingsMap& settings,
                                             const std::filesystem::path& drivers_dir) const;
-    void open_in_place_of_running(const std::string& driver);
 
     const DaemonConfig& config_;
     Player* player_ = nullptr;
@@ -61,6 +75,10 @@ class ActuatorHost {
     std::string driver_;
     DriverSettingsMap settings_;
     std::filesystem::path drivers_dir_;
+    std::string configured_;       // the configuration's driver when it was last followed
+    bool follows_config_ = true;   // false after a run-time switch
+    bool auto_fell_back_ = false;  // auto found nothing and runs sim
+    std::string reason_;
     std::unique_ptr<drivers::Actuator> actuator_;
 };
 

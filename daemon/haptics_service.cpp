@@ -38,6 +38,7 @@ HapticsService::HapticsService(sdbus::IConnection& connection, const DaemonConfi
       host_(host),
       authorizer_(authorizer),
       announced_driver_(Driver()),
+      announced_reason_(DriverReason()),
       announced_capabilities_(Capabilities()) {
     vanish_watch_ = dbus::watch_connections_leaving(connection, [this](const std::string& name) {
         callers_.forget(name);
@@ -66,6 +67,16 @@ std::string HapticsService::Driver() {
     });
 }
 
+std::string HapticsService::DriverReason() {
+    return guarded("DriverReason", [&] {
+        return playback_.call([&host = host_](Player&) { return host.reason(); });
+    });
+}
+
+std::map<std::string, std::string> HapticsService::RegistryFolders() {
+    return {{"shipped", config_.shipped.string()}, {"store", config_.store.string()}};
+}
+
 std::vector<std::string> HapticsService::Capabilities() {
     return guarded("Capabilities", [&] {
         return playback_.call([&host = host_](Player&) { return host.capabilities().names(); });
@@ -79,21 +90,25 @@ double HapticsService::Intensity() {
 }
 
 void HapticsService::driver_switched() {
-    std::string driver;
+    std::string driver, reason;
     std::vector<std::string> capabilities;
     try {
         driver = Driver();
+        reason = DriverReason();
         capabilities = Capabilities();
     } catch (const sdbus::Error& error) {
         log::error("after a driver switch: " + error.getMessage());
         return;
     }
-    if (driver == announced_driver_ && capabilities == announced_capabilities_) {
+    if (driver == announced_driver_ && reason == announced_reason_ &&
+        capabilities == announced_capabilities_) {
         return;
     }
     announced_driver_ = std::move(driver);
+    announced_reason_ = std::move(reason);
     announced_capabilities_ = std::move(capabilities);
-    dbus::emit_properties_changed(getObject(), INTERFACE_NAME, {"Driver", "Capabilities"});
+    dbus::emit_properties_changed(getObject(), INTERFACE_NAME,
+                                  {"Driver", "DriverReason", "Capabilities"});
 }
 
 Caller HapticsService::admit_caller() {

@@ -245,10 +245,18 @@ int DaemonFixture::stop_daemon() {
 }
 
 void DaemonFixture::write_config(const std::string& daemon_lines, const std::string& sim_lines) {
-    config_ = dir_.write("vibscored.conf",
-                         "[daemon]\ndriver = sim\nshipped = " + required_env("VIBSCORE_CLEFS") +
-                             "\nstore = " + store_.string() + "\n" + daemon_lines + "\n[sim]\n" +
-                             sim_lines + "\n");
+    // The fixture's driver and the checkout's shipped documents, unless the lines set their own
+    // (a key set twice is an error).
+    const auto sets = [&](const std::string& key) {
+        return daemon_lines.starts_with(key + " =") ||
+               daemon_lines.find("\n" + key + " =") != std::string::npos;
+    };
+    const std::string driver = sets("driver") ? "" : "driver = sim\n";
+    const std::string shipped =
+        sets("shipped") ? "" : "shipped = " + required_env("VIBSCORE_CLEFS") + "\n";
+    config_ = dir_.write("vibscored.conf", "[daemon]\n" + driver + shipped +
+                                               "store = " + store_.string() + "\n" + daemon_lines +
+                                               "\n[sim]\n" + sim_lines + "\n");
 }
 
 void DaemonFixture::signal_daemon(int signo) const {
