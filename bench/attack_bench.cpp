@@ -11,12 +11,11 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
 
+#include "bench/flood.hpp"
 #include "bench/report.hpp"
 #include "bench/summary.hpp"
 #include "common/monotonic_clock.hpp"
@@ -30,40 +29,6 @@ namespace {
 using namespace vibscore;
 using testing::DaemonFixture;
 using Options = std::map<std::string, sdbus::Variant>;
-
-// 2,250 whole notes through lra-phone (0.8 s each): 30 minutes, inside the one-hour limit.
-std::string largest_inline_score() {
-    std::string bars;
-    for (int i = 0; i < 2250; ++i) {
-        bars += "<Bar clef=\"l\"><Note length=\"whole\" number=\"" + std::to_string(1 + i % 9) +
-                "\" string=\"" + std::to_string(1 + i % 6) + "\"/></Bar>";
-    }
-    return "<VibScore><Title>attack</Title><Clef id=\"l\" href=\"lra-phone.clef.xml\"/>" + bars +
-           "</VibScore>";
-}
-
-pid_t daemon_pid(const DaemonFixture& daemon) {
-    const auto status = daemon.busctl({"status", "--no-pager", "org.vibscore.Haptics1"});
-    std::istringstream lines(status.out);
-    std::string line;
-    while (std::getline(lines, line)) {
-        if (line.rfind("PID=", 0) == 0) {
-            return static_cast<pid_t>(std::stol(line.substr(4)));
-        }
-    }
-    return 0;
-}
-
-long status_kib(pid_t pid, const std::string& key) {
-    std::ifstream in("/proc/" + std::to_string(pid) + "/status");
-    std::string line;
-    while (std::getline(in, line)) {
-        if (line.rfind(key + ":", 0) == 0) {
-            return std::stol(line.substr(key.size() + 1));
-        }
-    }
-    return -1;
-}
 
 struct Window {
     std::int64_t from_ns, until_ns;
@@ -96,7 +61,7 @@ int main(int argc, char** argv) {
         }
     }
     const double duration = performance.duration();
-    const std::string attack_score = largest_inline_score();
+    const std::string attack_score = bench::largest_inline_score();
 
     auto ringtone_client = daemon.client();
     const auto first_row = daemon.trace_rows().size();
@@ -133,8 +98,8 @@ int main(int argc, char** argv) {
     }
     done = true;
     attacker.join();
-    const pid_t pid = daemon_pid(daemon);
-    const long peak_kib = pid > 0 ? status_kib(pid, "VmHWM") : -1;
+    const pid_t pid = bench::owner_pid(daemon);
+    const long peak_kib = pid > 0 ? bench::status_kib(pid, "VmHWM") : -1;
     ringtone_client->Stop(ringtone);
 
     const auto all = daemon.trace_rows();

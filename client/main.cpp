@@ -123,8 +123,10 @@ int main(int argc, char** argv) {
                              "format of OUT when its name does not tell: score, ahap, "
                              "android-json, android-xml, android-envelope, midi");
     convert_verb->add_option("--clef", convert_request.clef,
-                             "clef an import is written on: a clef file or a shipped clef's "
-                             "name (default lra-phone)");
+                             "clef an import is written on: a clef file, or a clef's name found "
+                             "as check finds one (--clefs, vibscored, the shipped clefs; "
+                             "default lra-phone)");
+    add_clefs_option(convert_verb, clef_search);
     convert_verb
         ->add_option("--track", convert_request.track,
                      "MIDI track to import, from 1 (default: the first with notes)")
@@ -267,7 +269,7 @@ int main(int argc, char** argv) {
         return render_document(render, clef_search, std::cout, std::cerr);
     }
     if (convert_verb->parsed()) {
-        return convert(convert_request, std::cout, std::cerr);
+        return convert(convert_request, clef_search, std::cout, std::cerr);
     }
     if (play_verb->parsed()) {
         return play(play_request, clef_search, std::cout, std::cerr);

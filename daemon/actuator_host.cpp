@@ -1,6 +1,7 @@
 #include "daemon/actuator_host.hpp"
 
 #include <exception>
+#include <stdexcept>
 #include <utility>
 
 #include "daemon/drivers/disconnected_actuator.hpp"
@@ -9,14 +10,55 @@
 
 namespace vibscore::daemon {
 
+namespace {
+
+std::shared_ptr<const drivers::ModuleCatalog> modules_of(const DaemonConfig& config) {
+    return config.modules ? config.modules : std::make_shared<const drivers::ModuleCatalog>();
+}
+
+}  // namespace
+
 ActuatorHost::ActuatorHost(const DaemonConfig& config)
-    : config_(config), drivers_dir_(config.drivers_dir), configured_(config.driver) {
-    auto opened = open_naming(config.driver, configured_reason());
-    driver_ = opened.driver;
-    settings_ = config.settings_of(opened.driver);
-    auto_fell_back_ = opened.fell_back;
-    reason_ = opened.reason;
-    actuator_ = std::move(opened.actuator);
+    : config_(config),
+      driver_(config.driver),
+      running_modules_(modules_of(config)),
+      configured_(config.driver),
+      modules_(running_modules_) {
+    const auto crashed = read_module_record(config.module_record);
+    remove_module_record(config.module_record);  // about the run that ended; this one starts afresh
+    if (crashed && crashed->name != driver_) {
+        log::warning("vibscored last ended while driver module " + crashed->name + " (" +
+                     crashed->path.string() + ") was in use, without closing it");
+    }
+    std::string reason = configured_reason();
+    if (const std::string refused = reason_to_run_sim_instead(crashed); !refused.empty()) {
+        log::error(refused +
+                   "; running driver sim instead, so the daemon serves. `vibscore driver " +
+                   driver_ + "` or a reload tries it again");
+        reason = refused + "; driver sim runs instead until a reload or `vibscore driver " +
+                 driver_ + "`";
+        driver_ = "sim";
+        follows_config_ = false;  // a reload tries the configured module again
+    }
+    try {
+        auto opened = open_naming(driver_, reason, *running_modules_);
+        driver_ = opened.driver;
+        settings_ = config.settings_of(opened.driver);
+        auto_fell_back_ = opened.fell_back;
+        reason_ = std::move(opened.reason);
+        actuator_ = std::move(opened.actuator);
+    } catch (const drivers::SettingError&) {
+        throw;  // names its file:line already
+    } catch (const std::invalid_argument& error) {
+        throw std::invalid_argument(config.where("daemon", "driver") + error.what());
+    } catch (const DeviceError& error) {
+        throw DeviceError(config.where(driver_, "") + error.what());
+    }
+}
+
+ActuatorHost::~ActuatorHost() {
+    actuator_.reset();  // closes the module before its record goes
+    record_.reset();
 }
 
 std::string ActuatorHost::configured_reason() const {
@@ -25,10 +67,29 @@ std::string ActuatorHost::configured_reason() const {
            "driver = " + config_.driver;
 }
 
-drivers::AutoChoice ActuatorHost::open_naming(const std::string& driver,
-                                              const std::string& reason) const {
-    const auto open_configured = [this](const std::string& name) {
-        return open(name, config_.settings_of(name), config_.drivers_dir);
+std::string ActuatorHost::reason_to_run_sim_instead(
+    const std::optional<ModuleInUse>& crashed) const {
+    if (driver_ == drivers::kAutoDriver || drivers::is_built_in_driver(driver_)) {
+        return {};
+    }
+    if (crashed && crashed->name == driver_) {
+        return "driver module " + driver_ + " (" + crashed->path.string() +
+               ") was in use when vibscored last ended without closing it (a crash in it, a "
+               "hang, or a kill)";
+    }
+    if (running_modules_->find(driver_) == nullptr) {
+        if (const auto* refused = running_modules_->refused_as(driver_)) {
+            return "driver " + driver_ + ": module " + refused->path.string() +
+                   " is not loaded: " + refused->reason;
+        }
+    }
+    return {};
+}
+
+drivers::AutoChoice ActuatorHost::open_naming(const std::string& driver, const std::string& reason,
+                                              const drivers::ModuleCatalog& modules) {
+    const auto open_configured = [this, &modules](const std::string& name) {
+        return open(name, config_.settings_of(name), modules);
     };
     if (driver != drivers::kAutoDriver) {
         return {driver, reason, false, open_configured(driver)};
@@ -52,18 +113,27 @@ drivers::AutoChoice ActuatorHost::open_naming(const std::string& driver,
     return choice;
 }
 
-std::unique_ptr<drivers::Actuator> ActuatorHost::open(
-    const std::string& driver, const DriverSettingsMap& settings,
-    const std::filesystem::path& drivers_dir) const {
+std::unique_ptr<drivers::Actuator> ActuatorHost::open(const std::string& driver,
+                                                      const DriverSettingsMap& settings,
+                                                      const drivers::ModuleCatalog& modules) {
+    std::optional<ModuleRecord> record;
+    if (const auto* module = drivers::is_built_in_driver(driver) ? nullptr : modules.find(driver)) {
+        record.emplace(config_.module_record, ModuleInUse{driver, module->path});
+    }
     try {
-        return drivers::make_actuator(driver, settings, drivers_dir);
+        auto actuator = drivers::make_actuator(driver, settings, modules);
+        if (record) {
+            record_.emplace(std::move(*record));  // removed once this actuator has closed
+        }
+        return actuator;
     } catch (const drivers::SettingError& error) {
         throw drivers::SettingError(error.key(), config_.where(driver, error.key()) + error.what());
     }
 }
 
 std::vector<drivers::DriverInfo> ActuatorHost::drivers() const {
-    return drivers::available_drivers(config_.drivers_dir);
+    const std::lock_guard lock(modules_mutex_);
+    return drivers::available_drivers(*modules_);
 }
 
 void ActuatorHost::switch_to(const std::string& driver) {
@@ -91,7 +161,11 @@ void ActuatorHost::switch_running(const std::string& driver, const std::string& 
 
 void ActuatorHost::open_in_place_of_running(const std::string& driver, const std::string& reason,
                                             bool follows_config) {
-    const std::filesystem::path drivers_dir = config_.drivers_dir;
+    std::shared_ptr<const drivers::ModuleCatalog> modules;
+    {
+        const std::lock_guard lock(modules_mutex_);
+        modules = modules_;
+    }
     // The player must never point at a closed backend, not even for a moment.
     drivers::DisconnectedActuator switching("switching to driver " + driver);
     if (player_) {
@@ -99,15 +173,16 @@ void ActuatorHost::open_in_place_of_running(const std::string& driver, const std
         player_->replace_actuator(switching);
     }
     actuator_.reset();
+    record_.reset();
     drivers::AutoChoice opened;
     try {
-        opened = open_naming(driver, reason);
+        opened = open_naming(driver, reason, *modules);
     } catch (const std::exception& error) {
         log::error("driver " + driver + " failed to open (" + error.what() + "); reopening " +
                    driver_);
         follows_config_ = false;  // a reload tries the configuration's driver again
         try {
-            actuator_ = open(driver_, settings_, drivers_dir_);
+            actuator_ = open(driver_, settings_, *running_modules_);
         } catch (const std::exception& reopen_error) {
             actuator_ = std::make_unique<drivers::DisconnectedActuator>(
                 "driver " + driver + " failed (" + error.what() + ") and driver " + driver_ +
@@ -130,8 +205,8 @@ void ActuatorHost::open_in_place_of_running(const std::string& driver, const std
     }
     driver_ = opened.driver;
     settings_ = config_.settings_of(opened.driver);
-    drivers_dir_ = drivers_dir;
-    reason_ = opened.reason;
+    running_modules_ = std::move(modules);
+    reason_ = std::move(opened.reason);
     auto_fell_back_ = opened.fell_back;
     follows_config_ = follows_config;
     if (follows_config) {
@@ -141,12 +216,22 @@ void ActuatorHost::open_in_place_of_running(const std::string& driver, const std
 }
 
 bool ActuatorHost::follow_config() {
+    const auto fresh = modules_of(config_);
+    {
+        const std::lock_guard lock(modules_mutex_);
+        modules_ = fresh;
+    }
+    // A module reopens when its file changed (an upgrade), not because the directory was
+    // scanned again.
+    const bool module_changed = !drivers::is_built_in_driver(driver_) && driver_ != "none" &&
+                                !fresh->same_module(*running_modules_, driver_);
     const bool differs = config_.driver != configured_ || !follows_config_ ||
                          (config_.driver == drivers::kAutoDriver && auto_fell_back_) ||
-                         config_.settings_of(driver_) != settings_ ||
-                         config_.drivers_dir != drivers_dir_;
+                         config_.settings_of(driver_) != settings_ || module_changed;
     if (differs) {
         switch_running(config_.driver, configured_reason(), true);
+    } else {
+        running_modules_ = fresh;
     }
     return differs;
 }

@@ -4,6 +4,8 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <mutex>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -11,6 +13,7 @@
 #include "daemon/drivers/actuator.hpp"
 #include "daemon/drivers/auto_driver.hpp"
 #include "daemon/drivers/available.hpp"
+#include "daemon/module_record.hpp"
 #include "daemon/player.hpp"
 
 namespace vibscore::daemon {
@@ -23,11 +26,21 @@ using DriverSettingsMap = std::map<std::string, std::string>;
 // be requested twice).
 class ActuatorHost {
   public:
-    // Opens config.driver with its settings ("auto": the backend drivers::choose_driver finds).
-    // `config` is the daemon's running configuration: every later switch reads the settings and
-    // the drivers directory there, so it must outlive the host (a reload replaces its contents,
-    // then calls follow_config()).
+    // Opens config.driver with its settings, from the built-in backends or config.modules
+    // ("auto": the backend drivers::choose_driver finds). `config` is the daemon's running
+    // configuration: every later switch reads the settings and the modules there, so it must
+    // outlive the host (a reload replaces its contents, then calls follow_config()).
+    //
+    // The daemon comes up whatever a driver module did: when the configured driver is a module
+    // that was refused at the scan (it hung, crashed or failed its checks while loading, or is
+    // not safe to load), or one that was in use when the daemon last ended without closing it
+    // (config.module_record names it: a crash in it), the host runs sim instead and logs why.
+    // Throws std::invalid_argument (an unknown driver, naming the file:line that names it; a bad
+    // setting) or DeviceError when the configured driver will not open.
     explicit ActuatorHost(const DaemonConfig& config);
+    ~ActuatorHost();
+    ActuatorHost(const ActuatorHost&) = delete;
+    ActuatorHost& operator=(const ActuatorHost&) = delete;
 
     drivers::Actuator& actuator() { return *actuator_; }
     const std::string& driver() const { return driver_; }
@@ -35,7 +48,8 @@ class ActuatorHost {
     // found or searched, or a run-time switch.
     const std::string& reason() const { return reason_; }
     drivers::Capabilities capabilities() const { return actuator_->capabilities(); }
-    // The built-in backends, then the driver modules of the configured drivers directory.
+    // The built-in backends, then the driver modules found by the last scan. Loads nothing, and
+    // may be called from another thread than the one that switches.
     std::vector<drivers::DriverInfo> drivers() const;
 
     // The player that plays on the actuator: stopped and pointed at the new backend on a switch.
@@ -49,10 +63,11 @@ class ActuatorHost {
     // reason. Throws std::invalid_argument for an unknown driver or a bad setting.
     void switch_to(const std::string& driver);
 
-    // After the running configuration changed: switches to its driver when the driver, its
-    // settings or the drivers directory differ from what runs, or what runs came from a
-    // run-time switch. With driver = auto it chooses again when the last choice fell back to
-    // sim (a device may have appeared since). Returns whether it switched.
+    // After the running configuration changed: takes its driver modules, and switches to its
+    // driver when the driver, its settings or the running module's file differ from what runs,
+    // or what runs came from a run-time switch (or ran sim in place of a refused module). With
+    // driver = auto it chooses again when the last choice fell back to sim (a device may have
+    // appeared since). Returns whether it switched.
     bool follow_config();
 
   private:
@@ -61,25 +76,33 @@ class ActuatorHost {
     void switch_running(const std::string& driver, const std::string& reason, bool follows_config);
     void open_in_place_of_running(const std::string& driver, const std::string& reason,
                                   bool follows_config);
-    drivers::AutoChoice open_naming(const std::string& driver, const std::string& reason) const;
+    drivers::AutoChoice open_naming(const std::string& driver, const std::string& reason,
+                                    const drivers::ModuleCatalog& modules);
     // The reason of a driver the configuration names.
     std::string configured_reason() const;
     std::unique_ptr<drivers::Actuator> open(const std::string& driver,
                                             const DriverSettingsMap& settings,
-                                            const std::filesystem::path& drivers_dir) const;
+                                            const drivers::ModuleCatalog& modules);
+    // Why the configured driver must not be opened at start ("" when it may be).
+    std::string reason_to_run_sim_instead(const std::optional<ModuleInUse>& crashed) const;
 
     const DaemonConfig& config_;
     Player* player_ = nullptr;
     std::function<void()> changed_;
-    // What runs: the backend, the name, settings and drivers directory it was opened with.
+    // What runs: the backend, the name, settings and modules it was opened with, and the record
+    // of the module in use (before the actuator: the record goes once the module has closed).
     std::string driver_;
     DriverSettingsMap settings_;
-    std::filesystem::path drivers_dir_;
+    std::shared_ptr<const drivers::ModuleCatalog> running_modules_;
+    std::optional<ModuleRecord> record_;
     std::string configured_;       // the configuration's driver when it was last followed
     bool follows_config_ = true;   // false after a run-time switch
     bool auto_fell_back_ = false;  // auto found nothing and runs sim
     std::string reason_;
     std::unique_ptr<drivers::Actuator> actuator_;
+    // The modules of the running configuration, which drivers() lists.
+    mutable std::mutex modules_mutex_;
+    std::shared_ptr<const drivers::ModuleCatalog> modules_;
 };
 
 }  // namespace vibscore::daemon

@@ -9,6 +9,7 @@
 #include "config.h"
 #include "daemon/drivers/available.hpp"
 #include "daemon/log.hpp"
+#include "daemon/module_record.hpp"
 
 namespace vibscore::daemon {
 
@@ -34,7 +35,8 @@ std::variant<CommandLine, int> parse_command_line(int argc, const char* const* a
                  "list the actuator backends and exit");
     app.add_flag("--safe-off", command_line.safe_off,
                  "switch the configured actuator off and exit (the unit's ExecStopPost: it runs "
-                 "after a crash too)");
+                 "after a crash too, and leaves the crashed run's sim trace and driver module "
+                 "record for the next start)");
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& help) {
@@ -57,21 +59,32 @@ DaemonConfig read_config(const CommandLine& command_line) {
     if (command_line.config_given || std::filesystem::exists(command_line.config)) {
         config = load_config(command_line.config, defaults);
     }
+    // The modules are tried here, once for this reading of the file (on the bus thread when the
+    // daemon reloads), and listed from then on without loading them again.
+    config.modules = drivers::scan_driver_modules(config.drivers_dir);
     std::vector<std::string> drivers;
-    for (const auto& driver : drivers::available_drivers(config.drivers_dir)) {
+    for (const auto& driver : drivers::available_drivers(*config.modules)) {
         drivers.push_back(driver.name);
     }
     for (const auto& warning : unknown_sections(config, drivers)) {
         log::warning(warning);
     }
+    // A value from the command line has no line in the file for messages to point at.
+    auto& daemon_lines = config.setting_lines["daemon"];
     if (!command_line.driver.empty()) {
         config.driver = command_line.driver;
+        daemon_lines.erase("driver");
     }
     if (!command_line.store.empty()) {
         config.store = command_line.store;
+        daemon_lines.erase("store");
     }
     if (!command_line.shipped.empty()) {
         config.shipped = command_line.shipped;
+        daemon_lines.erase("shipped");
+    }
+    if (!command_line.safe_off) {
+        config.module_record = config.store / kModuleRecordFile;
     }
     return config;
 }

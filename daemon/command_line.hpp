@@ -27,8 +27,10 @@ struct CommandLine {
 std::variant<CommandLine, int> parse_command_line(int argc, const char* const* argv);
 
 // The configuration the command line asks for: the file (the default one only if it exists),
-// then the command line's overrides, over the built-in defaults. Throws ConfigError. Logs a
-// warning for each section that names no driver.
+// then the command line's overrides, over the built-in defaults, with the driver modules of its
+// drivers directory tried out (logging each one refused) and, unless for --safe-off, the record
+// of the module in use kept in the store. Throws ConfigError. Logs a warning for each section
+// that names no driver.
 DaemonConfig read_config(const CommandLine& command_line);
 
 }  // namespace vibscore::daemon

@@ -15,6 +15,10 @@ namespace vibscore::daemon {
 
 namespace {
 
+const std::vector<std::string> kDaemonKeys = {
+    "driver",        "drivers-dir",         "store",         "shipped",
+    "separation-ms", "requests-per-second", "request-burst", "rt-priority"};
+
 std::string trim(const std::string& text) {
     const auto begin = text.find_first_not_of(" \t\r");
     if (begin == std::string::npos) {
@@ -99,17 +103,60 @@ std::vector<std::string> unknown_sections(const DaemonConfig& config,
     return warnings;
 }
 
+namespace {
+
+// Where a comment begins: '#' or ';' at the start of a line or after a blank, as the shipped
+// file and the docs write them ("carrier-hz = 20000  # erm only"). npos: no comment.
+std::size_t comment_start(const std::string& line) {
+    for (std::size_t i = 0; i < line.size(); ++i) {
+        if ((line[i] == '#' || line[i] == ';') &&
+            (i == 0 || line[i - 1] == ' ' || line[i - 1] == '\t' || line[i - 1] == '\r')) {
+            return i;
+        }
+    }
+    return std::string::npos;
+}
+
+// A second "key = value" for a key the section already set is a mistake (which one was meant?),
+// not a silent override.
+void refuse_repeated(std::map<std::string, std::string>& lines, const std::string& section,
+                     const std::string& key, const std::string& value, const std::string& where,
+                     std::map<std::string, std::string>& values) {
+    if (const auto first = lines.find(key); first != lines.end()) {
+        throw ConfigError(where + ": " + key + " = \"" + value + "\" sets [" + section + "] " +
+                          key + " again (" + first->second + " set it to \"" + values[key] +
+                          "\"); keep one of them");
+    }
+    lines[key] = where;
+    values[key] = value;
+}
+
+}  // namespace
+
 DaemonConfig parse_config(const std::string& text, const std::string& file, DaemonConfig config) {
     std::istringstream lines(text);
     std::string line;
     std::string section;
     int number = 0;
+    // Every value as the file gave it, by section and key, for the messages about repeated keys.
+    std::map<std::string, std::map<std::string, std::string>> values;
     while (std::getline(lines, line)) {
         ++number;
         const std::string where = file + ":" + std::to_string(number);
-        const auto content = trim(line.substr(0, line.find_first_of("#;")));
+        const auto content = trim(line.substr(0, comment_start(line)));
         if (content.empty()) {
             continue;
+        }
+        if (const auto mark = content.find_first_of("#;"); mark != std::string::npos) {
+            // "store = /var/lib/vib#score": cutting it at the '#' would quietly use another path.
+            const auto equals = content.find('=');
+            const std::string what = equals == std::string::npos || content.front() == '['
+                                         ? "\"" + content + "\""
+                                         : trim(content.substr(0, equals)) + " = \"" +
+                                               trim(content.substr(equals + 1)) + "\"";
+            throw ConfigError(where + ": " + what + " holds '" + content[mark] +
+                              "', which starts a comment only at the start of a line or after a "
+                              "space; a value cannot contain it");
         }
         if (content.front() == '[') {
             if (content.back() != ']' || content.size() < 3) {
@@ -131,13 +178,13 @@ DaemonConfig parse_config(const std::string& text, const std::string& file, Daem
         if (section.empty()) {
             throw ConfigError(where + ": \"" + key + "\" is outside any [section]");
         }
+        refuse_repeated(config.setting_lines[section], section, key, value, where, values[section]);
         if (section == "clefs") {
             add_device_clef(config.device_clefs, key, value, where);
             continue;
         }
         if (section != "daemon") {
             config.driver_settings[section][key] = value;
-            config.setting_lines[section][key] = where;
             continue;
         }
         if (key == "driver") {
@@ -154,13 +201,19 @@ DaemonConfig parse_config(const std::string& text, const std::string& file, Daem
             config.requests_per_second = positive_number(value, where, key, 1e6);
         } else if (key == "request-burst") {
             config.request_burst = positive_number(value, where, key, 1e6);
+            if (config.request_burst < 1.0) {
+                // A bucket that never holds a whole token refuses every request.
+                throw ConfigError(where + ": request-burst = \"" + value +
+                                  "\" is below 1: the burst must let at least one request through");
+            }
         } else if (key == "rt-priority") {
             config.rt_priority = priority(value, where, key);
         } else {
-            throw ConfigError(where + ": unknown key \"" + key +
-                              "\" in [daemon] (expected driver, drivers-dir, store, shipped, "
-                              "separation-ms, requests-per-second, request-burst or "
-                              "rt-priority)");
+            const auto meant = closest_name(key, kDaemonKeys);
+            throw ConfigError(where + ": unknown key \"" + key + "\" in [daemon]" +
+                              (meant ? " (did you mean " + *meant + "?)" : "") +
+                              " (expected driver, drivers-dir, store, shipped, separation-ms, "
+                              "requests-per-second, request-burst or rt-priority)");
         }
         if (value.empty()) {
             throw ConfigError(where + ": " + key + " has no value");
@@ -170,13 +223,49 @@ DaemonConfig parse_config(const std::string& text, const std::string& file, Daem
 }
 
 DaemonConfig load_config(const std::filesystem::path& path, DaemonConfig defaults) {
+    // A directory opens as a stream that reads nothing: without this, the built-in defaults
+    // would quietly apply (and create the default store).
+    std::error_code error;
+    if (std::filesystem::is_directory(path, error)) {
+        throw ConfigError(path.string() + ": is a directory, not a configuration file");
+    }
     std::ifstream in(path);
     if (!in) {
         throw ConfigError(path.string() + ": cannot open: " + std::strerror(errno));
     }
     std::ostringstream text;
     text << in.rdbuf();
+    if (in.bad()) {
+        throw ConfigError(path.string() + ": cannot read: " + std::strerror(errno));
+    }
     return parse_config(text.str(), path.string(), std::move(defaults));
+}
+
+std::vector<std::string> missing_device_clefs(const DaemonConfig& config,
+                                              const Registry& registry) {
+    std::vector<std::string> warnings;
+    const auto lines = config.setting_lines.find("clefs");
+    const auto check = [&](const std::string& written, const std::string& device) {
+        if (registry.contains(DocumentKind::clef, device)) {
+            return;
+        }
+        std::string where;
+        if (lines != config.setting_lines.end()) {
+            if (const auto line = lines->second.find(written); line != lines->second.end()) {
+                where = line->second + ": ";
+            }
+        }
+        warnings.push_back(where + "[clefs] " + written + " = \"" + device +
+                           "\": the registry has no clef \"" + device +
+                           "\", so Play refuses every score this maps until one is composed");
+    };
+    for (const auto& [written, device] : config.device_clefs.by_written) {
+        check(written, device);
+    }
+    if (!config.device_clefs.otherwise.empty()) {
+        check("*", config.device_clefs.otherwise);
+    }
+    return warnings;
 }
 
 }  // namespace vibscore::daemon

@@ -5,13 +5,19 @@
 
 #include <filesystem>
 #include <map>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+namespace vibscore::drivers {
+class ModuleCatalog;
+}
+
 namespace vibscore::daemon {
 
-// vibscored.conf: INI sections of "key = value" lines; '#' and ';' start comments.
+// vibscored.conf: INI sections of "key = value" lines. '#' and ';' start a comment at the start
+// of a line or after a blank; anywhere else they are an error, as is a key set twice in a section.
 //   [daemon]  driver, drivers-dir, store, shipped, separation-ms, requests-per-second,
 //             request-burst, rt-priority
 //   [clefs]   WRITTEN = DEVICE: the clef bars written for WRITTEN play through on this device;
@@ -29,9 +35,18 @@ struct DaemonConfig {
     int rt_priority = 40;  // SCHED_FIFO of the playback thread; 0: normal scheduling
     std::map<std::string, std::map<std::string, std::string>> driver_settings;  // by driver
     DeviceClefs device_clefs;
-    // Where each [section] begins and each of its keys is set, as "file:line", for messages.
+    // Where each [section] begins and each of its keys is set, as "file:line", for messages:
+    // section_lines for every section but [daemon], setting_lines for every key ([daemon]'s and
+    // [clefs]' too).
     std::map<std::string, std::string> section_lines;
     std::map<std::string, std::map<std::string, std::string>> setting_lines;
+
+    // Not from the file: what read_config() found and decided when it read it.
+    // The driver modules of drivers_dir, each tried once (none: only the built-in drivers).
+    std::shared_ptr<const drivers::ModuleCatalog> modules;
+    // The store's file that names the driver module in use (module_record.hpp); empty for
+    // --safe-off, which must leave it for the next start to find.
+    std::filesystem::path module_record;
 
     const std::map<std::string, std::string>& settings_of(const std::string& driver) const;
     // "file:line: " of a driver's setting (or of its section when the key is not set there);
@@ -49,6 +64,10 @@ DaemonConfig parse_config(const std::string& text, const std::string& file,
                           DaemonConfig defaults = {});
 // Throws ConfigError naming the path and the reason when the file cannot be read.
 DaemonConfig load_config(const std::filesystem::path& path, DaemonConfig defaults = {});
+
+// A warning for each [clefs] line whose device clef the registry does not hold (yet: it may be
+// composed later), naming its file:line, key and value; Play would refuse the scores it maps.
+std::vector<std::string> missing_device_clefs(const DaemonConfig& config, const Registry& registry);
 
 // Sections besides [daemon] and the backends' that configure parts of the service.
 inline constexpr const char* kServiceSections[] = {"clefs", "virtual-vibra"};

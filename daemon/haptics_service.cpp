@@ -232,11 +232,17 @@ void HapticsService::StopAll(sdbus::Result<>&& result) {
     const auto reply = DeferredReply<>::make(std::move(result), "StopAll");
     reply->start([&] {
         const Caller caller = admit_caller();
-        when_allowed(reply, caller, Action::manage, "Stopping every user's playback",
-                     [this, caller] {
-                         playback_.call([](Player& player) { player.stop_all(kStopped); });
-                         log::info("uid " + std::to_string(caller.uid) + " stopped every playback");
-                     });
+        when_allowed(
+            reply, caller, Action::manage, "Stopping every user's playback", [this, caller] {
+                const auto ended =
+                    playback_.call([](Player& player) { return player.stop_every_playback(); });
+                std::string which;
+                for (const auto id : ended) {
+                    which += " " + std::to_string(id);
+                }
+                log::info("uid " + std::to_string(caller.uid) + " stopped every playback:" +
+                          (which.empty() ? std::string(" none was playing") : which));
+            });
     });
 }
 

@@ -33,16 +33,26 @@ using namespace vibscore::daemon;
 namespace {
 
 int list_drivers(const CommandLine& command_line) {
-    std::filesystem::path drivers_dir = VIBSCORE_DRIVERDIR;
+    std::vector<drivers::DriverInfo> drivers;
     try {
-        drivers_dir = read_config(command_line).drivers_dir;
+        // read_config() has already tried each module of the configured directory in a child.
+        const DaemonConfig config = read_config(command_line);
+        drivers = drivers::available_drivers(*config.modules);
     } catch (const std::exception& error) {
         log::warning(std::string("listing the default drivers directory: ") + error.what());
+        drivers = drivers::available_drivers(std::filesystem::path(VIBSCORE_DRIVERDIR));
     }
-    for (const auto& driver : drivers::available_drivers(drivers_dir)) {
+    for (const auto& driver : drivers) {
         std::cout << driver.name << "\t" << driver.description << "\n";
     }
     return 0;
+}
+
+// A [clefs] line naming a clef nobody installed would only show when a playback falls back.
+void warn_about_missing_device_clefs(const DaemonConfig& config, const Registry& registry) {
+    for (const auto& warning : missing_device_clefs(config, registry)) {
+        log::warning(warning);
+    }
 }
 
 // After the daemon ended, however it ended (SIGKILL, a crash): the configured backend, opened
@@ -80,6 +90,7 @@ int serve(const CommandLine& command_line) {
     if (!config.device_clefs.empty()) {
         log::info("device clefs: " + describe(config.device_clefs));
     }
+    warn_about_missing_device_clefs(config, registry);
     // From here on every actuator call happens on the playback thread.
     PlaybackThread playback(loop, host.actuator(),
                             {first_playback_id(config.store), config.rt_priority});
@@ -132,6 +143,7 @@ int serve(const CommandLine& command_line) {
                 [&config, &host, &callers, fresh = read_config(command_line)](Player&) mutable {
                     reload_config(config, std::move(fresh), host, callers);
                 });
+            warn_about_missing_device_clefs(config, registry);
         } catch (const std::exception& error) {
             log::error(std::string("reload failed, keeping the running configuration: ") +
                        error.what());

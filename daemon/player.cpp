@@ -102,6 +102,8 @@ std::uint64_t Player::play(PlaybackRequest request) {
     PlaybackCues cues(request.cues, request.duration_s, request.repeat, adaptation);
     on_since_us_.reset();
     held_off_ = false;
+    last_report_us_.reset();
+    held_position_.reset();
     current_.emplace(
         Playback{id, std::move(request), std::move(cues), monotonic_now_us(), 0, capabilities});
     if (capabilities.gain_control) {
@@ -224,9 +226,28 @@ std::optional<std::uint64_t> Player::on_time_deadline_us() const {
     return *on_since_us_ + static_cast<std::uint64_t>(std::llround(limit_s * 1e6));
 }
 
+void Player::report_position(std::size_t bar, std::size_t symbol) {
+    held_position_.emplace(bar, symbol);
+    report_held_position(false);
+}
+
+void Player::report_held_position(bool force) {
+    if (!held_position_) {
+        return;
+    }
+    const std::uint64_t now = monotonic_now_us();
+    if (!force && last_report_us_ && now < *last_report_us_ + kPositionReportInterval_us) {
+        return;
+    }
+    last_report_us_ = now;
+    const auto [bar, symbol] = *held_position_;
+    held_position_.reset();
+    listener_->playback_position(current_->id, bar, symbol);
+}
+
 bool Player::execute(const render::Cue& cue) {
     if (cue.kind == render::Cue::Kind::position) {
-        listener_->playback_position(current_->id, cue.bar, cue.symbol);
+        report_position(cue.bar, cue.symbol);
         return true;
     }
     const drivers::Drive drive = drive_for(cue);
@@ -258,9 +279,10 @@ bool Player::execute(const render::Cue& cue) {
 void Player::run_due() {
     while (current_) {
         auto& playback = *current_;
+        report_held_position(false);
         const PassCue* next = playback.cues.ahead(0);
         if (next == nullptr) {
-            finish("completed");
+            finish(playback.cues.end_reason());
             return;
         }
         playback.pass = next->pass;
@@ -280,6 +302,9 @@ void Player::run_due() {
             if (on_since_us_ && on_time_deadline) {
                 wake = std::min(wake, *on_time_deadline);
             }
+            if (held_position_ && last_report_us_) {
+                wake = std::min(wake, *last_report_us_ + kPositionReportInterval_us);
+            }
             timer_.arm(wake);
             return;
         }
@@ -291,12 +316,13 @@ void Player::run_due() {
     }
 }
 
-void Player::finish(const std::string& reason) {
+void Player::finish(std::string reason) {  // a copy: it may live in the playback that ends
     if (!current_) {
         return;
     }
     actuator_->off();
     timer_.disarm();
+    report_held_position(true);  // where it got to, before it is said to have ended
     const std::uint64_t id = current_->id;
     current_.reset();
     listener_->playback_finished(id, reason);
@@ -322,11 +348,30 @@ Player::StopResult Player::stop(std::uint64_t id, uid_t caller, bool privileged)
 }
 
 void Player::sender_vanished(const std::string& sender) {
-    // A playback that ends by itself is the caller's fire-and-forget request (busctl, a script):
-    // it plays to its end. Only one that would repeat forever needs its caller to stop it.
-    if (current_ && current_->request.sender == sender && current_->request.repeat < 0) {
-        finish("client-vanished");
+    if (!current_ || current_->request.sender != sender || current_->request.repeat == 0) {
+        return;
     }
+    // A playback that soon ends by itself is the caller's fire-and-forget request (busctl, a
+    // script, a ringtone rung three times): it plays to its end.
+    const auto& playback = *current_;
+    if (playback.request.repeat > 0) {
+        const double total_s =
+            (static_cast<double>(playback.request.repeat) + 1.0) * playback.request.duration_s;
+        const double end_us = static_cast<double>(playback.start_us) + total_s * 1e6;
+        if (end_us <= static_cast<double>(monotonic_now_us()) + kPlaysOnWithoutItsCaller_s * 1e6) {
+            return;
+        }
+    }
+    finish("client-vanished");
+}
+
+std::vector<std::uint64_t> Player::stop_every_playback() {
+    if (!current_) {
+        return {};
+    }
+    const std::uint64_t id = current_->id;
+    finish(kStopped);
+    return {id};
 }
 
 void Player::stop_all(const std::string& reason) {

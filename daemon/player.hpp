@@ -7,6 +7,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "daemon/drivers/actuator.hpp"
@@ -42,6 +43,17 @@ class PlayerListener {
 // Stop, and the service stopping (SIGTERM), which no caller asked for.
 inline constexpr const char* kStopped = "stopped";
 inline constexpr const char* kServiceStopped = "service-stopped";
+
+// A repeating playback whose caller leaves the bus plays on only if it ends by itself within
+// this long; otherwise it ends with "client-vanished". A stranger's fire-and-forget
+// `repeat 2147483647` would otherwise pin the actuator for years, refusing everyone's
+// equally important one-shots with Busy (docs/daemon.md, Who may do what).
+inline constexpr double kPlaysOnWithoutItsCaller_s = 30.0;
+
+// The fastest a playback's position is reported (PlaybackPosition): each report is a bus
+// broadcast, and a UI shows no more than a few dozen a second. Positions in between are
+// coalesced: the latest is reported when the interval has passed, or when the playback ends.
+inline constexpr std::uint64_t kPositionReportInterval_us = 20'000;  // 50 a second
 
 // A request lost arbitration against the playback in progress.
 class PlayerBusy : public std::runtime_error {
@@ -80,9 +92,16 @@ class Player {
     // An id this player never gave out (another run's, say) is not_found.
     StopResult stop(std::uint64_t id, uid_t caller, bool privileged);
 
-    // The caller's bus connection went away: a playback of its that repeats until stopped ends
-    // with "client-vanished"; one that ends by itself plays on.
+    // The caller's bus connection went away: a playback of its that repeats (until stopped, or
+    // so many times that it would end more than kPlaysOnWithoutItsCaller_s from now) ends with
+    // "client-vanished". A one-shot plays on: it yields to any equally important request, so
+    // it pins nothing.
     void sender_vanished(const std::string& sender);
+
+    // A privileged "stop everyone's playbacks" (vibscore stop --all, org.vibscore.manage):
+    // ends whatever plays, whoever started it, with reason "stopped" and the actuator off.
+    // Returns the ids it ended; none when nothing played.
+    std::vector<std::uint64_t> stop_every_playback();
 
     // Ends any playback with `reason` and switches the actuator off (shutdown, driver switch).
     void stop_all(const std::string& reason);
@@ -118,7 +137,11 @@ class Player {
     double seconds_until_off();
     // Thermal protection: when the actuator, on without a break, reaches its maximum on-time.
     std::optional<std::uint64_t> on_time_deadline_us() const;
-    void finish(const std::string& reason);
+    void finish(std::string reason);
+    // A position cue: reported now, or held until the report interval has passed.
+    void report_position(std::size_t bar, std::size_t symbol);
+    // Reports a held position once the interval has passed (`force`: now, as the playback ends).
+    void report_held_position(bool force);
     // Ends the playback with "device-error: ...": the actuator failed under it.
     void fail(const drivers::DeviceError& error);
 
@@ -133,6 +156,10 @@ class Player {
     // the score itself stops driving it (after exceeding its maximum on-time).
     std::optional<std::uint64_t> on_since_us_;
     bool held_off_ = false;
+    // Position reports of the current playback: when the last went out, and the latest one
+    // held back since (bar, symbol).
+    std::optional<std::uint64_t> last_report_us_;
+    std::optional<std::pair<std::size_t, std::size_t>> held_position_;
 };
 
 }  // namespace vibscore::daemon

@@ -1,5 +1,10 @@
 #include "daemon/reload.hpp"
 
+#include <stdexcept>
+#include <string>
+
+#include "daemon/drivers/auto_driver.hpp"
+#include "daemon/drivers/available.hpp"
 #include "daemon/drivers/configured_actuator.hpp"
 #include "daemon/drivers/driver_settings.hpp"
 #include "daemon/log.hpp"
@@ -8,6 +13,24 @@ namespace vibscore::daemon {
 
 void reload_config(DaemonConfig& running, DaemonConfig fresh, ActuatorHost& host,
                    CallerDirectory& callers) {
+    // A driver that does not exist is known now, before playback is stopped for it.
+    const drivers::ModuleCatalog none;
+    const auto& modules = fresh.modules ? *fresh.modules : none;
+    if (fresh.driver != drivers::kAutoDriver && !drivers::is_built_in_driver(fresh.driver) &&
+        modules.find(fresh.driver) == nullptr) {
+        std::string why;
+        if (const auto* refused = modules.refused_as(fresh.driver)) {
+            why = ": module " + refused->path.string() + " is not loaded: " + refused->reason;
+        } else {
+            std::string known;
+            for (const auto& driver : drivers::available_drivers(modules)) {
+                known += (known.empty() ? "" : ", ") + driver.name;
+            }
+            why = " (available: " + known + ")";
+        }
+        throw std::invalid_argument(fresh.where("daemon", "driver") + "unknown driver \"" +
+                                    fresh.driver + "\"" + why);
+    }
     DriverSettingsMap fresh_settings = fresh.settings_of(fresh.driver);
     try {
         drivers::take_common_settings(fresh.driver, fresh_settings);
@@ -15,11 +38,18 @@ void reload_config(DaemonConfig& running, DaemonConfig fresh, ActuatorHost& host
         throw drivers::SettingError(error.key(),
                                     fresh.where(fresh.driver, error.key()) + error.what());
     }
-    if (fresh.store != running.store || fresh.shipped != running.shipped) {
-        log::warning("store and shipped directories change only on restart");
-        fresh.store = running.store;
-        fresh.shipped = running.shipped;
-    }
+    // The registry was read from these at start; reading another folder now would be a second
+    // registry under the same names.
+    const auto keep_until_restart = [&](const char* key, const std::filesystem::path& running_dir,
+                                        std::filesystem::path& fresh_dir) {
+        if (fresh_dir != running_dir) {
+            log::warning(fresh.where("daemon", key) + key + " = \"" + fresh_dir.string() +
+                         "\" changes only on restart; until then it stays " + running_dir.string());
+            fresh_dir = running_dir;
+        }
+    };
+    keep_until_restart("store", running.store, fresh.store);
+    keep_until_restart("shipped", running.shipped, fresh.shipped);
     callers.set_rate(fresh.requests_per_second, fresh.request_burst);
     const bool clefs_changed = fresh.device_clefs != running.device_clefs;
     running = std::move(fresh);

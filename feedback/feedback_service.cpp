@@ -1,5 +1,6 @@
 #include "feedback/feedback_service.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 
 #include "common/monotonic_clock.hpp"

@@ -25,4 +25,11 @@ inline constexpr double max_amplitude = 1'000'000.0;
 inline constexpr double max_score_seconds = 3600.0;
 inline constexpr long long max_serial = 2'147'483'647;
 
+// What one playback may ask of vibscored's playback thread: actuator commands (drives, steps,
+// switch-offs) and position cues together, per second of its schedule, with a burst of as many
+// at once. Every shipped score stays under a quarter of it; a tempo-0.001 run of rests asked
+// 8,000. vibscored ends a playback that asks more with reason "limit-exceeded"
+// (docs/daemon.md, Limits).
+inline constexpr long long max_playback_cues_per_second = 1000;
+
 }  // namespace vibscore::limits

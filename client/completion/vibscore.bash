@@ -30,7 +30,9 @@ _vibscore() {
     prev=${COMP_WORDS[COMP_CWORD-1]}
     program=${COMP_WORDS[0]}
     local verbs="check render info play stop list get compose delete show edit drivers driver convert assign"
-    local formats="score ahap android-json android-xml android-envelope rtttl midi"
+    # What convert reads (--from) and writes (--to).
+    local readable="score ahap android-json android-xml rtttl midi"
+    local writable="score ahap android-json android-xml android-envelope midi"
     local valued="--usage|--clef|--clefs|--out|--rate|--repeat|--intensity|--width|--buttons|--keymap|--button-map|--from|--to|--track|--svg|--png"
 
     verb=
@@ -55,8 +57,11 @@ _vibscore() {
             # convert reads the clef itself: a clef file too.
             [[ $verb == convert ]] && _vibscore_files "$cur" '*.xml'
             return ;;
-        --from|--to)
-            COMPREPLY=($(compgen -W "$formats" -- "$cur"))
+        --from)
+            COMPREPLY=($(compgen -W "$readable" -- "$cur"))
+            return ;;
+        --to)
+            COMPREPLY=($(compgen -W "$writable" -- "$cur"))
             return ;;
         --svg|--png)
             _vibscore_files "$cur" "*.${prev#--}"
@@ -83,7 +88,7 @@ _vibscore() {
             stop) options+=" --all" ;;
             compose) options+=" --clefs" ;;
             show) options+=" --width --colour --color --svg --png --clefs" ;;
-            convert) options+=" --from --to --clef --track --loop" ;;
+            convert) options+=" --from --to --clef --clefs --track --loop" ;;
             edit) options+=" --buttons --keymap --button-map --grab --clef" ;;
             assign) options+=" --default --list" ;;
         esac

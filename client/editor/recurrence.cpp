@@ -1,5 +1,7 @@
 #include "client/editor/recurrence.hpp"
 
+#include <algorithm>
+
 #include "client/editor/score_edits.hpp"
 
 namespace vibscore::editor {

@@ -4,10 +4,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <optional>
 
 #include "client/formats/grid_fit.hpp"
 #include "client/formats/json_reading.hpp"
 #include "score/limits.hpp"
+#include "score/xml_support.hpp"
 
 namespace vibscore::formats {
 
@@ -40,29 +43,35 @@ struct Curve {
         if (t <= points.front().first) {
             return points.front().second;
         }
-        for (std::size_t i = 1; i < points.size(); ++i) {
-            const auto& [t1, v1] = points[i];
-            if (t <= t1) {
-                const auto& [t0, v0] = points[i - 1];
-                return t1 > t0 ? v0 + (v1 - v0) * (t - t0) / (t1 - t0) : v1;
-            }
+        // The first point at or after t; the points' times never go back.
+        const auto after =
+            std::lower_bound(points.begin(), points.end(), t,
+                             [](const auto& point, double at) { return point.first < at; });
+        if (after == points.end()) {
+            return points.back().second;
         }
-        return points.back().second;
+        const auto& [t1, v1] = *after;
+        const auto& [t0, v0] = *std::prev(after);
+        return t1 > t0 ? v0 + (v1 - v0) * (t - t0) / (t1 - t0) : v1;
     }
 };
 
 // The control a parameter has at time t: that of the latest curve begun by then (`at_start`:
-// a curve beginning exactly at t counts), or `neutral` before any.
+// a curve beginning exactly at t counts; of curves beginning together the last in the file), or
+// `neutral` before any. `curves` is in order of start, stably (sort_curves), so each look-up
+// is a binary search: a file of many events and many curves costs n log n, not n squared.
 double control_at(const std::vector<Curve>& curves, double t, bool at_start, double neutral) {
-    const Curve* active = nullptr;
-    for (const auto& curve : curves) {
-        if (at_start ? curve.start <= t : curve.start < t) {
-            if (active == nullptr || curve.start >= active->start) {
-                active = &curve;
-            }
-        }
-    }
-    return active == nullptr ? neutral : active->value_at(t);
+    const auto by_start = [](double at, const Curve& curve) { return at < curve.start; };
+    const auto begun =
+        at_start ? std::upper_bound(curves.begin(), curves.end(), t, by_start)
+                 : std::lower_bound(curves.begin(), curves.end(), t,
+                                    [](const Curve& curve, double at) { return curve.start < at; });
+    return begun == curves.begin() ? neutral : std::prev(begun)->value_at(t);
+}
+
+void sort_curves(std::vector<Curve>& curves) {
+    std::stable_sort(curves.begin(), curves.end(),
+                     [](const Curve& a, const Curve& b) { return a.start < b.start; });
 }
 
 struct HapticEvent {
@@ -70,10 +79,44 @@ struct HapticEvent {
     double intensity = 1.0, sharpness = 0.5;
 };
 
+// What Apple's parser takes though its documents forbid it, for the reader to say once each,
+// up to limits::diagnostics of them.
+class Warnings {
+  public:
+    explicit Warnings(const JsonDocument& document) : document_(document) {}
+
+    void add(std::ptrdiff_t offset, std::string message) {
+        if (list_.size() < limits::diagnostics) {
+            list_.push_back({document_.where(offset), std::move(message)});
+        } else {
+            ++more_;
+        }
+    }
+    std::vector<Diagnostic> take() && {
+        if (more_ > 0) {
+            list_.push_back({{document_.file()}, std::to_string(more_) + " more like these"});
+        }
+        return std::move(list_);
+    }
+
+  private:
+    const JsonDocument& document_;
+    std::vector<Diagnostic> list_;
+    std::size_t more_ = 0;
+};
+
 class AhapReader {
   public:
     AhapReader(const JsonDocument& document, DiagnosticSink& sink)
-        : json_(document, sink), document_(document) {}
+        : json_(document, sink), document_(document), warnings_(document) {
+        for (const auto offset : document.trailing_commas()) {
+            warnings_.add(offset,
+                          "a trailing comma, which JSON does not allow; Apple's parser (and "
+                          "Apple's own sample files) take it, and so does vibscore");
+        }
+    }
+
+    std::vector<Diagnostic> warnings() && { return std::move(warnings_).take(); }
 
     void read() {
         const auto& root = document_.root();
@@ -89,6 +132,13 @@ class AhapReader {
             if (const auto* project = metadata->find("Project")) {
                 title = json_.string(*project, "Metadata Project").value_or("");
             }
+            // vibscore's exports record their tempo; Metadata is free-form, so anything else
+            // under that key is left alone.
+            if (const auto* tempo = metadata->find("Tempo");
+                tempo != nullptr && tempo->kind == JsonValue::Kind::number &&
+                tempo->number >= limits::min_tempo_s && tempo->number <= limits::max_tempo_s) {
+                this->tempo = tempo->number;
+            }
         }
         const auto* pattern = json_.member(root, "Pattern", "the AHAP file");
         if (pattern == nullptr || !json_.expect(*pattern, JsonValue::Kind::array, "Pattern")) {
@@ -100,8 +150,12 @@ class AhapReader {
     }
 
     std::string title;
+    std::optional<double> tempo;
     std::vector<HapticEvent> events;
     std::vector<Curve> intensity_curves, sharpness_curves;
+    // Where the last parameter or curve begins: Core Haptics counts a pattern's length to the
+    // end of its last event or the start of its last parameter, whichever is later.
+    double last_parameter = 0.0;
 
   private:
     void read_entry(const JsonValue& entry) {
@@ -164,7 +218,20 @@ class AhapReader {
             }
         }
         if (haptic) {
+            within_limits(event, read);
             events.push_back(read);
+        }
+    }
+
+    // A score's length, checked event by event so that a pattern past it is refused where it
+    // passes it. (Its symbols need no check here: the shortest event takes some 50 bytes, so a
+    // 1 MiB file holds about 20,000.)
+    void within_limits(const JsonValue& event, const HapticEvent& read) {
+        if (past_the_hour(read.time + read.duration)) {
+            json_.report(event, "too long for a score: the event ends at " +
+                                    xml::format_number(read.time + read.duration) +
+                                    " s; a score lasts at most " +
+                                    xml::format_number(limits::max_score_seconds) + " s");
         }
     }
 
@@ -183,11 +250,11 @@ class AhapReader {
                                                       "Sustained",  "AudioVolume",    "AudioPan",
                                                       "AudioPitch", "AudioBrightness"};
         if (*id == "HapticIntensity") {
-            event.intensity = json_.number(*value, *id, 0.0, 1.0).value_or(event.intensity);
+            event.intensity = parameter_value(*value, *id, 0.0, 1.0).value_or(event.intensity);
         } else if (*id == "HapticSharpness") {
-            event.sharpness = json_.number(*value, *id, 0.0, 1.0).value_or(event.sharpness);
+            event.sharpness = parameter_value(*value, *id, 0.0, 1.0).value_or(event.sharpness);
         } else if (std::find(kOthers.begin(), kOthers.end(), *id) != kOthers.end()) {
-            json_.number(*value, *id, -1.0, 1.0);  // no counterpart in a score
+            parameter_value(*value, *id, -1.0, 1.0);  // no counterpart in a score
         } else {
             json_.report(*id_value, "unknown event ParameterID \"" + *id + "\"");
         }
@@ -231,6 +298,7 @@ class AhapReader {
         auto* target = curves_for(*id_value, *id, min);
         Curve curve;
         curve.start = json_.number(*time, "Time", 0.0, limits::max_score_seconds).value_or(0.0);
+        last_parameter = std::max(last_parameter, curve.start);
         for (const auto& point : points->items) {
             if (!json_.expect(point, JsonValue::Kind::object, "a control point")) {
                 continue;
@@ -242,7 +310,7 @@ class AhapReader {
                 continue;
             }
             const auto t = json_.number(*at, "control point Time", 0.0, limits::max_score_seconds);
-            const auto v = json_.number(*value, *id + " value", min, 1.0);
+            const auto v = parameter_value(*value, *id + " value", min, 1.0);
             if (t && v) {
                 if (!curve.points.empty() && curve.start + *t < curve.points.back().first) {
                     json_.report(point, "control point times must not go back");
@@ -271,14 +339,35 @@ class AhapReader {
         double min = 0.0;
         auto* target = curves_for(*id_value, *id, min);
         const auto t = json_.number(*time, "Time", 0.0, limits::max_score_seconds);
-        const auto v = json_.number(*value, *id + " value", min, 1.0);
+        const auto v = parameter_value(*value, *id + " value", min, 1.0);
+        if (t) {
+            last_parameter = std::max(last_parameter, *t);
+        }
         if (target != nullptr && t && v) {
             target->push_back({*t, {{*t, *v}}});
         }
     }
 
+    // A parameter's value: a finite number, kept within [min, max] as Core Haptics keeps it
+    // (its documentation: values outside a parameter's range are clamped), with a warning.
+    std::optional<double> parameter_value(const JsonValue& value, const std::string& what,
+                                          double min, double max) {
+        const auto read = json_.number(value, what, -std::numeric_limits<double>::max(),
+                                       std::numeric_limits<double>::max());
+        if (!read || (*read >= min && *read <= max)) {
+            return read;
+        }
+        const double clamped = std::clamp(*read, min, max);
+        warnings_.add(value.offset, what + " " + xml::format_number(*read) + " is out of range (" +
+                                        xml::format_number(min) + " to " + xml::format_number(max) +
+                                        "): read as " + xml::format_number(clamped) +
+                                        ", as Core Haptics clamps it");
+        return clamped;
+    }
+
     JsonReader json_;
     const JsonDocument& document_;
+    Warnings warnings_;
 };
 
 }  // namespace
@@ -335,20 +424,33 @@ std::string write_ahap(const SoundTrack& track) {
         }
         control_left_on = (ramps || glides) && next_touches;
     }
-    Json document{{"Version", 1.0},
-                  {"Metadata",
-                   {{"Project", track.title},
-                    {"Description", "exported by vibscore from a vibrotactile score"}}},
-                  {"Pattern", std::move(pattern)}};
+    // The rest at the end: Core Haptics counts a pattern's length to the end of its last event
+    // or the start of its last parameter, so a curve that holds the intensity control at
+    // neutral, beginning where the piece ends, keeps the period of a pattern played in a loop.
+    const double last_end = events.empty() ? 0.0 : events.back().end();
+    if (track.duration > last_end + 1e-9) {
+        pattern.push_back(curve("HapticIntensityControl", track.duration, {{0.0, 1.0}}));
+    }
+    Json metadata{{"Project", track.title},
+                  {"Description", "exported by vibscore from a vibrotactile score"}};
+    if (track.tempo > 0.0) {
+        metadata["Tempo"] = track.tempo;  // seconds per quarter note, for importing it back
+    }
+    Json document{
+        {"Version", 1.0}, {"Metadata", std::move(metadata)}, {"Pattern", std::move(pattern)}};
     return document.dump(2) + "\n";
 }
 
 ImportedScore read_ahap(std::string_view text, const std::string& file, const ChosenClef& chosen) {
-    const JsonDocument document(text, file);
+    check_document_size(text, file);
+    // Apple's parser takes trailing commas, and Apple's own sample files have them.
+    const JsonDocument document(text, file, {.trailing_commas = true});
     DiagnosticSink sink;
     AhapReader reader(document, sink);
     reader.read();
     sink.throw_if_any();
+    sort_curves(reader.intensity_curves);
+    sort_curves(reader.sharpness_curves);
 
     std::vector<SoundEvent> events;
     for (const auto& haptic : reader.events) {
@@ -368,12 +470,19 @@ ImportedScore read_ahap(std::string_view text, const std::string& file, const Ch
                                   : std::make_pair(event.strength_start, event.pitch_start);
         events.push_back(event);
     }
+    double total = reader.last_parameter;
+    for (const auto& event : events) {
+        total = std::max(total, event.end());
+    }
     const int strings = static_cast<int>(chosen.clef.strings.size());
-    const auto placed = place_on_grid(events, 0.0, chosen.clef, [&](const SoundEvent& event) {
-        return string_at(event.pitch_start, strings);
-    });
-    return build_score(placed.notes, {{0, placed.tempo}}, placed.total_ticks, chosen, reader.title,
-                       file);
+    const auto placed = place_on_grid(
+        events, total, chosen.clef,
+        [&](const SoundEvent& event) { return string_at(event.pitch_start, strings); },
+        reader.tempo);
+    auto imported = build_score(placed.notes, {{0, placed.tempo}}, placed.total_ticks, chosen,
+                                reader.title, file);
+    imported.warnings = std::move(reader).warnings();
+    return imported;
 }
 
 }  // namespace vibscore::formats

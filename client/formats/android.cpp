@@ -23,6 +23,36 @@ constexpr long long kMaxStepMs = static_cast<long long>(limits::max_score_second
 // note of its own (vibscore writes 1 ms ones).
 constexpr double kShortRampS = 0.0015;
 
+// A score's limits, checked step by step as a waveform or envelope is read: a file whose steps
+// pass them is refused at the step that does, before any of it is laid out.
+class StepBudget {
+  public:
+    // The message when this step of `duration_ms` takes the piece past a limit, else empty.
+    std::string add(long long duration_ms) {
+        if (broken_) {
+            return {};
+        }
+        total_ms_ += duration_ms;
+        if (duration_ms > 0 && ++steps_ > limits::symbols) {
+            broken_ = true;
+            return "too long for a score: more than " + std::to_string(limits::symbols) +
+                   " steps; a score holds at most " + std::to_string(limits::symbols) + " symbols";
+        }
+        if (total_ms_ > kMaxStepMs) {
+            broken_ = true;
+            return "too long for a score: the pattern reaches " + std::to_string(total_ms_) +
+                   " ms at this step; a score lasts at most " + std::to_string(kMaxStepMs) +
+                   " ms (" + xml::format_number(limits::max_score_seconds) + " s)";
+        }
+        return {};
+    }
+
+  private:
+    long long total_ms_ = 0;
+    std::size_t steps_ = 0;
+    bool broken_ = false;
+};
+
 long long ms(double seconds) {
     return std::llround(seconds * 1000.0);
 }
@@ -207,7 +237,7 @@ class AndroidXmlReader {
         }
         xml::check_attributes(source_, root, {}, sink_);
         xml::check_no_text(source_, root, sink_);
-        read_effects(root);
+        read_effects(root, false);
     }
 
     std::vector<Step> steps;
@@ -218,7 +248,9 @@ class AndroidXmlReader {
         sink_.report(source_.where(at), message);
     }
 
-    void read_effects(pugi::xml_node parent) {
+    // `repeated`: inside a <repeating-effect>, which Android does not nest (and so the reading
+    // never recurses deeper than that, whatever the nesting of the file).
+    void read_effects(pugi::xml_node parent, bool repeated) {
         for (const auto child : parent.children()) {
             if (child.type() != pugi::node_element) {
                 continue;
@@ -228,6 +260,10 @@ class AndroidXmlReader {
                 read_waveform(child);
             } else if (name == "waveform-envelope-effect") {
                 read_envelope(child);
+            } else if (name == "repeating-effect" && repeated) {
+                report(child,
+                       "a <repeating-effect> inside another; Android repeats one part of "
+                       "an effect, once");
             } else if (name == "repeating-effect") {
                 xml::check_attributes(source_, child, {}, sink_);
                 for (const auto part : child.children()) {
@@ -237,7 +273,7 @@ class AndroidXmlReader {
                     if (std::string_view(part.name()) == "preamble" ||
                         std::string_view(part.name()) == "repeating") {
                         xml::check_attributes(source_, part, {}, sink_);
-                        read_effects(part);
+                        read_effects(part, true);
                     } else {
                         report(part, "unknown element <" + std::string(part.name()) +
                                          "> in <repeating-effect> (expected <preamble> or "
@@ -293,6 +329,9 @@ class AndroidXmlReader {
                                           kMaxAmplitude, sink_);
         }
         if (duration && amplitude) {
+            if (const auto broken = budget_.add(*duration); !broken.empty()) {
+                report(entry, broken);
+            }
             steps.push_back({*duration, static_cast<int>(*amplitude)});
         }
     }
@@ -327,6 +366,9 @@ class AndroidXmlReader {
                 xml::read_integer(source_, point, "durationMs",
                                   point.attribute("durationMs").value(), 1, kMaxStepMs, sink_);
             if (amplitude && frequency && duration) {
+                if (const auto broken = budget_.add(*duration); !broken.empty()) {
+                    report(point, broken);
+                }
                 envelope.points.push_back({*amplitude, *frequency, *duration});
             }
         }
@@ -339,6 +381,7 @@ class AndroidXmlReader {
 
     const xml::Source& source_;
     DiagnosticSink& sink_;
+    StepBudget budget_;
 };
 
 }  // namespace
@@ -424,6 +467,7 @@ std::string write_android_envelope(const SoundTrack& track, const AndroidOptions
 
 ImportedScore read_android_json(std::string_view text, const std::string& file,
                                 const ChosenClef& chosen) {
+    check_document_size(text, file);
     const JsonDocument document(text, file);
     DiagnosticSink sink;
     const JsonReader json(document, sink);
@@ -434,12 +478,16 @@ ImportedScore read_android_json(std::string_view text, const std::string& file,
         const auto* timings = json.member(root, "timings", "the waveform");
         const auto* amplitudes = root.find("amplitudes");
         if (timings != nullptr && json.expect(*timings, JsonValue::Kind::array, "timings")) {
+            StepBudget budget;
             for (std::size_t i = 0; i < timings->items.size(); ++i) {
                 // Without amplitudes, timings alternate off and on (createWaveform(timings,
                 // repeat)).
-                steps.push_back(
-                    {json.integer(timings->items[i], "a timing", 0, kMaxStepMs).value_or(0),
-                     i % 2 == 1 ? kMaxAmplitude : 0});
+                const auto timing =
+                    json.integer(timings->items[i], "a timing", 0, kMaxStepMs).value_or(0);
+                if (const auto broken = budget.add(timing); !broken.empty()) {
+                    json.report(timings->items[i], broken);
+                }
+                steps.push_back({timing, i % 2 == 1 ? kMaxAmplitude : 0});
             }
         }
         if (amplitudes != nullptr &&
@@ -468,6 +516,7 @@ ImportedScore read_android_json(std::string_view text, const std::string& file,
 
 ImportedScore read_android_xml(std::string_view text, const std::string& file,
                                const ChosenClef& chosen) {
+    check_document_size(text, file);
     const xml::Source source(text, file);
     DiagnosticSink sink;
     AndroidXmlReader reader(source, sink);

@@ -39,8 +39,26 @@ std::optional<Format> parse_format(std::string_view name) {
     return std::nullopt;
 }
 
-std::string_view format_names() {
-    return "score, ahap, android-json, android-xml, android-envelope, rtttl, midi";
+namespace {
+
+std::string names_where(bool (*keep)(Format)) {
+    std::string names;
+    for (const auto& [format, name] : kNames) {
+        if (keep(format)) {
+            names += (names.empty() ? "" : ", ") + std::string(name);
+        }
+    }
+    return names;
+}
+
+}  // namespace
+
+std::string readable_format_names() {
+    return names_where(can_read);
+}
+
+std::string writable_format_names() {
+    return names_where(can_write);
 }
 
 std::optional<Format> format_of_path(const std::filesystem::path& path) {

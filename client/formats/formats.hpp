@@ -12,8 +12,10 @@ enum class Format { score, ahap, android_json, android_xml, android_envelope, rt
 // "score", "ahap", "android-json", "android-xml", "android-envelope", "rtttl", "midi".
 std::string_view to_string(Format format);
 std::optional<Format> parse_format(std::string_view name);
-// Every name, joined by ", ", for messages.
-std::string_view format_names();
+// The names of the formats vibscore reads (for --from) and writes (for --to), joined by ", ",
+// for messages: a format offered is one that works.
+std::string readable_format_names();
+std::string writable_format_names();
 
 // From the file name: .score.xml and other .xml a score, .vibration.xml Android XML, .ahap,
 // .json (Android), .rtttl and .rtx, .mid and .midi. Nothing for an unknown extension.

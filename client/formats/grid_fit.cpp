@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <numeric>
+#include <optional>
 #include <set>
 
 #include "daemon/render/performance.hpp"
@@ -31,33 +33,122 @@ bool fits(const std::vector<double>& times, double tempo) {
     return grid_error(times, grid) <= std::max(kTimeSlack, 0.02 * grid);
 }
 
+// Fits without moving any time by more than half a millisecond: whole milliseconds stay apart.
+bool fits_closely(const std::vector<double>& times, double tempo) {
+    return grid_error(times, tempo / ticks_per_quarter) <= kTimeSlack / 2 + 1e-9;
+}
+
 double clamp_tempo(double tempo) {
     return std::clamp(tempo, limits::min_tempo_s, limits::max_tempo_s);
 }
 
-// The tempo whose grid the times sit on: the clef's, or one built around the most common time
-// between onsets.
-double fit_tempo(const std::vector<double>& times, const std::vector<double>& onsets,
-                 double clef_tempo) {
-    if (fits(times, clef_tempo)) {
-        return clef_tempo;
+// Whether every time lies on a grid of `grid` seconds within `slack`.
+bool on_grid(const std::vector<double>& times, double grid, double slack) {
+    for (const double t : times) {
+        if (std::abs(t - std::round(t / grid) * grid) > slack) {
+            return false;
+        }
     }
+    return true;
+}
+
+// The most common time between onsets (or, with fewer than two onsets, between the times), in
+// seconds; 0 when there is none.
+double common_interval(const std::vector<double>& onsets, const std::vector<double>& times) {
+    std::vector<double> points = onsets.size() >= 2 ? onsets : times;
+    std::sort(points.begin(), points.end());
     std::map<long long, int> counts;  // intervals in microseconds
-    for (std::size_t i = 1; i < onsets.size(); ++i) {
-        const auto interval = std::llround((onsets[i] - onsets[i - 1]) * 1e6);
+    for (std::size_t i = 1; i < points.size(); ++i) {
+        const auto interval = std::llround((points[i] - points[i - 1]) * 1e6);
         if (interval > 0) {
             ++counts[interval];
         }
     }
     if (counts.empty()) {
+        return 0.0;
+    }
+    return static_cast<double>(std::max_element(counts.begin(), counts.end(),
+                                                [](auto a, auto b) { return a.second < b.second; })
+                                   ->first) /
+           1e6;
+}
+
+// The coarsest grid that holds every time: for times in whole milliseconds (Android's), their
+// greatest common divisor, exactly; for others, the shortest time between two times divided
+// into up to kMaxDivisions parts, to half a millisecond (so that times a millisecond apart stay
+// apart). Nothing when neither holds them, or when the piece would need more ticks on the grid
+// than a score's bars hold.
+std::optional<double> coarsest_grid(const std::vector<double>& times) {
+    constexpr int kMaxDivisions = 64;
+    constexpr double kHalfMs = kTimeSlack / 2;
+    std::vector<double> sorted = times;
+    std::sort(sorted.begin(), sorted.end());
+    const double last = sorted.empty() ? 0.0 : sorted.back();
+    const auto holds = [&](double grid, double slack) {
+        return grid >= limits::min_tempo_s / ticks_per_quarter &&
+               last / grid <= static_cast<double>(max_import_ticks) && on_grid(times, grid, slack);
+    };
+    long long divisor = 0;
+    bool whole_ms = true;
+    for (const double t : times) {
+        const double ms = t * 1000.0;
+        whole_ms = whole_ms && std::abs(ms - std::round(ms)) <= 1e-6;
+        divisor = std::gcd(divisor, std::llround(ms));
+    }
+    if (whole_ms && divisor > 0) {
+        const double grid = static_cast<double>(divisor) / 1000.0;
+        return holds(grid, 1e-6) ? std::optional<double>(grid) : std::nullopt;
+    }
+    double shortest = 0.0;
+    for (std::size_t i = 1; i < sorted.size(); ++i) {
+        const double step = sorted[i] - sorted[i - 1];
+        if (step > kHalfMs && (shortest == 0.0 || step < shortest)) {
+            shortest = step;
+        }
+    }
+    for (int parts = 1; shortest > 0.0 && parts <= kMaxDivisions; ++parts) {
+        if (holds(shortest / parts, kHalfMs)) {
+            return shortest / parts;
+        }
+    }
+    return std::nullopt;
+}
+
+// The tempo whose grid the times sit on: the hint's (a tempo the file records), the clef's, one
+// that makes the most common time between onsets a quarter note (or an 8th, half, ...), or one
+// whose grid is the coarsest that holds every time; only irregular times with none of those
+// are rounded to the common interval's grid.
+double fit_tempo(const std::vector<double>& times, const std::vector<double>& onsets,
+                 double clef_tempo, std::optional<double> hint) {
+    if (hint && *hint >= limits::min_tempo_s && *hint <= limits::max_tempo_s &&
+        fits(times, *hint)) {
+        return *hint;
+    }
+    if (fits(times, clef_tempo)) {
         return clef_tempo;
     }
-    const auto common = std::max_element(counts.begin(), counts.end(),
-                                         [](auto a, auto b) { return a.second < b.second; })
-                            ->first /
-                        1e6;
-    // The common interval as a quarter first, then as the lengths nearest to it.
-    for (const double as_beats : {1.0, 0.5, 2.0, 0.25, 1.5, 0.75, 4.0, 3.0, 0.125, 0.375}) {
+    const double common = common_interval(onsets, times);
+    if (common <= 0.0) {
+        return clef_tempo;
+    }
+    // The common interval as a quarter first, then as the lengths nearest to it: one that
+    // moves no time by more than half a millisecond.
+    constexpr double kAsBeats[] = {1.0, 0.5, 2.0, 0.25, 1.5, 0.75, 4.0, 3.0, 0.125, 0.375};
+    for (const double as_beats : kAsBeats) {
+        const double tempo = clamp_tempo(common / as_beats);
+        if (fits_closely(times, tempo)) {
+            return tempo;
+        }
+    }
+    // A grid that holds every time, with the common interval as near a quarter note as a whole
+    // number of its steps allows: Android's 10-12 ms steps stay 10-12 ms.
+    if (const auto grid = coarsest_grid(times)) {
+        const double steps = std::max(1.0, std::round(common / *grid));
+        const double per_step = std::max(1.0, std::round(ticks_per_quarter / steps));
+        return clamp_tempo(*grid * ticks_per_quarter / per_step);
+    }
+    // Then one that moves times by up to the millisecond of slack.
+    for (const double as_beats : kAsBeats) {
         const double tempo = clamp_tempo(common / as_beats);
         if (fits(times, tempo)) {
             return tempo;
@@ -74,7 +165,7 @@ bool changes(double from, double to) {
 }  // namespace
 
 GridPlacement place_on_grid(std::vector<SoundEvent> events, double total, const Clef& clef,
-                            const StringOf& string_of) {
+                            const StringOf& string_of, std::optional<double> tempo_hint) {
     std::stable_sort(events.begin(), events.end(),
                      [](const auto& a, const auto& b) { return a.onset < b.onset; });
     const render::RenderOptions defaults;
@@ -106,7 +197,7 @@ GridPlacement place_on_grid(std::vector<SoundEvent> events, double total, const 
     }
 
     GridPlacement placement;
-    placement.tempo = fit_tempo(times, onsets, clef.tempo);
+    placement.tempo = fit_tempo(times, onsets, clef.tempo, tempo_hint);
     const double grid = placement.tempo / ticks_per_quarter;
     placement.worst_error = grid_error(times, grid);
     const auto tick = [&](double t) { return static_cast<std::int64_t>(std::llround(t / grid)); };

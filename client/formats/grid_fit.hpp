@@ -2,6 +2,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <vector>
 
 #include "client/formats/score_builder.hpp"
@@ -21,10 +22,13 @@ struct GridPlacement {
 using StringOf = std::function<int(const SoundEvent&)>;
 
 // Quantizes events into notes on the clef:
-// - tempo: the clef's own when every onset and every end that is not the default silence before
-//   the next note lies on its 32nd-note grid (within a millisecond); otherwise the tempo that
-//   makes the most common time between onsets a quarter note (or an 8th, half, 16th...) and fits
-//   best; it is always between the limits a clef allows;
+// - tempo: `tempo_hint` (a tempo the file records, as vibscore's AHAP exports do) or else the
+//   clef's own, when every onset and every end that is not the default silence before the next
+//   note lies on its 32nd-note grid (within a millisecond); otherwise the tempo that makes the
+//   most common time between onsets a quarter note (or an 8th, half, 16th...) and fits; failing
+//   that, the coarsest grid that holds every time to half a millisecond (Android's whole
+//   milliseconds exactly); only times that fit none of these are rounded. It is always between
+//   the limits a clef allows;
 // - a gap before the next note no longer than the renderer's default silence is that silence,
 //   not a rest; events that touch are tied (portamento where pitch or strength glides on into the
 //   next note, legato otherwise);
@@ -32,7 +36,8 @@ using StringOf = std::function<int(const SoundEvent&)>;
 //   the next note); the number is the nearest to the note's own strength.
 // `total` is the piece's length in seconds (rests at its end included), 0 for "the last note".
 GridPlacement place_on_grid(std::vector<SoundEvent> events, double total, const Clef& clef,
-                            const StringOf& string_of);
+                            const StringOf& string_of,
+                            std::optional<double> tempo_hint = std::nullopt);
 
 // Pitches (any scale: semitones, log frequency) to strings, keeping the melody's contour: up to
 // `strings` distinct pitches each get their own string, spread over the staff from string 1;

@@ -5,6 +5,9 @@
 #include <map>
 #include <set>
 
+#include "score/limits.hpp"
+#include "score/xml_support.hpp"
+
 #include "client/formats/grid_fit.hpp"
 #include "client/formats/midi_file.hpp"
 #include "client/formats/sound_events.hpp"
@@ -35,6 +38,7 @@ std::string tempo_bytes(double tempo) {
 struct MidiNote {
     std::int64_t on = 0, off = 0;  // ticks
     int pitch = 0, velocity = 0;
+    std::size_t off_offset = 0;  // the byte of the event that ends it
 };
 
 std::vector<MidiNote> notes_of(const midi::Track& track) {
@@ -46,11 +50,12 @@ std::vector<MidiNote> notes_of(const midi::Track& track) {
         const auto key = std::make_pair(event.channel(), static_cast<int>(event.data1));
         if (event.status < 0xF0 && event.note_on()) {
             sounding[key].push_back(notes.size());
-            notes.push_back({event.tick, event.tick, event.data1, event.data2});
+            notes.push_back({event.tick, event.tick, event.data1, event.data2, event.offset});
         } else if (event.status < 0xF0 && event.note_off()) {
             auto& open = sounding[key];
             if (!open.empty()) {
                 notes[open.front()].off = event.tick;
+                notes[open.front()].off_offset = event.offset;
                 open.erase(open.begin());
             }
         }
@@ -58,6 +63,7 @@ std::vector<MidiNote> notes_of(const midi::Track& track) {
     for (const auto& [key, open] : sounding) {
         for (const auto index : open) {
             notes[index].off = last_tick;  // never released: it lasts to the track's end
+            notes[index].off_offset = track.events.back().offset;
         }
     }
     // One voice: of notes starting together the highest is the melody.
@@ -69,6 +75,42 @@ std::vector<MidiNote> notes_of(const midi::Track& track) {
 
 std::int64_t track_end(const midi::Track& track) {
     return track.events.empty() ? 0 : track.events.back().tick;
+}
+
+std::size_t track_end_offset(const midi::Track& track) {
+    return track.events.empty() ? 0 : track.events.back().offset;
+}
+
+[[noreturn]] void refuse_at(const std::string& file, std::size_t offset, const std::string& what) {
+    throw DocumentError({file}, "byte " + std::to_string(offset) + ": " + what);
+}
+
+// A note or track that ends past what a score can hold is refused at its byte before anything
+// is laid out: a few bytes of delta time can claim years.
+void check_end(const std::string& file, std::size_t offset, const std::string& what,
+               std::int64_t grid_tick, const std::vector<TempoChange>& tempi) {
+    if (grid_tick > max_import_ticks) {
+        refuse_at(file, offset,
+                  what + " ends " +
+                      xml::format_number(static_cast<double>(grid_tick) / ticks_per_quarter) +
+                      " beats in; a score holds at most " + std::to_string(limits::bars) +
+                      " bars of four beats");
+    }
+    const double seconds = seconds_at(tempi, grid_tick);
+    if (past_the_hour(seconds)) {
+        refuse_at(file, offset,
+                  what + " ends at " + seconds_text(seconds) + "; a score lasts at most " +
+                      seconds_text(limits::max_score_seconds));
+    }
+}
+
+void check_end_seconds(const std::string& file, std::size_t offset, const std::string& what,
+                       double seconds) {
+    if (past_the_hour(seconds)) {
+        refuse_at(file, offset,
+                  what + " ends at " + seconds_text(seconds) + "; a score lasts at most " +
+                      seconds_text(limits::max_score_seconds));
+    }
 }
 
 std::string track_name(const midi::Track& track) {
@@ -188,6 +230,12 @@ ImportedScore read_midi(std::string_view bytes, const std::string& file, const C
 
     if (midi.ticks_per_quarter == 0) {
         // SMPTE time has no beats: place the notes by their times, as for AHAP.
+        for (const auto& note : notes) {
+            check_end_seconds(file, note.off_offset, "a note",
+                              static_cast<double>(note.off) / midi.ticks_per_second);
+        }
+        check_end_seconds(file, track_end_offset(track), "the track",
+                          static_cast<double>(track_end(track)) / midi.ticks_per_second);
         std::vector<SoundEvent> events;
         for (std::size_t i = 0; i < notes.size(); ++i) {
             SoundEvent event;
@@ -233,6 +281,11 @@ ImportedScore read_midi(std::string_view bytes, const std::string& file, const C
             settled.push_back(change);
         }
     }
+
+    for (const auto& note : notes) {
+        check_end(file, note.off_offset, "a note", grid(note.off), settled);
+    }
+    check_end(file, track_end_offset(track), "the track", grid(track_end(track)), settled);
 
     std::vector<GridNote> grid_notes;
     for (std::size_t i = 0; i < notes.size(); ++i) {

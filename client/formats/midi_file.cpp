@@ -91,8 +91,9 @@ Track read_track(ByteReader& reader, std::size_t& events_read) {
     std::uint8_t running = 0;
     bool ended = false;
     while (!reader.done() && !ended) {
-        tick += reader.variable();
         Event event;
+        event.offset = reader.at();
+        tick += reader.variable();
         event.tick = tick;
         const auto start = reader.at();
         std::uint8_t status = reader.peek();

@@ -15,7 +15,8 @@ struct Event {
     std::uint8_t status = 0;  // 0x80..0xEF channel messages; 0xFF meta; 0xF0/0xF7 sysex
     std::uint8_t meta_type = 0;
     std::uint8_t data1 = 0, data2 = 0;
-    std::string data;  // meta and sysex payload
+    std::string data;        // meta and sysex payload
+    std::size_t offset = 0;  // read: the byte where the event (its delta time) begins
 
     bool note_on() const { return (status & 0xF0) == 0x90 && data2 > 0; }
     // Note off, or the note on with velocity 0 that running status favours.

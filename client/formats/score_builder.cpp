@@ -124,7 +124,108 @@ std::string bpm_label(double tempo) {
     return label + "bpm";
 }
 
+[[noreturn]] void too_long(const std::string& file, const std::string& what) {
+    throw DocumentError({file}, "too long for a score: " + what);
+}
+
+std::string bars_limit() {
+    return "a score holds at most " + std::to_string(limits::bars) + " bars";
+}
+std::string symbols_limit() {
+    return "a score holds at most " + std::to_string(limits::symbols) + " symbols";
+}
+std::string seconds_limit() {
+    return "a score lasts at most " + seconds_text(limits::max_score_seconds);
+}
+
+// The limits the piece's length alone decides, checked before anything is laid
+// out: past them the layout would cost time and memory in proportion to the length a file
+// claims, which a few bytes of MIDI can make years.
+void check_length(const std::vector<GridNote>& notes, const std::vector<TempoChange>& tempi,
+                  std::int64_t total_ticks, const std::string& file) {
+    std::int64_t end = std::max<std::int64_t>(total_ticks, 0);
+    for (const auto& note : notes) {
+        end = std::max(end, note.start + std::max<std::int64_t>(note.length, 1));
+    }
+    if (end > max_import_ticks) {
+        too_long(file, "it lasts " + std::to_string(end / ticks_per_quarter) +
+                           " beats, more than fit in " + std::to_string(limits::bars) +
+                           " bars of four; " + bars_limit());
+    }
+    const double seconds = seconds_at(tempi, end);
+    if (past_the_hour(seconds)) {
+        too_long(file, "it lasts " + seconds_text(seconds) + "; " + seconds_limit());
+    }
+}
+
+// Every limit of a score, on the score as laid out: each message names the one broken.
+void check_laid_out(const ImportedScore& imported, const std::string& file) {
+    std::size_t symbols = 0;
+    double seconds = 0.0;
+    for (const auto& bar : imported.score.bars) {
+        symbols += bar.symbols.size();
+        for (const auto& clef : imported.clefs) {
+            if (clef.id == bar.clef) {
+                seconds += Score::beat_count(bar) * clef.clef.tempo;
+            }
+        }
+    }
+    const auto bars = imported.score.bars.size();
+    if (bars > limits::bars) {
+        too_long(file, std::to_string(bars) + " bars; " + bars_limit());
+    }
+    if (symbols > limits::symbols) {
+        too_long(file, std::to_string(symbols) + " symbols (notes, tied parts and rests); " +
+                           symbols_limit());
+    }
+    if (past_the_hour(seconds)) {
+        too_long(file, "it lasts " + seconds_text(seconds) + "; " + seconds_limit());
+    }
+    if (imported.clefs.size() > limits::clefs_per_score) {
+        throw DocumentError(
+            {file}, "too many tempos for a score: " + std::to_string(imported.clefs.size()) +
+                        ", each on a clef of its own; a score declares at most " +
+                        std::to_string(limits::clefs_per_score) + " clefs");
+    }
+}
+
 }  // namespace
+
+void check_document_size(std::string_view text, const std::string& file) {
+    if (text.size() > limits::document_bytes) {
+        throw DocumentError({file}, "larger than the " + std::to_string(limits::document_bytes) +
+                                        "-byte limit for a document");
+    }
+}
+
+std::string seconds_text(double seconds) {
+    char text[32];
+    std::snprintf(text, sizeof text, seconds < 1e9 ? "%.3f" : "%.3g", seconds);
+    std::string shown = text;
+    if (shown.find('.') != std::string::npos && shown.find('e') == std::string::npos) {
+        shown.erase(shown.find_last_not_of('0') + 1);
+        if (shown.back() == '.') {
+            shown.pop_back();
+        }
+    }
+    return shown + " s";
+}
+
+bool past_the_hour(double seconds) {
+    // As the score reader (score/bundle.cpp): a sum over thousands of bars at a tempo no binary
+    // fraction holds, like 0.2 s, builds up rounding; a piece of exactly an hour is a score.
+    return seconds > limits::max_score_seconds + 1e-6;
+}
+
+double seconds_at(const std::vector<TempoChange>& tempi, std::int64_t tick) {
+    double seconds = 0.0;
+    for (std::size_t i = 0; i < tempi.size() && tempi[i].at < tick; ++i) {
+        const std::int64_t until = i + 1 < tempi.size() ? std::min(tempi[i + 1].at, tick) : tick;
+        const double tempo = std::clamp(tempi[i].tempo, limits::min_tempo_s, limits::max_tempo_s);
+        seconds += static_cast<double>(until - tempi[i].at) * tempo / ticks_per_quarter;
+    }
+    return seconds;
+}
 
 std::vector<Length> lengths_for(std::int64_t ticks) {
     std::vector<Length> parts;
@@ -173,6 +274,7 @@ ImportedScore build_score(std::vector<GridNote> notes, std::vector<TempoChange> 
     }
     std::stable_sort(notes.begin(), notes.end(),
                      [](const GridNote& a, const GridNote& b) { return a.start < b.start; });
+    check_length(notes, tempi, total_ticks, file);
     // One voice: a note that starts while another sounds cuts it short; of notes starting
     // together the last one stays.
     std::vector<GridNote> voice;
@@ -185,6 +287,10 @@ ImportedScore build_score(std::vector<GridNote> notes, std::vector<TempoChange> 
             voice.back().length = note.start - voice.back().start;
         }
         voice.push_back(note);
+    }
+    // Each note of the one voice is a symbol at least (of a chord, one note is).
+    if (voice.size() > limits::symbols) {
+        too_long(file, std::to_string(voice.size()) + " notes; " + symbols_limit());
     }
     for (std::size_t i = 0; i < voice.size(); ++i) {
         voice[i].length = std::max<std::int64_t>(voice[i].length, 1);
@@ -236,27 +342,10 @@ ImportedScore build_score(std::vector<GridNote> notes, std::vector<TempoChange> 
         imported.clefs.push_back({id, clef, tempo != chosen.clef.tempo});
     }
 
-    std::size_t symbols = 0;
-    double seconds = 0.0;
-    for (const auto& bar : imported.score.bars) {
-        symbols += bar.symbols.size();
-        for (const auto& clef : imported.clefs) {
-            if (clef.id == bar.clef) {
-                seconds += Score::beat_count(bar) * clef.clef.tempo;
-            }
-        }
-    }
     if (imported.score.bars.empty()) {
         throw DocumentError({file}, "holds no notes or rests to make a score of");
     }
-    if (symbols > limits::symbols || imported.score.bars.size() > limits::bars ||
-        imported.clefs.size() > limits::clefs_per_score || seconds > limits::max_score_seconds) {
-        throw DocumentError({file}, "too long for a score: " + std::to_string(symbols) +
-                                        " symbols in " +
-                                        std::to_string(imported.score.bars.size()) + " bars, " +
-                                        std::to_string(static_cast<long long>(seconds)) +
-                                        " s (limits: 100000 symbols, 10000 bars, 3600 s)");
-    }
+    check_laid_out(imported, file);
     return imported;
 }
 

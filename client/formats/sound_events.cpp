@@ -38,6 +38,15 @@ SoundTrack sound_track(const ScoreBundle& bundle) {
     SoundTrack track;
     track.title = bundle.score.title;
     track.duration = performance.duration();
+    // The piece's one tempo, when it has one, for the formats that can carry it.
+    for (std::size_t b = 0; b < bundle.score.bars.size(); ++b) {
+        const double tempo = bundle.clef_of(bundle.score.bars[b]).tempo;
+        if (b > 0 && tempo != track.tempo) {
+            track.tempo = 0.0;
+            break;
+        }
+        track.tempo = tempo;
+    }
     const double peak = strongest_number(bundle);
     const auto relative = [&](double amplitude) { return peak > 0.0 ? amplitude / peak : 0.0; };
     const auto& tones = performance.tones();

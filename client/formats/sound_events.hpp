@@ -30,6 +30,7 @@ struct SoundTrack {
     std::string title;
     std::vector<SoundEvent> events;  // in time order, never overlapping
     double duration = 0.0;           // the whole piece, rests at the end included
+    double tempo = 0.0;              // seconds per quarter note when every bar has the same; else 0
 };
 
 // Staff position of a string (1..6) and back, the way sharpness and pitch carry strings.

@@ -28,26 +28,37 @@ std::vector<DriverInfo> built_in_drivers() {
     };
 }
 
-bool is_built_in(const std::string& name) {
+}  // namespace
+
+std::vector<std::string> built_in_driver_names() {
+    std::vector<std::string> names;
+    for (const auto& driver : built_in_drivers()) {
+        names.push_back(driver.name);
+    }
+    return names;
+}
+
+bool is_built_in_driver(const std::string& name) {
     const auto built_in = built_in_drivers();
     return std::any_of(built_in.begin(), built_in.end(),
                        [&](const DriverInfo& driver) { return driver.name == name; });
 }
 
-}  // namespace
+std::shared_ptr<const ModuleCatalog> scan_driver_modules(const std::filesystem::path& drivers_dir) {
+    return ModuleCatalog::scan(drivers_dir, built_in_driver_names());
+}
 
-std::vector<DriverInfo> available_drivers(const std::filesystem::path& drivers_dir) {
+std::vector<DriverInfo> available_drivers(const ModuleCatalog& modules) {
     auto drivers = built_in_drivers();
-    for (const auto& external : find_external_drivers(drivers_dir)) {
-        if (is_built_in(external.name)) {
-            log::warning("driver module " + external.path.string() + " is ignored: \"" +
-                         external.name + "\" is a built-in driver");
-            continue;
-        }
+    for (const auto& module : modules.modules()) {
         drivers.push_back(
-            {external.name, external.description + " (" + external.path.filename().string() + ")"});
+            {module.name, module.description + " (" + module.path.filename().string() + ")"});
     }
     return drivers;
+}
+
+std::vector<DriverInfo> available_drivers(const std::filesystem::path& drivers_dir) {
+    return available_drivers(*scan_driver_modules(drivers_dir));
 }
 
 namespace {
@@ -82,19 +93,29 @@ std::unique_ptr<Actuator> make_backend(const std::string& name,
 
 std::unique_ptr<Actuator> make_actuator(const std::string& name,
                                         const std::map<std::string, std::string>& settings,
-                                        const std::filesystem::path& drivers_dir) {
+                                        const ModuleCatalog& modules) {
     auto own_settings = settings;
     const CommonSettings common = take_common_settings(name, own_settings);
-    auto backend = is_built_in(name) ? make_backend(name, own_settings)
-                                     : make_external_actuator(drivers_dir, name, own_settings);
+    auto backend = is_built_in_driver(name) ? make_backend(name, own_settings)
+                                            : modules.open(name, own_settings);
     if (backend) {
         return std::make_unique<ConfiguredActuator>(std::move(backend), common);
     }
+    if (const auto* refused = modules.refused_as(name)) {
+        throw std::invalid_argument("driver \"" + name + "\": module " + refused->path.string() +
+                                    " is not loaded: " + refused->reason);
+    }
     std::string known;
-    for (const auto& driver : available_drivers(drivers_dir)) {
+    for (const auto& driver : available_drivers(modules)) {
         known += (known.empty() ? "" : ", ") + driver.name;
     }
     throw std::invalid_argument("unknown driver \"" + name + "\" (available: " + known + ")");
+}
+
+std::unique_ptr<Actuator> make_actuator(const std::string& name,
+                                        const std::map<std::string, std::string>& settings,
+                                        const std::filesystem::path& drivers_dir) {
+    return make_actuator(name, settings, *scan_driver_modules(drivers_dir));
 }
 
 }  // namespace vibscore::drivers

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "daemon/drivers/actuator.hpp"
+#include "daemon/drivers/module_catalog.hpp"
 
 namespace vibscore::drivers {
 
@@ -15,14 +16,28 @@ struct DriverInfo {
     std::string description;
 };
 
-// The backends this build can create, then the driver modules in `drivers_dir`
-// (include/vibscore/driver.h), for --list-drivers and error messages.
+// The backends this build has in itself.
+std::vector<std::string> built_in_driver_names();
+bool is_built_in_driver(const std::string& name);
+
+// The driver modules of `drivers_dir`, each tried out once (ModuleCatalog::scan), none of them
+// taking a built-in driver's name.
+std::shared_ptr<const ModuleCatalog> scan_driver_modules(const std::filesystem::path& drivers_dir);
+
+// The backends this build can create, then the driver modules of `modules`, for
+// --list-drivers, ListDrivers and error messages. Loads nothing.
+std::vector<DriverInfo> available_drivers(const ModuleCatalog& modules);
+// The same for the modules of `drivers_dir`, scanned now (a command line's one look).
 std::vector<DriverInfo> available_drivers(const std::filesystem::path& drivers_dir = {});
 
 // Creates backend `name` from its configuration section: a built-in one, or else a driver
-// module from `drivers_dir`. The common settings (max-on-time-ms, pulse-period-ms) are taken
-// here. Throws std::invalid_argument naming an unknown driver or a bad setting, DeviceError
-// when its device cannot be opened.
+// module of `modules`. The common settings (max-on-time-ms, pulse-period-ms) are taken here.
+// Throws std::invalid_argument naming an unknown driver, a refused module and why, or a bad
+// setting; DeviceError when its device cannot be opened.
+std::unique_ptr<Actuator> make_actuator(const std::string& name,
+                                        const std::map<std::string, std::string>& settings,
+                                        const ModuleCatalog& modules);
+// The same with the modules of `drivers_dir`, scanned now.
 std::unique_ptr<Actuator> make_actuator(const std::string& name,
                                         const std::map<std::string, std::string>& settings,
                                         const std::filesystem::path& drivers_dir = {});

@@ -3,7 +3,9 @@
 #include <charconv>
 #include <cmath>
 #include <utility>
+#include <vector>
 
+#include "common/closest_name.hpp"
 #include "common/number_text.hpp"
 
 namespace vibscore::drivers {
@@ -110,17 +112,34 @@ std::string DriverSettings::choice(const std::string& key, const std::string& fa
     throw bad(key, *value, names);
 }
 
+SettingError DriverSettings::unknown(const std::string& key, const std::string& value) const {
+    std::set<std::string> known(asked_);
+    known.insert(std::begin(kCommonSettingKeys), std::end(kCommonSettingKeys));
+    std::string list;
+    for (const auto& name : known) {
+        list += (list.empty() ? "" : ", ") + name;
+    }
+    const auto meant = closest_name(key, std::vector<std::string>(known.begin(), known.end()));
+    return SettingError(key, "unknown " + driver_ + " setting " + key + " = \"" + value + "\"" +
+                                 (meant ? " (did you mean " + *meant + "?)" : "") +
+                                 " (known: " + list + ")");
+}
+
+SettingError DriverSettings::missing(const std::string& key, const std::string& what) {
+    asked_.insert(key);
+    // "lines = 17" without "line": the typo is the mistake to report, not the missing key.
+    for (const auto& [present, value] : settings_) {
+        if (asked_.count(present) == 0 && closest_name(present, {key}) == key) {
+            return unknown(present, value);
+        }
+    }
+    return SettingError(key, driver_ + " setting " + key + " is missing: " + what);
+}
+
 void DriverSettings::reject_unknown() const {
     for (const auto& [key, value] : settings_) {
         if (asked_.count(key) == 0) {
-            std::set<std::string> known(asked_);
-            known.insert(std::begin(kCommonSettingKeys), std::end(kCommonSettingKeys));
-            std::string list;
-            for (const auto& name : known) {
-                list += (list.empty() ? "" : ", ") + name;
-            }
-            throw SettingError(key, "unknown " + driver_ + " setting " + key + " = \"" + value +
-                                        "\" (known: " + list + ")");
+            throw unknown(key, value);
         }
     }
 }

@@ -45,14 +45,19 @@ class DriverSettings {
     std::string choice(const std::string& key, const std::string& fallback,
                        std::initializer_list<const char*> allowed);
 
-    // Throws for any setting none of the accessors above asked for, listing the known keys (the
-    // common ones too).
+    // Throws for any setting none of the accessors above asked for, naming the known key it
+    // most likely misspells and listing the known keys (the common ones too).
     void reject_unknown() const;
+
+    // The error for a required `key` that is not set ("... is missing: <what>"), unless a key
+    // that is set misspells it: then that one is the error, as reject_unknown() words it.
+    SettingError missing(const std::string& key, const std::string& what);
 
   private:
     const std::string* lookup(const std::string& key);
     SettingError bad(const std::string& key, const std::string& value,
                      const std::string& expected) const;
+    SettingError unknown(const std::string& key, const std::string& value) const;
 
     std::string driver_;
     std::map<std::string, std::string> settings_;

@@ -8,7 +8,6 @@
 #include <stdexcept>
 #include <utility>
 
-#include "daemon/log.hpp"
 #include "include/vibscore/driver.h"
 
 namespace vibscore::drivers {
@@ -113,84 +112,57 @@ DriverModule::~DriverModule() {
     ::dlclose(handle_);
 }
 
+std::string entry_problem(void* handle, const vibscore_driver*& entry) {
+    using EntryFunction = const vibscore_driver* (*)();
+    auto* entry_function =
+        reinterpret_cast<EntryFunction>(::dlsym(handle, "vibscore_driver_entry"));
+    if (entry_function == nullptr) {
+        return "has no vibscore_driver_entry symbol";
+    }
+    entry = entry_function();
+    if (entry == nullptr) {
+        return "vibscore_driver_entry() returned NULL";
+    }
+    if (entry->abi_version != VIBSCORE_DRIVER_ABI_VERSION) {
+        return "built for driver ABI " + std::to_string(entry->abi_version) +
+               ", this vibscored speaks " + std::to_string(VIBSCORE_DRIVER_ABI_VERSION);
+    }
+    if (!valid_name(entry->name)) {
+        return "its name must be 1-64 of a-z, 0-9 and '-'";
+    }
+    if (!entry->open || !entry->close || !entry->capabilities || !entry->apply || !entry->off) {
+        return "open, close, capabilities, apply and off must all be set";
+    }
+    return {};
+}
+
 std::shared_ptr<DriverModule> DriverModule::load(const std::filesystem::path& path) {
     // RTLD_LOCAL keeps one module's symbols from resolving another's.
     void* handle = ::dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
     if (handle == nullptr) {
         throw std::runtime_error("driver module " + path.string() + ": " + ::dlerror());
     }
-    const auto fail = [&](const std::string& what) {
+    const vibscore_driver* entry = nullptr;
+    if (const std::string wrong = entry_problem(handle, entry); !wrong.empty()) {
         ::dlclose(handle);
-        return std::runtime_error("driver module " + path.string() + ": " + what);
-    };
-    using EntryFunction = const vibscore_driver* (*)();
-    auto* entry_function =
-        reinterpret_cast<EntryFunction>(::dlsym(handle, "vibscore_driver_entry"));
-    if (entry_function == nullptr) {
-        throw fail("has no vibscore_driver_entry symbol");
-    }
-    const vibscore_driver* entry = entry_function();
-    if (entry == nullptr) {
-        throw fail("vibscore_driver_entry() returned NULL");
-    }
-    if (entry->abi_version != VIBSCORE_DRIVER_ABI_VERSION) {
-        throw fail("built for driver ABI " + std::to_string(entry->abi_version) +
-                   ", this vibscored speaks " + std::to_string(VIBSCORE_DRIVER_ABI_VERSION));
-    }
-    if (!valid_name(entry->name)) {
-        throw fail("its name must be 1-64 of a-z, 0-9 and '-'");
-    }
-    if (!entry->open || !entry->close || !entry->capabilities || !entry->apply || !entry->off) {
-        throw fail("open, close, capabilities, apply and off must all be set");
+        throw std::runtime_error("driver module " + path.string() + ": " + wrong);
     }
     return std::make_shared<DriverModule>(Loaded{}, path, handle, entry);
 }
 
-std::vector<ExternalDriverInfo> find_external_drivers(const std::filesystem::path& directory) {
-    std::vector<ExternalDriverInfo> found;
-    std::error_code error;
-    if (directory.empty() || !std::filesystem::is_directory(directory, error)) {
-        return found;
+std::unique_ptr<Actuator> open_external_actuator(
+    std::shared_ptr<DriverModule> module, const std::map<std::string, std::string>& settings) {
+    std::vector<vibscore_setting> c_settings;
+    for (const auto& [key, value] : settings) {
+        c_settings.push_back({key.c_str(), value.c_str()});
     }
-    for (const auto& file : std::filesystem::directory_iterator(directory, error)) {
-        if (file.path().extension() != ".so") {
-            continue;
-        }
-        try {
-            const auto module = DriverModule::load(file.path());
-            found.push_back({module->entry().name,
-                             module->entry().description ? module->entry().description : "",
-                             file.path()});
-        } catch (const std::exception& failure) {
-            log::warning(failure.what());
-        }
+    ErrorText error;
+    void* handle =
+        module->entry().open(c_settings.data(), c_settings.size(), error.data(), error.size());
+    if (handle == nullptr) {
+        throw DeviceError(std::string(module->entry().name) + ": " + error.message("open failed"));
     }
-    std::sort(found.begin(), found.end(),
-              [](const auto& a, const auto& b) { return a.name < b.name; });
-    return found;
-}
-
-std::unique_ptr<Actuator> make_external_actuator(
-    const std::filesystem::path& directory, const std::string& name,
-    const std::map<std::string, std::string>& settings) {
-    for (const auto& driver : find_external_drivers(directory)) {
-        if (driver.name != name) {
-            continue;
-        }
-        auto module = DriverModule::load(driver.path);
-        std::vector<vibscore_setting> c_settings;
-        for (const auto& [key, value] : settings) {
-            c_settings.push_back({key.c_str(), value.c_str()});
-        }
-        ErrorText error;
-        void* handle =
-            module->entry().open(c_settings.data(), c_settings.size(), error.data(), error.size());
-        if (handle == nullptr) {
-            throw DeviceError(name + ": " + error.message("open failed"));
-        }
-        return std::make_unique<ExternalActuator>(std::move(module), handle);
-    }
-    return nullptr;
+    return std::make_unique<ExternalActuator>(std::move(module), handle);
 }
 
 }  // namespace vibscore::drivers

@@ -38,20 +38,14 @@ class DriverModule {
     const vibscore_driver* entry_;
 };
 
-struct ExternalDriverInfo {
-    std::string name;
-    std::string description;
-    std::filesystem::path path;
-};
+// What is wrong with the entry point of the loaded module `handle`: "" when nothing is, and
+// then `entry` is its vibscore_driver. Checks the symbol, the ABI version, the name
+// ([a-z0-9-], 1-64) and that every required function is set.
+std::string entry_problem(void* handle, const vibscore_driver*& entry);
 
-// The driver modules in `directory` ("*.so"), in name order. A module that does not load is
-// left out with a warning naming it; a missing directory has none.
-std::vector<ExternalDriverInfo> find_external_drivers(const std::filesystem::path& directory);
-
-// Opens driver `name` from `directory`, or returns nullptr when no module there has that name.
-// Throws std::invalid_argument or DeviceError with the driver's own message when open fails.
-std::unique_ptr<Actuator> make_external_actuator(
-    const std::filesystem::path& directory, const std::string& name,
-    const std::map<std::string, std::string>& settings);
+// Opens the module's actuator with its settings ("key = value" lines of its section). Throws
+// DeviceError with the module's own message when its open() fails.
+std::unique_ptr<Actuator> open_external_actuator(
+    std::shared_ptr<DriverModule> module, const std::map<std::string, std::string>& settings);
 
 }  // namespace vibscore::drivers

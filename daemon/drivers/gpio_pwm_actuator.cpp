@@ -1,8 +1,11 @@
 #include "daemon/drivers/gpio_pwm_actuator.hpp"
 
 #include <cmath>
+#include <optional>
 #include <stdexcept>
+#include <string>
 #include <utility>
+#include <vector>
 
 #include "daemon/drivers/drive_levels.hpp"
 #include "daemon/drivers/driver_settings.hpp"
@@ -24,13 +27,21 @@ std::vector<int> with_enable(std::vector<int> values, bool enable_line) {
     return values;
 }
 
-unsigned required_line(DriverSettings& read, const std::string& key) {
-    const auto offset = read.integer(key, 0, kMaxLineOffset);
-    if (!offset) {
-        throw SettingError(
-            key, read.driver() + " setting " + key + " is missing: the line offset on the chip");
+// The line offsets `keys` name, all read before any is found missing, so that a misspelt key
+// ("lines = 17") is reported as unknown rather than the key it misspells as missing.
+std::vector<unsigned> required_lines(DriverSettings& read, std::vector<std::string> keys) {
+    std::vector<std::optional<long>> offsets;
+    for (const auto& key : keys) {
+        offsets.push_back(read.integer(key, 0, kMaxLineOffset));
     }
-    return static_cast<unsigned>(*offset);
+    std::vector<unsigned> lines;
+    for (std::size_t i = 0; i < keys.size(); ++i) {
+        if (!offsets[i]) {
+            throw read.missing(keys[i], "the line offset on the chip");
+        }
+        lines.push_back(static_cast<unsigned>(*offsets[i]));
+    }
+    return lines;
 }
 
 // The enable line, if configured, goes last; no line may be named twice.
@@ -145,7 +156,7 @@ std::unique_ptr<Actuator> make_gpio_erm_actuator(const std::map<std::string, std
     GpioPwmSettings erm;
     erm.kind = GpioPwmKind::erm;
     const std::string chip = read.text("chip", "gpiochip0");
-    const auto offsets = with_enable_line(read, {required_line(read, "line")}, erm);
+    const auto offsets = with_enable_line(read, required_lines(read, {"line"}), erm);
     erm.frequency_hz = read.number("carrier-hz", 1000.0, 10.0, 20000.0);
     return finish_gpio_actuator(read, erm, offsets, chip, open);
 }
@@ -156,9 +167,7 @@ std::unique_ptr<Actuator> make_gpio_lra_actuator(const std::map<std::string, std
     GpioPwmSettings lra;
     lra.kind = GpioPwmKind::lra;
     const std::string chip = read.text("chip", "gpiochip0");
-    const unsigned line_a = required_line(read, "line-a");
-    const unsigned line_b = required_line(read, "line-b");
-    const auto offsets = with_enable_line(read, {line_a, line_b}, lra);
+    const auto offsets = with_enable_line(read, required_lines(read, {"line-a", "line-b"}), lra);
     lra.frequency_hz = read.number("resonance-hz", 175.0, kMinLraHz, kMaxLraHz);
     return finish_gpio_actuator(read, lra, offsets, chip, open);
 }

@@ -1,6 +1,7 @@
 #include "daemon/drivers/trace_file.hpp"
 
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <array>
@@ -24,11 +25,19 @@ std::runtime_error failure(const std::filesystem::path& path, const char* what, 
 }  // namespace
 
 TraceFile::TraceFile(std::filesystem::path path) : path_(std::move(path)) {
-    fd_ = UniqueFd(::open(path_.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644));
+    // Appended to, never truncated: `vibscored --safe-off` and the daemon systemd restarts after
+    // a crash open the trace again, and the crashed run's record is what one wants to read.
+    fd_ = UniqueFd(::open(path_.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644));
     if (fd_.get() < 0) {
         throw failure(path_, "cannot open", errno);
     }
-    write_line(kHeader, sizeof kHeader - 1);
+    struct stat status {};
+    if (::fstat(fd_.get(), &status) != 0) {
+        throw failure(path_, "cannot stat", errno);
+    }
+    if (!S_ISREG(status.st_mode) || status.st_size == 0) {
+        write_line(kHeader, sizeof kHeader - 1);
+    }
 }
 
 void TraceFile::record(std::int64_t time_ns, double amplitude, double frequency_hz,

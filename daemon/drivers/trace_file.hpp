@@ -15,8 +15,10 @@ namespace vibscore::drivers {
 // benchmark) can follow the file while it grows and never sees half a line.
 class TraceFile {
   public:
-    // Creates or truncates the file and writes the header. Throws std::runtime_error naming the
-    // path and the errno text when it cannot.
+    // Creates the file with the header, or appends to it when it has lines already (a crashed
+    // run's, which --safe-off and the restarted daemon keep; the times are CLOCK_MONOTONIC, so
+    // the runs of one boot stay in order). Throws std::runtime_error naming the path and the
+    // errno text when it cannot.
     explicit TraceFile(std::filesystem::path path);
 
     TraceFile(TraceFile&&) noexcept = default;

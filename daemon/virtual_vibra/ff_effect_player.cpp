@@ -1,5 +1,6 @@
 #include "daemon/virtual_vibra/ff_effect_player.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <memory>
 

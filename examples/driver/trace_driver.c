@@ -9,8 +9,9 @@
  *     path = /run/vibscore/trace-driver.log   where the lines go (required)
  *     on-off = true                           report no amplitude control, so vibscored
  *                                             pulse-modulates (default false)
- * Build: cc -shared -fPIC -I<vibscore>/include -o trace.so trace_driver.c, then put trace.so
- * into vibscored's drivers directory and set "driver = trace".
+ * Build: cc -shared -fPIC -I<vibscore>/include -o trace.so trace_driver.c, then install it
+ * into vibscored's drivers directory (install -m 0755 -o root trace.so DIR: a module others may
+ * write is refused) and set "driver = trace".
  */
 #include <vibscore/driver.h>
 

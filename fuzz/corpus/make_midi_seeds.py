@@ -56,8 +56,24 @@ def raw():
     (HERE / "smpte.mid").write_bytes(chunk(b"MThd", smpte) + chunk(b"MTrk", events))
 
 
+def claims_years():
+    """Issue 27: a few bytes whose delta time claims years (0x0FFFFFFF ticks at division 1).
+    The import once laid all of it out (13.6 GB, past a minute); it must be refused at once."""
+    long_note = bytes([0x00, 0x90, 60, 64, 0xFF, 0xFF, 0xFF, 0x7F, 0x80, 60, 64])
+    end = bytes([0x00, 0xFF, 0x2F, 0x00])
+    # 37 bytes: a note on, a delta of 0x0FFFFFFF ticks, a note off.
+    (HERE / "claims-years.mid").write_bytes(
+        chunk(b"MThd", struct.pack(">HHH", 0, 1, 1)) + chunk(b"MTrk", long_note + end))
+    # 45 bytes: the same at MIDI's fastest tempo (1 us a quarter), the track ending 128 ticks on.
+    fastest = bytes([0x00, 0xFF, 0x51, 0x03, 0x00, 0x00, 0x01])
+    (HERE / "claims-years-fast.mid").write_bytes(
+        chunk(b"MThd", struct.pack(">HHH", 0, 1, 1))
+        + chunk(b"MTrk", fastest + long_note + bytes([0x81, 0x00, 0xFF, 0x2F, 0x00])))
+
+
 if __name__ == "__main__":
     HERE.mkdir(exist_ok=True)
     format0()
     format1()
     raw()
+    claims_years()

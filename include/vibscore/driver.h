@@ -6,6 +6,10 @@
  * by its name like a built-in one (driver = NAME, its settings in the [NAME] section) and
  * listed by `vibscored --list-drivers`. An example is examples/driver/trace_driver.c.
  *
+ * Loading: the daemon first loads each module in a child process, which must finish loading
+ * within 2 s (constructors included), and loads it into itself only when its driver is used.
+ * The module file and its directory must be owned by root (or the daemon's user) and writable
+ * by nobody else, or the module is refused (docs/drivers.md, "How modules are loaded").
  * Threading: every function is called from the daemon's single event-loop thread and must
  * return quickly (no sleeping; hand long work to a thread of your own).
  * Errors: functions that can fail return 0 on success or a negative errno value, and write a

@@ -3,6 +3,8 @@
 // tests/integration/daemon_bus_test).
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "tests/support/daemon_fixture.hpp"
 
 namespace vibscore::hil {

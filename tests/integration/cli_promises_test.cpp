@@ -6,6 +6,7 @@
 
 #include <signal.h>
 
+#include <algorithm>
 #include <fstream>
 #include <thread>
 
@@ -207,6 +208,19 @@ TEST_F(ClefRule, AClefFileOfItsOwnIsSentWithThePlayButComposeAsksToStoreItFirst)
     EXPECT_EQ(composed.exit_code, 1);
     EXPECT_THAT(composed.err, HasSubstr("the registry has no clef \"slower\"; store it first: "
                                         "vibscore compose slower"));
+}
+
+// Issue 25: with a daemon running, convert finds its clef as check does (the registry holds
+// lra-phone), names it by its registry name, and what it wrote checks and plays.
+TEST_F(ClefRule, AnImportFindsItsClefInTheRegistryAndNamesItSo) {
+    const auto pulse = work.path() / "pulse.json";
+    std::ofstream(pulse) << R"({"timings": [0, 200, 200, 200]})";
+    const auto file = work.path() / "scores" / "pulse.score.xml";
+    const auto converted = vibscore({"convert", pulse.string(), file.string()});
+    ASSERT_EQ(converted.exit_code, 0) << converted.err;
+    EXPECT_THAT(converted.out, HasSubstr(" on clef lra-phone from vibscored's registry\n"));
+    EXPECT_THAT(testing::read_file(file), HasSubstr("href=\"lra-phone.clef.xml\""));
+    expect_checks_and_plays(file);
 }
 
 TEST_F(ClefRule, AFileFetchedWithGetChecksAndPlays) {

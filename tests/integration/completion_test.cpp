@@ -109,8 +109,12 @@ TEST_F(Completion, WorksForTheClientInTheBuildTreeNotOnPath) {
 TEST_F(Completion, OffersConvertItsOptionsFormatsAndPictureFiles) {
     EXPECT_EQ(complete("vibscore conv"), "convert\n");
     EXPECT_EQ(complete("vibscore convert --t"), "--to\n--track\n");
+    // Only what convert reads after --from, only what it writes after --to.
     EXPECT_EQ(complete("vibscore convert a.mid b.score.xml --from "),
-              "ahap\nandroid-envelope\nandroid-json\nandroid-xml\nmidi\nrtttl\nscore\n");
+              "ahap\nandroid-json\nandroid-xml\nmidi\nrtttl\nscore\n");
+    EXPECT_EQ(complete("vibscore convert a.mid b.score.xml --to "),
+              "ahap\nandroid-envelope\nandroid-json\nandroid-xml\nmidi\nscore\n");
+    EXPECT_EQ(complete("vibscore convert a.rtttl b.score.xml --clefs"), "--clefs\n");
     EXPECT_EQ(complete("vibscore convert x.ahap --to android-"),
               "android-envelope\nandroid-json\nandroid-xml\n");
     EXPECT_EQ(complete("vibscore show ringtone --s"), "--svg\n");

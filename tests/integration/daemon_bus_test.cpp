@@ -395,13 +395,16 @@ TEST_F(DaemonBus, SafeOffSwitchesTheActuatorOffAfterTheDaemonWasKilledMidNote) {
         std::this_thread::sleep_for(std::chrono::milliseconds(2));
     }
     daemon.kill_daemon();
-    ASSERT_FALSE(daemon.trace_rows().empty());
-    ASSERT_GT(daemon.trace_rows().back().amplitude, 0.0) << "killed mid-note, left on";
+    const auto killed = daemon.trace_rows();
+    ASSERT_FALSE(killed.empty());
+    ASSERT_GT(killed.back().amplitude, 0.0) << "killed mid-note, left on";
     const auto safe_off = testing::run_command(
         {testing::required_env("VIBSCORED"), "--config", daemon.config().string(), "--safe-off"});
     EXPECT_EQ(safe_off.exit_code, 0) << safe_off.err;
-    ASSERT_FALSE(daemon.trace_rows().empty());
-    EXPECT_EQ(daemon.trace_rows().back().amplitude, 0.0);
+    const auto after = daemon.trace_rows();
+    ASSERT_GT(after.size(), killed.size()) << "the killed run's record is kept, not truncated";
+    EXPECT_EQ(after[killed.size() - 1].time_ns, killed.back().time_ns);
+    EXPECT_EQ(after.back().amplitude, 0.0);
 }
 
 TEST_F(DaemonBus, PlaybackIdsOfARestartedDaemonAreNewAndOldOnesAreNotFound) {

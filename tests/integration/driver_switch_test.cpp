@@ -125,9 +125,10 @@ TEST_F(DriverSwitch, TheClientSaysWhyTheDriverRunsAndWhenItIsAlreadyInUse) {
     const auto vibscore = testing::required_env("VIBSCORE");
     const auto shown = testing::run_command({vibscore, "driver"});
     EXPECT_EQ(shown.exit_code, 0) << shown.err;
-    EXPECT_EQ(shown.out,
-              "driver sim: amplitude-control frequency-control\nconfigured: driver = sim\n");
-    EXPECT_EQ(property("DriverReason"), "s \"configured: driver = sim\"\n");
+    // The reason names the line of the file that says so.
+    const std::string configured = "configured at " + daemon.config().string() + ":2: driver = sim";
+    EXPECT_EQ(shown.out, "driver sim: amplitude-control frequency-control\n" + configured + "\n");
+    EXPECT_EQ(property("DriverReason"), "s \"" + configured + "\"\n");
     // Switching to the driver in use would only end what plays and reopen it: it says so.
     auto client = daemon.client();
     const auto ringing = client->Play(
@@ -136,7 +137,8 @@ TEST_F(DriverSwitch, TheClientSaysWhyTheDriverRunsAndWhenItIsAlreadyInUse) {
     EXPECT_EQ(same.exit_code, 0) << same.err;
     EXPECT_EQ(same.out,
               "driver sim is already in use; nothing changed\ndriver sim: amplitude-control "
-              "frequency-control\nconfigured: driver = sim\n");
+              "frequency-control\n" +
+                  configured + "\n");
     std::string reason;
     EXPECT_FALSE(client->wait_finished(ringing, &reason, std::chrono::milliseconds(300))) << reason;
     EXPECT_THAT(daemon.daemon_log(), ::testing::Not(HasSubstr("driver is now")));
@@ -153,11 +155,12 @@ TEST_F(DriverSwitch, DriverAutoWithNoDeviceRunsSimAndWarnsWhatItSearched) {
     }
     EXPECT_EQ(property("Driver"), "s \"sim\"\n");
     EXPECT_THAT(property("DriverReason"),
-                HasSubstr("driver = auto found no actuator, so driver sim plays (nothing "
+                HasSubstr("vibscored.conf:4) found no actuator, so driver sim plays (nothing "
                           "vibrates). Searched: evdev: no force-feedback device in " +
                           input.path().string()));
     // A warning in the log (journald files <4> as priority warning).
-    EXPECT_THAT(daemon.daemon_log(), HasSubstr("<4>driver = auto found no actuator"));
+    EXPECT_THAT(daemon.daemon_log(), HasSubstr("<4>driver = auto (" + daemon.config().string() +
+                                               ":4) found no actuator"));
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 // feedbackd API for what fbcli cannot show (ids, end reasons, Haptic.Vibrate).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <thread>

@@ -268,6 +268,10 @@ void DaemonFixture::kill_daemon() {
     daemon_->wait();
 }
 
+int DaemonFixture::wait_daemon() {
+    return daemon_->wait();
+}
+
 std::string DaemonFixture::daemon_log() const {
     std::ifstream in(dir_.path() / "daemon.log");
     std::ostringstream text;

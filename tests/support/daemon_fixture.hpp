@@ -92,6 +92,8 @@ class DaemonFixture {
     // SIGTERM, then the exit code.
     int stop_daemon();
     void kill_daemon();
+    // Waits for the daemon to end by itself (a crash): its exit code, or 128 + the signal.
+    int wait_daemon();
     void signal_daemon(int signo) const;
     // Rewrites the configuration: extra [daemon] lines (a "driver =" or "shipped =" among them
     // replaces the fixture's sim or the checkout's clefs/), and the [sim] section's lines.

@@ -4,6 +4,10 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <fstream>
 #include <string>
 
 #include "daemon/actuator_host.hpp"
@@ -11,6 +15,7 @@
 #include "daemon/drivers/driver_settings.hpp"
 #include "tests/support/finished_reasons.hpp"
 #include "tests/support/support.hpp"
+#include "tests/support/test_modules.hpp"
 
 namespace vibscore::daemon {
 namespace {
@@ -69,6 +74,18 @@ TEST_F(ActuatorHostTest, OpensTheConfiguredDriverWithItsSettings) {
 TEST_F(ActuatorHostTest, AConfiguredDriverThatWillNotOpenIsAnError) {
     config.driver = "evdev";
     EXPECT_THROW(ActuatorHost{config}, drivers::DeviceError);
+}
+
+TEST_F(ActuatorHostTest, AnUnknownConfiguredDriverOrADeviceThatWillNotOpenNamesItsLine) {
+    config = parse_config("[daemon]\ndriver = evdevv\n", "v.conf", config);
+    EXPECT_THAT([&] { ActuatorHost host_of_bad{config}; },
+                ::testing::ThrowsMessage<std::invalid_argument>(
+                    ::testing::StartsWith("v.conf:2: unknown driver \"evdevv\" (available: sim")));
+    config = parse_config("[daemon]\ndriver = evdev\n[evdev]\ndevice = /nonexistent/event99\n",
+                          "w.conf");
+    EXPECT_THAT([&] { ActuatorHost host_of_bad{config}; },
+                ::testing::ThrowsMessage<drivers::DeviceError>(
+                    ::testing::StartsWith("w.conf:3: evdev /nonexistent/event99: ")));
 }
 
 TEST_F(ActuatorHostTest, ListsTheBuiltInDrivers) {
@@ -179,8 +196,9 @@ TEST_F(ActuatorHostTest, FollowingTheConfigurationSwitchesOnlyWhenWhatRunsDiffer
     EXPECT_TRUE(host->follow_config());
     EXPECT_EQ(host->driver(), "timed-output");
 
+    // Another drivers directory does not reopen a built-in backend.
     config.drivers_dir = sysfs.path();
-    EXPECT_TRUE(host->follow_config());  // modules may have changed
+    config.modules = drivers::scan_driver_modules(config.drivers_dir);
     EXPECT_FALSE(host->follow_config());
 }
 
@@ -189,6 +207,154 @@ TEST_F(ActuatorHostTest, AfterASwitchOverTheBusAReloadReturnsToTheConfiguredDriv
     host->switch_to("timed-output");
     EXPECT_TRUE(host->follow_config());
     EXPECT_EQ(host->driver(), "sim");
+}
+
+// ---- driver modules: a module that crashes must not crash the daemon on every start
+
+class ActuatorHostModulesTest : public ::testing::Test {
+  protected:
+    ActuatorHostModulesTest() {
+        config.driver_settings["sim"] = {};
+        config.module_record = store.path() / kModuleRecordFile;
+    }
+    void scan() { config.modules = drivers::scan_driver_modules(modules.path()); }
+    bool recorded() const { return std::filesystem::exists(config.module_record); }
+    // The host as vibscored makes it, in a child that crashes in the module's apply().
+    void crash_in_apply() {
+        const pid_t child = ::fork();
+        if (child == 0) {
+            ActuatorHost host(config);
+            host.actuator().apply({0.5, 0.0});
+            ::_exit(0);
+        }
+        int status = 0;
+        ASSERT_EQ(::waitpid(child, &status, 0), child);
+        ASSERT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGSEGV) << status;
+    }
+
+    vibscore::testing::ModulesDir modules;
+    vibscore::testing::TempDir store;
+    DaemonConfig config;
+};
+
+TEST_F(ActuatorHostModulesTest, AStartAfterACrashInTheConfiguredModuleRunsSimAndSaysSo) {
+    const auto segv = modules.add("segv");
+    scan();
+    config.driver = "segv";
+    crash_in_apply();
+    ASSERT_TRUE(recorded()) << "the crashed run's record";
+    EXPECT_EQ(read_module_record(config.module_record)->name, "segv");
+
+    ::testing::internal::CaptureStderr();
+    ActuatorHost host(config);
+    const std::string log = ::testing::internal::GetCapturedStderr();
+    EXPECT_EQ(host.driver(), "sim");
+    EXPECT_THAT(log, HasSubstr("driver module segv (" + segv.string() +
+                               ") was in use when vibscored last ended without closing it (a "
+                               "crash in it, a hang, or a kill); running driver sim instead, so "
+                               "the daemon serves. `vibscore driver segv` or a reload tries it "
+                               "again"));
+    EXPECT_FALSE(recorded());
+    // Without the record, a restart now would try it again: a reload does that at once.
+    EXPECT_TRUE(host.follow_config());
+    EXPECT_EQ(host.driver(), "segv");
+    EXPECT_TRUE(recorded());
+}
+
+TEST_F(ActuatorHostModulesTest, AModuleClosedCleanlyLeavesNoRecordAndTheNextStartRunsIt) {
+    modules.add("counted");
+    scan();
+    config.driver = "counted";
+    {
+        ActuatorHost host(config);
+        EXPECT_TRUE(recorded());
+        host.switch_to("sim");
+        EXPECT_FALSE(recorded()) << "closed by the switch";
+        host.switch_to("counted");
+        EXPECT_TRUE(recorded());
+    }
+    EXPECT_FALSE(recorded()) << "closed when the daemon ends";
+    ActuatorHost again(config);
+    EXPECT_EQ(again.driver(), "counted");
+}
+
+TEST_F(ActuatorHostModulesTest, ARecordOfAModuleNotConfiguredIsAWarningOnly) {
+    modules.add("counted");
+    scan();
+    config.driver = "counted";
+    std::ofstream(config.module_record) << "segv\n/somewhere/segv.so\n";
+    ::testing::internal::CaptureStderr();
+    ActuatorHost host(config);
+    EXPECT_THAT(::testing::internal::GetCapturedStderr(),
+                HasSubstr("vibscored last ended while driver module segv (/somewhere/segv.so) was "
+                          "in use, without closing it"));
+    EXPECT_EQ(host.driver(), "counted");
+}
+
+TEST_F(ActuatorHostModulesTest, SafeOffOpensTheCrashedModuleAndLeavesTheRecordForTheNextStart) {
+    modules.add("segv");
+    scan();
+    config.driver = "segv";
+    crash_in_apply();
+    DaemonConfig safe_off = config;
+    safe_off.module_record.clear();  // as read_config() leaves it for --safe-off
+    {
+        ActuatorHost host(safe_off);
+        EXPECT_EQ(host.driver(), "segv") << "its device is the one to switch off";
+        host.actuator().off();
+    }
+    EXPECT_TRUE(recorded());
+    ActuatorHost serving(config);
+    EXPECT_EQ(serving.driver(), "sim");
+}
+
+TEST_F(ActuatorHostModulesTest, AConfiguredModuleRefusedAtTheScanRunsSimAndSaysWhy) {
+    const auto crash = modules.add("crash-at-load");
+    const auto writable = modules.add("counted", "writable.so");
+    std::filesystem::permissions(writable, std::filesystem::perms(0666));
+    scan();
+    config.driver = "crash-at-load";
+    ::testing::internal::CaptureStderr();
+    ActuatorHost host(config);
+    EXPECT_THAT(::testing::internal::GetCapturedStderr(),
+                HasSubstr("driver crash-at-load: module " + crash.string() +
+                          " is not loaded: crashed while loading (SIGSEGV); running driver sim "
+                          "instead"));
+    EXPECT_EQ(host.driver(), "sim");
+    EXPECT_FALSE(recorded());
+    config.driver = "writable";
+    ActuatorHost other(config);
+    EXPECT_EQ(other.driver(), "sim");
+    EXPECT_THAT([&] { other.switch_to("writable"); },
+                ::testing::ThrowsMessage<std::invalid_argument>(
+                    HasSubstr("is writable by group or others (mode 0666)")));
+}
+
+TEST_F(ActuatorHostModulesTest, AReloadReopensAModuleOnlyWhenItsFileChanged) {
+    const auto module = modules.add_example();
+    config.driver_settings["trace"] = {{"path", (store.path() / "trace.log").string()}};
+    scan();
+    config.driver = "trace";
+    ActuatorHost host(config);
+    scan();  // a reload scans again: the same file
+    EXPECT_FALSE(host.follow_config());
+    std::filesystem::remove(module);
+    modules.add_example();  // an upgrade
+    scan();
+    EXPECT_TRUE(host.follow_config());
+    EXPECT_EQ(host.driver(), "trace");
+}
+
+TEST_F(ActuatorHostModulesTest, ListsTheModulesOfTheLastScan) {
+    modules.add("counted");
+    scan();
+    config.driver = "sim";
+    ActuatorHost host(config);
+    EXPECT_EQ(host.drivers().back().name, "counted");
+    modules.add_example();
+    scan();
+    host.follow_config();
+    EXPECT_EQ(host.drivers().back().name, "trace");
 }
 
 }  // namespace

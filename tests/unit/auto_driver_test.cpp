@@ -13,6 +13,7 @@
 #include "daemon/drivers/auto_driver.hpp"
 #include "daemon/drivers/available.hpp"
 #include "daemon/drivers/driver_settings.hpp"
+#include "tests/support/run_command.hpp"
 #include "tests/support/support.hpp"
 
 namespace vibscore::drivers {
@@ -197,17 +198,18 @@ class AutoHostTest : public ::testing::Test {
 TEST_F(AutoHostTest, FindingNothingRunsSimAndSaysWhereItLooked) {
     const ActuatorHost host(config);
     EXPECT_EQ(host.driver(), "sim");
-    EXPECT_THAT(host.reason(),
-                StartsWith("driver = auto found no actuator, so driver sim plays (nothing "
-                           "vibrates). Searched: evdev: no force-feedback device in " +
-                           input.path().string() + " (0 event devices, none with force feedback)"));
+    EXPECT_THAT(
+        host.reason(),
+        StartsWith("driver = auto (v.conf:2) found no actuator, so driver sim plays (nothing "
+                   "vibrates). Searched: evdev: no force-feedback device in " +
+                   input.path().string() + " (0 event devices, none with force feedback)"));
 }
 
 TEST_F(AutoHostTest, TakesAConfiguredTimedOutputVibratorAndSaysWhichSection) {
     configure_timed_output();
     const ActuatorHost host(config);
     EXPECT_EQ(host.driver(), "timed-output");
-    EXPECT_THAT(host.reason(), StartsWith("driver = auto: timed-output on the device "
+    EXPECT_THAT(host.reason(), StartsWith("driver = auto (v.conf:2): timed-output on the device "
                                           "[timed-output] configures (before it: evdev: no "
                                           "force-feedback device in "));
 }
@@ -232,7 +234,7 @@ TEST_F(AutoHostTest, ARunTimeSwitchSaysSoAndAReloadReturnsToTheChoice) {
               "returns to the configuration's driver = auto");
     EXPECT_TRUE(host.follow_config());
     EXPECT_EQ(host.driver(), "timed-output");
-    EXPECT_THAT(host.reason(), StartsWith("driver = auto: "));
+    EXPECT_THAT(host.reason(), StartsWith("driver = auto (v.conf:2): "));
 }
 
 TEST_F(AutoHostTest, ANamedDriverSaysItWasConfigured) {
@@ -255,7 +257,8 @@ namespace {
 
 TEST(ShippedConfiguration, SaysDriverAutoAndReadsWithoutError) {
     const auto file =
-        std::filesystem::path(std::getenv("VIBSCORE_CLEFS")).parent_path() / "etc/vibscored.conf";
+        std::filesystem::path(vibscore::testing::required_env("VIBSCORE_CLEFS")).parent_path() /
+        "etc/vibscored.conf";
     const DaemonConfig config = load_config(file);
     EXPECT_EQ(config.driver, "auto");
     // No backend's section is configured: auto tries evdev alone, then runs sim.

@@ -85,6 +85,18 @@ TEST(ReadConfig, TheCommandLineOverridesTheFile) {
     EXPECT_EQ(config.driver, "sim");
     EXPECT_EQ(config.store, "/x");
     EXPECT_EQ(config.shipped, "/y");
+    // Messages about these values must not point at the file's lines, which said otherwise.
+    EXPECT_EQ(config.where("daemon", "driver"), "");
+    EXPECT_EQ(config.where("daemon", "store"), "");
+}
+
+TEST(ReadConfig, AConfigurationFileThatIsADirectoryIsAnErrorNotTheDefaults) {
+    vibscore::testing::TempDir dir;
+    CommandLine command_line;
+    command_line.config = dir.path().string();
+    EXPECT_THROW(read_config(command_line), ConfigError) << "the default path, a directory";
+    command_line.config_given = true;
+    EXPECT_THROW(read_config(command_line), ConfigError);
 }
 
 }  // namespace

@@ -56,7 +56,7 @@ TEST(Config, EveryDaemonKeyIsRead) {
     EXPECT_EQ(config.rt_priority, 0);
 }
 
-TEST(Config, SpacesAndCommentsAroundKeysAndValuesAreDropped) {
+TEST(Config, SpacesAndCommentsAfterKeysAndValuesAreDropped) {
     const DaemonConfig config =
         parse_config("  [ daemon ]  # the service\n\tdriver\t=  evdev   ; the vibra\n", "x");
     EXPECT_EQ(config.driver, "evdev");
@@ -71,8 +71,36 @@ TEST(Config, OtherSectionsAreTheSettingsOfTheDriverTheyName) {
     EXPECT_TRUE(config.settings_of("gpio-lra").empty());
 }
 
-TEST(Config, ALaterValueOfAKeyWins) {
-    EXPECT_EQ(parse_config("[daemon]\ndriver = evdev\ndriver = sim\n", "x").driver, "sim");
+TEST(Config, AKeySetTwiceInASectionIsAnErrorNamingBothLinesAndValues) {
+    EXPECT_EQ(config_error("[daemon]\ndriver = evdev\n\ndriver = sim\n"),
+              "test.conf:4: driver = \"sim\" sets [daemon] driver again (test.conf:2 set it to "
+              "\"evdev\"); keep one of them");
+    // In a backend's section, across two headers of one section, and in [clefs].
+    EXPECT_THAT(config_error("[sim]\nmodel = erm\n[daemon]\n[sim]\nmodel = lra\n"),
+                StartsWith("test.conf:5: model = \"lra\" sets [sim] model again (test.conf:2"));
+    EXPECT_THAT(config_error("[clefs]\n* = a\nlra-phone = b\n* = c\n"),
+                StartsWith("test.conf:4: * = \"c\" sets [clefs] * again (test.conf:2"));
+    // One key in two sections is two settings.
+    const auto config = parse_config("[sim]\ntrace = /a\n[trace]\npath = /a\n", "x");
+    EXPECT_EQ(config.settings_of("sim").at("trace"), "/a");
+}
+
+TEST(Config, ACommentStartsAtTheStartOfALineOrAfterABlank) {
+    const auto config = parse_config(
+        "# a line\n  ; another\n[daemon]\t# the service\nstore = /data/store  # kept here\n"
+        "shipped = /data/shipped\t; there\n",
+        "x");
+    EXPECT_EQ(config.store, "/data/store");
+    EXPECT_EQ(config.shipped, "/data/shipped");
+}
+
+TEST(Config, AHashOrSemicolonInsideAValueIsAnErrorNotACutShortValue) {
+    EXPECT_EQ(config_error("[daemon]\nstore = /var/lib/vib#score\n"),
+              "test.conf:2: store = \"/var/lib/vib#score\" holds '#', which starts a comment "
+              "only at the start of a line or after a space; a value cannot contain it");
+    EXPECT_THAT(config_error("[sim]\ntrace = /tmp/a;b.csv\n"),
+                StartsWith("test.conf:2: trace = \"/tmp/a;b.csv\" holds ';'"));
+    EXPECT_THAT(config_error("[sim]# erm\n"), StartsWith("test.conf:1: \"[sim]# erm\" holds '#'"));
 }
 
 TEST(Config, AMalformedLineIsAnErrorNamingFileAndLine) {
@@ -85,8 +113,23 @@ TEST(Config, AMalformedLineIsAnErrorNamingFileAndLine) {
 
 TEST(Config, AnUnknownDaemonKeyIsAnErrorListingTheKnownOnes) {
     const auto message = config_error("[daemon]\ndriverr = sim\n");
-    EXPECT_THAT(message, StartsWith("test.conf:2: unknown key \"driverr\" in [daemon]"));
+    EXPECT_THAT(message, StartsWith("test.conf:2: unknown key \"driverr\" in [daemon] (did you "
+                                    "mean driver?)"));
     EXPECT_THAT(message, HasSubstr("requests-per-second"));
+    EXPECT_THAT(config_error("[daemon]\ncolour = red\n"),
+                StartsWith("test.conf:2: unknown key \"colour\" in [daemon] (expected driver"));
+}
+
+TEST(Config, TheRequestBurstLetsAtLeastOneRequestThrough) {
+    EXPECT_EQ(parse_config("[daemon]\nrequest-burst = 1\n", "x").request_burst, 1.0);
+    EXPECT_EQ(config_error("[daemon]\nrequest-burst = 0.99999\n"),
+              "test.conf:2: request-burst = \"0.99999\" is below 1: the burst must let at least "
+              "one request through");
+    EXPECT_THAT(config_error("[daemon]\nrequest-burst = 0.5\n"),
+                StartsWith("test.conf:2: request-burst = \"0.5\" is below 1"));
+    EXPECT_EQ(parse_config("[daemon]\nrequest-burst = 1000000\n", "x").request_burst, 1e6);
+    EXPECT_THAT(config_error("[daemon]\nrequest-burst = 1000000.5\n"),
+                StartsWith("test.conf:2: request-burst = \"1000000.5\" is not a number"));
 }
 
 TEST(Config, ANumberThatIsNotPositiveOrTooLargeOrNotANumberIsAnError) {
@@ -146,6 +189,25 @@ TEST(Config, AnUnknownSectionIsAWarningWithItsLineAndTheClosestName) {
                     "t.conf:5: unknown section [zzzzzz]: no driver of that name, so its keys apply "
                     "nowhere"));
     EXPECT_THAT(unknown_sections(config, {"sim", "led-vibrater", "zzzzzz"}), ::testing::IsEmpty());
+}
+
+TEST(Config, ADirectoryIsNotAConfigurationFile) {
+    vibscore::testing::TempDir dir;
+    try {
+        load_config(dir.path());
+        ADD_FAILURE() << "no error";
+    } catch (const ConfigError& error) {
+        EXPECT_EQ(std::string(error.what()),
+                  dir.path().string() + ": is a directory, not a configuration file");
+    }
+}
+
+TEST(Config, EveryDaemonKeyAndClefMapRemembersItsLine) {
+    const auto config =
+        parse_config("[daemon]\ndriver = evdev\n[clefs]\nlra-phone = b\n* = c\n", "t.conf");
+    EXPECT_EQ(config.where("daemon", "driver"), "t.conf:2: ");
+    EXPECT_EQ(config.where("clefs", "lra-phone"), "t.conf:4: ");
+    EXPECT_EQ(config.where("clefs", "*"), "t.conf:5: ");
 }
 
 TEST(Config, AFileIsReadWithItsPathInErrors) {

@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "daemon/render/cue_schedule.hpp"
 #include "tests/support/support.hpp"
 

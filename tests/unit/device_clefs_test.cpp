@@ -138,6 +138,20 @@ TEST_F(DeviceClefsTest, ADeviceClefMissingFromTheRegistryIsNotFoundNamingTheMapp
     }
 }
 
+TEST_F(DeviceClefsTest, AMappedClefTheRegistryLacksIsAWarningNamingItsLineAtStart) {
+    const auto config = parse_config(
+        "[clefs]\nlra-phone = erm-phone\nshaker = my-board-erm\n* = no-such-clef\n", "test.conf");
+    EXPECT_EQ(
+        missing_device_clefs(config, registry),
+        (std::vector<std::string>{
+            "test.conf:3: [clefs] shaker = \"my-board-erm\": the registry has no clef "
+            "\"my-board-erm\", so Play refuses every score this maps until one is composed",
+            "test.conf:4: [clefs] * = \"no-such-clef\": the registry has no clef "
+            "\"no-such-clef\", so Play refuses every score this maps until one is composed"}));
+    EXPECT_TRUE(
+        missing_device_clefs(parse_config("[clefs]\n* = erm-phone\n", "t"), registry).empty());
+}
+
 TEST(DeviceClefsConfig, TheClefsSectionTakesRegistryNamesAndStarForAnyOther) {
     const auto map = clef_map("lra-phone = my-board-erm\n* = my-board-default\n");
     EXPECT_EQ(map.for_written("lra-phone"), "my-board-erm");

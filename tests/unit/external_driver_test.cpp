@@ -97,9 +97,12 @@ TEST(ExternalDriver, ModulesThatAreNotDriversAreNamedAndLeftOut) {
     EXPECT_THAT([&] { DriverModule::load(dir.path() / "garbage.so"); },
                 ::testing::ThrowsMessage<std::runtime_error>(
                     HasSubstr((dir.path() / "garbage.so").string())));
-    const auto found = find_external_drivers(dir.path());
-    ASSERT_EQ(found.size(), 1u);
-    EXPECT_EQ(found[0].path, dir.path() / "copy.so");
+    std::filesystem::permissions(dir.path(), std::filesystem::perms(0755));
+    const auto found = scan_driver_modules(dir.path());
+    ASSERT_EQ(found->modules().size(), 1u);
+    EXPECT_EQ(found->modules()[0].path, dir.path() / "copy.so");
+    ASSERT_EQ(found->refused().size(), 1u);
+    EXPECT_EQ(found->refused()[0].path, dir.path() / "garbage.so");
     EXPECT_THAT([&] { make_actuator("nosuch", {}, dir.path()); },
                 ::testing::ThrowsMessage<std::invalid_argument>(
                     HasSubstr("unknown driver \"nosuch\" (available: sim, evdev, gpio-erm, "

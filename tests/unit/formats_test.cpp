@@ -9,7 +9,9 @@
 #include "client/formats/rtttl.hpp"
 #include "client/formats/score_builder.hpp"
 #include "client/formats/sound_events.hpp"
+#include "daemon/render/performance.hpp"
 #include "score/clef_xml.hpp"
+#include "score/limits.hpp"
 #include "tests/support/run_command.hpp"
 #include "tests/support/support.hpp"
 
@@ -21,6 +23,7 @@ using testing::notes_in;
 using formats::ChosenClef;
 using formats::GridNote;
 using ::testing::HasSubstr;
+using ::testing::Not;
 
 ChosenClef lra_phone() {
     const auto path =
@@ -80,15 +83,91 @@ TEST(ScoreBuilder, ATempoChangeStartsABarOnAClefOfThatTempo) {
     EXPECT_EQ(imported.clefs[1].clef.tempo, 0.5);
 }
 
-TEST(ScoreBuilder, RefusesAPieceBeyondTheLimits) {
-    std::vector<GridNote> notes;
-    for (std::int64_t i = 0; i < 120'000; ++i) {
-        notes.push_back({i, 1, 1, 1});
+// Each limit of a score at its edge: the last value allowed and the first refused, with the
+// limit named in the message.
+TEST(ScoreBuilder, TakesTenThousandBarsAndRefusesOneMoreNamingTheBarLimit) {
+    const auto whole_notes = [](std::int64_t count, std::int64_t ticks) {
+        std::vector<GridNote> notes;
+        for (std::int64_t i = 0; i < count; ++i) {
+            notes.push_back({i * ticks, ticks, 1, 1});
+        }
+        return notes;
+    };
+    const auto build = [](const std::vector<GridNote>& notes) {
+        const auto end = notes.back().start + notes.back().length;
+        return formats::build_score(notes, {{0, 0.001}}, end, lra_phone(), "", "big");
+    };
+    EXPECT_EQ(build(whole_notes(10'000, 32)).score.bars.size(), 10'000u);
+    // Refused for its length before any of it is laid out...
+    EXPECT_EQ(first_error([&] { build(whole_notes(10'001, 32)); }),
+              "big: too long for a score: it lasts 40004 beats, more than fit in 10000 bars of "
+              "four; a score holds at most 10000 bars");
+    // ... or, when bars close early, for the bars it was laid out in.
+    EXPECT_EQ(build(whole_notes(10'000, 24)).score.bars.size(), 10'000u);
+    EXPECT_EQ(first_error([&] { build(whole_notes(10'001, 24)); }),
+              "big: too long for a score: 10001 bars; a score holds at most 10000 bars");
+}
+
+TEST(ScoreBuilder, TakesAHundredThousandSymbolsAndRefusesOneMore) {
+    // `notes` 32nds, one every `step` 32nds, and the piece `total` 32nds long.
+    const auto build = [](std::int64_t notes, std::int64_t step, std::int64_t total) {
+        std::vector<GridNote> grid;
+        for (std::int64_t i = 0; i < notes; ++i) {
+            grid.push_back({i * step, 1, 1, 1});
+        }
+        return formats::build_score(grid, {{0, 0.001}}, total, lra_phone(), "", "big");
+    };
+    const auto symbols = [](const formats::ImportedScore& imported) {
+        std::size_t count = 0;
+        for (const auto& bar : imported.score.bars) {
+            count += bar.symbols.size();
+        }
+        return count;
+    };
+    // Touching 32nds, one symbol each: refused for their count before the layout.
+    EXPECT_EQ(symbols(build(100'000, 1, 100'000)), 100'000u);
+    EXPECT_EQ(first_error([&] { build(100'001, 1, 100'001); }),
+              "big: too long for a score: 100001 notes; a score holds at most 100000 symbols");
+    // Notes are counted in the one voice: a chord's notes are one.
+    std::vector<GridNote> chords;
+    for (std::int64_t i = 0; i < 100'000; ++i) {
+        chords.push_back({i, 1, 1, 1});
+        chords.push_back({i, 1, 2, 1});
     }
-    EXPECT_THAT(first_error([&] {
-                    formats::build_score(notes, {{0, 0.001}}, 120'000, lra_phone(), "", "big");
-                }),
-                HasSubstr("big: too long for a score"));
+    EXPECT_EQ(symbols(formats::build_score(chords, {{0, 0.001}}, 100'000, lra_phone(), "", "c")),
+              100'000u);
+    // A 32nd rest after each 32nd note: the rests take the laid-out score past the limit.
+    EXPECT_EQ(symbols(build(50'000, 2, 100'000)), 100'000u);
+    EXPECT_EQ(first_error([&] { build(50'001, 2, 100'001); }),
+              "big: too long for a score: 100001 symbols (notes, tied parts and rests); a score "
+              "holds at most 100000 symbols");
+}
+
+TEST(ScoreBuilder, TakesAnHourAndRefusesA32ndMore) {
+    const auto build = [](std::int64_t ticks) {
+        return formats::build_score({{0, ticks, 1, 1}}, {{0, 0.5}}, ticks, lra_phone(), "", "long");
+    };
+    // At 0.5 s a quarter an hour is 7200 quarters: 57600 32nds.
+    EXPECT_EQ(build(57'600).score.bars.size(), 1800u);
+    EXPECT_EQ(first_error([&] { build(57'601); }),
+              "long: too long for a score: it lasts 3600.062 s; a score lasts at most 3600 s");
+}
+
+TEST(ScoreBuilder, TakesThirtyTwoTemposAndRefusesTheThirtyThirdNamingTheClefLimit) {
+    // A ritardando: a quarter note per bar, each bar slower.
+    const auto ritardando = [](int bars) {
+        std::vector<GridNote> notes;
+        std::vector<formats::TempoChange> tempi;
+        for (int i = 0; i < bars; ++i) {
+            notes.push_back({i * 8, 8, 1, 1});
+            tempi.push_back({i * 8, 0.5 + 0.01 * i});
+        }
+        return formats::build_score(notes, tempi, bars * 8, lra_phone(), "", "rit.mid");
+    };
+    EXPECT_EQ(ritardando(32).clefs.size(), 32u);
+    EXPECT_EQ(first_error([&] { ritardando(33); }),
+              "rit.mid: too many tempos for a score: 33, each on a clef of its own; a score "
+              "declares at most 32 clefs");
 }
 
 TEST(GridFit, KeepsTheClefsTempoWhenTheTimesSitOnItsGrid) {
@@ -231,16 +310,16 @@ TEST(Ahap, NamesTheLineAndColumnOfWhatIsWrong) {
     const auto read = [](const std::string& text) {
         return first_error([&] { formats::read_ahap(text, "p.ahap", lra_phone()); });
     };
-    EXPECT_EQ(read("{\n  \"Pattern\": [\n    {\"Event\": {\"Time\": 0,}}\n  ]\n}"),
-              "p.ahap:3:26: not JSON: syntax error while parsing object key - unexpected '}'; "
+    EXPECT_EQ(read("{\n  \"Pattern\": [\n    {\"Event\": {\"Time\": 0,,}}\n  ]\n}"),
+              "p.ahap:3:26: not JSON: syntax error while parsing object key - unexpected ','; "
               "expected string literal");
     EXPECT_EQ(read("{\"Pattern\": [],\n \"Tempo\": 3}"),
               "p.ahap:2:2: unknown key \"Tempo\" in the AHAP file (expected Version, Metadata, "
               "Pattern)");
     EXPECT_EQ(read("{\"Pattern\": [\n {\"Event\": {\"Time\": 0, \"EventType\": \"HapticTransient\","
                    "\n  \"EventParameters\": [{\"ParameterID\": \"HapticIntensity\", "
-                   "\"ParameterValue\": 1.5}]}}]}"),
-              "p.ahap:3:76: HapticIntensity 1.5 is out of range (0 to 1)");
+                   "\"ParameterValue\": \"loud\"}]}}]}"),
+              "p.ahap:3:76: HapticIntensity must be a number, not a string");
     EXPECT_EQ(
         read("{\"Pattern\": [{\"Event\": {\"Time\": 0, \"EventType\": \"HapticContinuous\"}}]}"),
         "p.ahap:1:24: a HapticContinuous event needs an EventDuration");
@@ -253,7 +332,269 @@ TEST(Ahap, NamesTheLineAndColumnOfWhatIsWrong) {
     EXPECT_EQ(read("{\"Pattern\": []}"), "p.ahap: holds no notes or rests to make a score of");
 }
 
+// Issue 27: 8 of Apple's 21 sample AHAP files (from its Unity plug-in) were refused, 7 for a
+// trailing comma and 1 for HapticSharpness -1. Apple's parser takes both: commas before a
+// closing bracket or brace, and parameters out of range, clamped. Read them so, and say so.
+TEST(Ahap, ReadsApplesSampleShapesTrailingCommasAndParametersOutOfRangeClampedWithWarnings) {
+    const std::string sample = R"({
+    "Version": 1.0,
+    "Metadata": {
+        "Project" : "Basis",
+        "Created" : "1 June 2020",
+    },
+    "Pattern":
+    [
+        {
+            "Event":
+            {
+                "Time": 0.0,
+                "EventType": "HapticTransient",
+                "EventParameters":
+                [
+                    { "ParameterID": "HapticIntensity", "ParameterValue": 1.0 },
+                    { "ParameterID": "HapticSharpness", "ParameterValue": -1 },
+                ]
+            }
+        },
+        {
+            "ParameterCurve":
+            {
+                "ParameterID": "HapticIntensityControl",
+                "Time": 0.2,
+                "ParameterCurveControlPoints": [
+                    { "Time": 0, "ParameterValue": 1.5 },
+                ]
+            }
+        },
+    ]
+})";
+    const auto imported = formats::read_ahap(sample, "Basis.ahap", lra_phone());
+    EXPECT_EQ(imported.score.title, "Basis");
+    const auto notes = notes_in(imported.score);
+    ASSERT_EQ(notes.size(), 1u);
+    EXPECT_EQ(notes[0].string, 1);  // sharpness -1 read as 0: string 1
+    EXPECT_EQ(notes[0].number, 9);
+    std::vector<std::string> warnings;
+    for (const auto& warning : imported.warnings) {
+        warnings.push_back(format(warning));
+    }
+    const std::string comma =
+        ": a trailing comma, which JSON does not allow; Apple's parser (and Apple's own sample "
+        "files) take it, and so does vibscore";
+    EXPECT_EQ(warnings,
+              (std::vector<std::string>{
+                  "Basis.ahap:5:34" + comma, "Basis.ahap:17:79" + comma, "Basis.ahap:27:57" + comma,
+                  "Basis.ahap:30:10" + comma,
+                  "Basis.ahap:17:75: HapticSharpness -1 is out of range (0 to 1): read as 0, as "
+                  "Core Haptics clamps it",
+                  "Basis.ahap:27:52: HapticIntensityControl value 1.5 is out of range (0 to 1): "
+                  "read as 1, as Core Haptics clamps it"}));
+    // At the edges of the range a value is read as it is, with no warning.
+    const auto edges = formats::read_ahap(
+        R"({"Pattern": [{"Event": {"Time": 0, "EventType": "HapticTransient", "EventParameters": [
+        {"ParameterID": "HapticIntensity", "ParameterValue": 0},
+        {"ParameterID": "HapticSharpness", "ParameterValue": 1}]}}]})",
+        "e.ahap", lra_phone());
+    EXPECT_TRUE(edges.warnings.empty());
+    EXPECT_EQ(notes_in(edges.score).at(0).string, 6);
+}
+
+TEST(Ahap, SaysFiftyWarningsAndCountsTheRest) {
+    const auto loud = [](int events) {
+        std::string text = R"({"Pattern": [)";
+        for (int i = 0; i < events; ++i) {
+            text += std::string(i ? "," : "") + R"({"Event": {"Time": )" + std::to_string(i) +
+                    R"(, "EventType": "HapticTransient", "EventParameters": [)" +
+                    R"({"ParameterID": "HapticIntensity", "ParameterValue": 2}]}})";
+        }
+        return formats::read_ahap(text + "]}", "l.ahap", lra_phone()).warnings;
+    };
+    EXPECT_EQ(loud(50).size(), 50u);
+    const auto more = loud(52);
+    ASSERT_EQ(more.size(), 51u);
+    EXPECT_EQ(format(more.back()), "l.ahap: 2 more like these");
+}
+
+// The length of an imported score in seconds, as its clefs play it.
+double seconds_of(const formats::ImportedScore& imported) {
+    double seconds = 0.0;
+    for (const auto& bar : imported.score.bars) {
+        for (const auto& clef : imported.clefs) {
+            if (clef.id == bar.clef) {
+                seconds += Score::beat_count(bar) * clef.clef.tempo;
+            }
+        }
+    }
+    return seconds;
+}
+
+// Issue 25: a looping ringtone exported to AHAP lost its closing rest (3.2 s became 2.8 s).
+// Core Haptics counts a pattern's length to its last event's end or its last parameter's start,
+// so a neutral intensity curve where the piece ends keeps the period.
+TEST(Ahap, APatternEndsWithANeutralCurveWhereThePieceEndsSoALoopKeepsItsPeriod) {
+    formats::SoundTrack track;
+    track.duration = 3.2;
+    track.tempo = 0.2;
+    track.events.push_back({0.0, 0.4, 1.0, 1.0, 1.0, 0.2, 0.2, 0, 0});
+    track.events.push_back({2.4, 0.4, 1.0, 1.0, 1.0, 0.2, 0.2, 0, 0});
+    const auto text = formats::write_ahap(track);
+    const auto json = nlohmann::json::parse(text);
+    EXPECT_EQ(json.at("Metadata").at("Tempo"), 0.2);
+    const auto& last = json.at("Pattern").back().at("ParameterCurve");
+    EXPECT_EQ(last.at("ParameterID"), "HapticIntensityControl");
+    EXPECT_EQ(last.at("Time"), 3.2);
+    EXPECT_EQ(last.at("ParameterCurveControlPoints"),
+              nlohmann::json::parse(R"([{"Time": 0.0, "ParameterValue": 1.0}])"));
+    EXPECT_DOUBLE_EQ(seconds_of(formats::read_ahap(text, "r.ahap", lra_phone())), 3.2);
+    // A piece that ends with its last note needs no such curve.
+    track.duration = 2.8;
+    EXPECT_TRUE(
+        nlohmann::json::parse(formats::write_ahap(track)).at("Pattern").back().contains("Event"));
+}
+
+TEST(Ahap, APatternLastsToItsLastEventsEndOrItsLastParametersStartWhicheverIsLater) {
+    const auto pattern = [](const std::string& parameter_time) {
+        return R"({"Pattern": [
+  {"Event": {"Time": 0, "EventType": "HapticContinuous", "EventDuration": 0.4}},
+  {"Parameter": {"ParameterID": "HapticIntensityControl", "Time": )" +
+               parameter_time + R"(, "ParameterValue": 1.0}}]})";
+    };
+    EXPECT_DOUBLE_EQ(seconds_of(formats::read_ahap(pattern("1.6"), "p.ahap", lra_phone())), 1.6);
+    EXPECT_DOUBLE_EQ(seconds_of(formats::read_ahap(pattern("0.2"), "p.ahap", lra_phone())), 0.4);
+}
+
+TEST(Ahap, AnEventEndingOnTheHourIsReadAndOneEndingLaterIsRefusedWhereItIs) {
+    const auto pattern = [](const std::string& time) {
+        return "{\"Pattern\": [\n {\"Event\": {\"Time\": " + time +
+               ", \"EventType\": \"HapticContinuous\", \"EventDuration\": 30}}]}";
+    };
+    EXPECT_EQ(notes_in(formats::read_ahap(pattern("3570"), "p.ahap", lra_phone()).score).size(),
+              38u);  // 30 s as tied whole notes of 0.8 s: 37 and a half
+    EXPECT_EQ(first_error([&] { formats::read_ahap(pattern("3570.5"), "p.ahap", lra_phone()); }),
+              "p.ahap:2:12: too long for a score: the event ends at 3600.5 s; a score lasts at "
+              "most 3600 s");
+}
+
+TEST(Formats, EveryReaderRefusesATextLargerThanAScoreDocument) {
+    // At the limit the text is read (and found wanting for what it holds); a byte more and it
+    // is refused for its size.
+    const std::string at_limit(limits::document_bytes, ' ');
+    const std::string over(limits::document_bytes + 1, ' ');
+    const auto readers = std::vector<std::function<void(const std::string&)>>{
+        [](const std::string& t) { formats::read_ahap(t, "f", lra_phone()); },
+        [](const std::string& t) { formats::read_android_json(t, "f", lra_phone()); },
+        [](const std::string& t) { formats::read_android_xml(t, "f", lra_phone()); },
+        [](const std::string& t) { formats::read_rtttl(t, "f", lra_phone()); },
+    };
+    for (const auto& read : readers) {
+        EXPECT_THAT(first_error([&] { read(at_limit); }), Not(HasSubstr("larger than")));
+        EXPECT_EQ(first_error([&] { read(over); }),
+                  "f: larger than the 1048576-byte limit for a document");
+    }
+}
+
 // --- Android ---------------------------------------------------------------------------------
+
+// Each note's onset and length in seconds, as the score's clefs play it; the tied parts of a
+// note too long for one symbol (which touch) as one.
+std::vector<std::pair<double, double>> played_notes(const formats::ImportedScore& imported) {
+    ParsedScore parsed{imported.score, {}};
+    parsed.where.clefs.resize(imported.score.clefs.size());
+    for (const auto& bar : imported.score.bars) {
+        parsed.where.bars.emplace_back();
+        parsed.where.symbols.emplace_back(bar.symbols.size());
+    }
+    const auto bundle = bind_clefs(
+        std::move(parsed), "imported", [&](const ClefDeclaration& declaration, const auto&) {
+            for (const auto& clef : imported.clefs) {
+                if (clef.id == declaration.id) {
+                    return clef.clef;
+                }
+            }
+            throw DocumentError({"imported"}, "no clef " + declaration.id);
+        });
+    std::vector<std::pair<double, double>> notes;
+    const render::Performance performance(bundle);
+    for (const auto& timing : performance.timeline()) {
+        if (!timing.is_note) {
+            continue;
+        }
+        if (!notes.empty() &&
+            std::abs(notes.back().first + notes.back().second - timing.onset) < 1e-9) {
+            notes.back().second += timing.length;
+        } else {
+            notes.emplace_back(timing.onset, timing.length);
+        }
+    }
+    return notes;
+}
+
+// Issue 27: Android waveforms' 10-12 ms steps came back as 25-33 ms notes. Lengths are kept to
+// the millisecond: on the coarsest grid that holds them, here 1 ms.
+TEST(Android, StepsOfTenToTwelveMillisecondsKeepTheirLengths) {
+    const auto imported = formats::read_android_json(
+        R"({"timings": [0, 12, 188, 10, 190, 11, 189, 10, 190]})", "v.json", lra_phone());
+    const auto notes = played_notes(imported);
+    constexpr double kOnsets[] = {0.0, 0.2, 0.4, 0.6};
+    constexpr double kLengths[] = {0.012, 0.010, 0.011, 0.010};
+    ASSERT_EQ(notes.size(), 4u);
+    for (std::size_t i = 0; i < notes.size(); ++i) {
+        EXPECT_NEAR(notes[i].first, kOnsets[i], 1e-9) << "note " << i + 1;
+        EXPECT_NEAR(notes[i].second, kLengths[i], 1e-9) << "note " << i + 1;
+    }
+    EXPECT_NEAR(seconds_of(imported), 0.8, 1e-9);
+    // 10 ms steps alone sit on a 10 ms grid: a 32nd note at 80 ms a quarter.
+    const auto tens =
+        formats::read_android_json(R"({"timings": [0, 10, 190, 10, 190]})", "v.json", lra_phone());
+    EXPECT_DOUBLE_EQ(tens.clefs.at(0).clef.tempo, 0.08);
+    const auto ten_notes = notes_in(tens.score);
+    ASSERT_EQ(ten_notes.size(), 2u);
+    EXPECT_EQ(ten_notes[0].length, Length::thirty_second);
+}
+
+TEST(Android, AWaveformOfAnHourIsReadAndAMillisecondMoreIsRefusedAtItsStep) {
+    EXPECT_FALSE(
+        notes_in(
+            formats::read_android_json(R"({"timings": [0, 3600000]})", "v.json", lra_phone()).score)
+            .empty());
+    EXPECT_EQ(first_error([&] {
+                  formats::read_android_json(R"({"timings": [0, 3600000, 1]})", "v.json",
+                                             lra_phone());
+              }),
+              "v.json:1:26: too long for a score: the pattern reaches 3600001 ms at this step; a "
+              "score lasts at most 3600000 ms (3600 s)");
+    const auto entries = [](const std::string& last) {
+        return "<vibration-effect><waveform-effect>\n"
+               "<waveform-entry durationMs=\"3600000\" amplitude=\"255\"/>\n" +
+               last + "</waveform-effect></vibration-effect>";
+    };
+    EXPECT_FALSE(
+        notes_in(formats::read_android_xml(entries(""), "v.xml", lra_phone()).score).empty());
+    EXPECT_EQ(first_error([&] {
+                  formats::read_android_xml(
+                      entries("<waveform-entry durationMs=\"1\" amplitude=\"0\"/>"), "v.xml",
+                      lra_phone());
+              }),
+              "v.xml:3:1: too long for a score: the pattern reaches 3600001 ms at this step; a "
+              "score lasts at most 3600000 ms (3600 s)");
+}
+
+TEST(Android, AHundredThousandStepsAreReadAndOneMoreIsRefusedAtItsStep) {
+    const auto steps = [](int count) {
+        std::string text = "{\"timings\": [";
+        for (int i = 0; i < count; ++i) {
+            text += i == 0 ? "25" : ",25";
+        }
+        return text + "]}";
+    };
+    EXPECT_EQ(
+        notes_in(formats::read_android_json(steps(100'000), "v.json", lra_phone()).score).size(),
+        50'000u);
+    EXPECT_EQ(
+        first_error([&] { formats::read_android_json(steps(100'001), "v.json", lra_phone()); }),
+        "v.json:1:300014: too long for a score: more than 100000 steps; a score holds at "
+        "most 100000 symbols");
+}
 
 TEST(Android, TheWaveformStepsAddUpToThePieceAtEachNotesOwnStrength) {
     formats::SoundTrack track;
@@ -394,6 +735,105 @@ TEST(Rtttl, KeepsTheClefWhenTheBpmMatchesItsTempo) {
     EXPECT_FALSE(imported.clefs[0].retimed);
 }
 
+// What real collections hold besides plain RTTTL (issue 27): RTX's s= (style) and l= (loops),
+// control pairs with no "=" ("B715", "SS"), "_" for a flat, and the dot on either side of the
+// octave.
+TEST(Rtttl, ReadsFlatsAndTheDotOnEitherSideOfTheOctave) {
+    const auto imported =
+        formats::read_rtttl("t:d=4,o=5,b=120:a_5,a,8a#5,8a_.5,8a_5.", "t.rtttl", lra_phone());
+    const auto notes = notes_in(imported.score);
+    ASSERT_EQ(notes.size(), 5u);
+    // A flat 5 < A5 < A sharp 5: three pitches spread over the staff.
+    EXPECT_EQ(notes[0].string, 1);
+    EXPECT_EQ(notes[1].string, 4);
+    EXPECT_EQ(notes[2].string, 6);
+    EXPECT_EQ(notes[3].string, 1);
+    EXPECT_EQ(notes[3].length, Length::eighth_dot);
+    EXPECT_EQ(notes[4].length, Length::eighth_dot);
+    EXPECT_EQ(first_error([&] { formats::read_rtttl("t:d=4:p_", "r.rtttl", lra_phone()); }),
+              "r.rtttl:1:7: note \"p_\": a pause cannot be flat");
+}
+
+TEST(Rtttl, ReadsRtxStylesAsTiesOrStaccatoAndAcceptsLoopsUpToFifteen) {
+    // Continuous: notes that touch are tied by legato; a pause ends the tie.
+    const auto continuous =
+        formats::read_rtttl("t:d=8,o=5,b=120,s=C:c,d,p,e", "t.rtttl", lra_phone());
+    auto notes = notes_in(continuous.score);
+    ASSERT_EQ(notes.size(), 3u);
+    EXPECT_NE(notes[0].legato, 0);
+    EXPECT_EQ(notes[0].legato, notes[1].legato);
+    EXPECT_EQ(notes[2].legato, 0);
+    // Staccato from "SS" on, among the notes: each note half its length, a rest the other half;
+    // a 32nd, the grid's finest, stays one.
+    const auto staccato = formats::read_rtttl("t:d=4,o=5,b=120:c,SS,d,32e", "t.rtttl", lra_phone());
+    const auto& symbols = staccato.score.bars.at(0).symbols;
+    ASSERT_EQ(symbols.size(), 4u);
+    EXPECT_EQ(std::get<Note>(symbols[0]).length, Length::quarter);
+    EXPECT_EQ(std::get<Note>(symbols[1]).length, Length::eighth);
+    EXPECT_EQ(std::get<Rest>(symbols[2]).length, Length::eighth);
+    EXPECT_EQ(std::get<Note>(symbols[3]).length, Length::thirty_second);
+    // A loop count is how the tune is played, not part of it: one pass is the score.
+    EXPECT_EQ(notes_in(formats::read_rtttl("t:l=15:c", "t.rtttl", lra_phone()).score).size(), 1u);
+    EXPECT_EQ(first_error([&] { formats::read_rtttl("t:l=16:c", "r.rtttl", lra_phone()); }),
+              "r.rtttl:1:3: \"l=16\" is out of range (d: 1, 2, 4, 8, 16, 32; o: 0 to 9; b: 1 to "
+              "900; l: 0 to 15)");
+    EXPECT_EQ(first_error([&] { formats::read_rtttl("t:s=X:c", "r.rtttl", lra_phone()); }),
+              "r.rtttl:1:3: \"s=X\": the style is N (natural), C (continuous) or S (staccato)");
+}
+
+TEST(Rtttl, ReadsControlPairsWithoutEqualsAndTempoChangesAmongTheNotes) {
+    // "B715": RTX's "=" is optional. An unknown control name is ignored, as RTX asks.
+    const auto alert = formats::read_rtttl("Alert:B715,x=3:32C,32P", "a.rtttl", lra_phone());
+    ASSERT_EQ(alert.clefs.size(), 1u);
+    EXPECT_DOUBLE_EQ(alert.clefs[0].clef.tempo, 60.0 / 715);
+    // b= among the notes: the bar from there on is on a clef of that tempo.
+    const auto slower = formats::read_rtttl("t:d=4,o=5,b=120:c,b=60,d", "t.rtttl", lra_phone());
+    ASSERT_EQ(slower.score.bars.size(), 2u);
+    EXPECT_EQ(slower.score.bars[0].clef, "lra-phone-120bpm");
+    EXPECT_EQ(slower.score.bars[1].clef, "lra-phone-60bpm");
+    EXPECT_EQ(first_error([&] { formats::read_rtttl("t:d=4:c,d=8,e", "r.rtttl", lra_phone()); }),
+              "r.rtttl:1:9: \"d=8\": among the notes only o=, b= and s= may change");
+}
+
+TEST(Rtttl, ATuneOfAnHourIsReadAndANoteMoreIsRefusedWhereItIs) {
+    // At 1 bpm a whole note lasts 240 s: fifteen of them are an hour.
+    const auto wholes = [](int count, int bpm) {
+        std::string text = "t:d=1,o=5,b=" + std::to_string(bpm) + ":c";
+        for (int i = 1; i < count; ++i) {
+            text += ",c";
+        }
+        return text;
+    };
+    EXPECT_EQ(notes_in(formats::read_rtttl(wholes(15, 1), "r.rtttl", lra_phone()).score).size(),
+              15u);
+    EXPECT_EQ(first_error([&] { formats::read_rtttl(wholes(16, 1), "r.rtttl", lra_phone()); }),
+              "r.rtttl:1:45: too long for a score: the tune passes 3600 s here; a score lasts at "
+              "most 3600 s");
+    // At 900 bpm ten thousand bars of whole notes take 2667 s: the bars bind first.
+    EXPECT_EQ(
+        notes_in(formats::read_rtttl(wholes(10'000, 900), "r.rtttl", lra_phone()).score).size(),
+        10'000u);
+    EXPECT_EQ(
+        first_error([&] { formats::read_rtttl(wholes(10'001, 900), "r.rtttl", lra_phone()); }),
+        "r.rtttl:1:20017: too long for a score: the tune passes 40000 beats here; a score holds "
+        "at most 10000 bars of four beats");
+}
+
+TEST(Rtttl, AHundredThousandNotesAreReadAndOneMoreIsRefusedWhereItIs) {
+    const auto notes = [](int count) {
+        std::string text = "t:d=32,o=5,b=900:c";
+        for (int i = 1; i < count; ++i) {
+            text += ",c";
+        }
+        return text;
+    };
+    EXPECT_EQ(notes_in(formats::read_rtttl(notes(100'000), "r.rtttl", lra_phone()).score).size(),
+              100'000u);
+    EXPECT_EQ(first_error([&] { formats::read_rtttl(notes(100'001), "r.rtttl", lra_phone()); }),
+              "r.rtttl:1:200018: too long for a score: more than 100000 notes and pauses; a "
+              "score holds at most 100000 symbols");
+}
+
 TEST(Rtttl, NamesTheLineAndColumnOfWhatIsWrong) {
     const auto read = [](const std::string& text) {
         return first_error([&] { formats::read_rtttl(text, "r.rtttl", lra_phone()); });
@@ -404,7 +844,7 @@ TEST(Rtttl, NamesTheLineAndColumnOfWhatIsWrong) {
               "r.rtttl:2:6: note \"3d\": the duration is 1, 2, 4, 8, 16 or 32");
     EXPECT_EQ(read("tune:d=4,o=5,b=1200:c"),
               "r.rtttl:1:14: \"b=1200\" is out of range (d: 1, 2, 4, 8, 16, 32; o: 0 to 9; b: 1 "
-              "to 900)");
+              "to 900; l: 0 to 15)");
     EXPECT_EQ(read("tune:c,d"),
               "r.rtttl:1:1: an RTTTL text is NAME:DEFAULTS:NOTES, e.g. tune:d=4,o=5,b=120:c,e,g");
     EXPECT_EQ(read("t:d=4:32c."),

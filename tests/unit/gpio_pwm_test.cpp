@@ -135,6 +135,12 @@ TEST_F(GpioSettingsTest, BadSettingsNameTheKey) {
     };
     EXPECT_THAT(message({}, false), HasSubstr("gpio-erm setting line is missing"));
     EXPECT_THAT(message({{"line-a", "1"}}, true), HasSubstr("gpio-lra setting line-b is missing"));
+    EXPECT_THAT(message({{"line-b", "2"}}, true), HasSubstr("gpio-lra setting line-a is missing"));
+    // A misspelt key is the mistake to report, with the key it most likely meant.
+    EXPECT_THAT(message({{"lines", "17"}}, false),
+                HasSubstr("unknown gpio-erm setting lines = \"17\" (did you mean line?)"));
+    EXPECT_THAT(message({{"line-a", "1"}, {"lineb", "2"}}, true),
+                HasSubstr("unknown gpio-lra setting lineb = \"2\" (did you mean line-b?)"));
     EXPECT_THAT(message({{"line", "1"}, {"carrier-hz", "5"}}, false),
                 HasSubstr("carrier-hz = \"5\""));
     EXPECT_THAT(message({{"line", "-1"}}, false), HasSubstr("line = \"-1\""));

@@ -54,6 +54,119 @@ std::string track_chunk(const std::string& events) {
     return bytes + events;
 }
 
+// A variable-length quantity as a track writes a delta time.
+std::string delta(std::uint32_t ticks) {
+    std::string bytes(1, static_cast<char>(ticks & 0x7F));
+    while ((ticks >>= 7) != 0) {
+        bytes.insert(bytes.begin(), static_cast<char>(0x80 | (ticks & 0x7F)));
+    }
+    return bytes;
+}
+
+const std::string kNoteOn("\x90\x3C\x40", 3);
+const std::string kNoteOff("\x80\x3C\x40", 3);
+const std::string kEndOfTrack("\xFF\x2F\x00", 3);
+
+std::string tempo_event(std::uint32_t micros) {
+    return std::string("\x00\xFF\x51\x03", 4) + static_cast<char>(micros >> 16 & 0xFF) +
+           static_cast<char>(micros >> 8 & 0xFF) + static_cast<char>(micros & 0xFF);
+}
+
+// One note `ticks` long, at `division` ticks a quarter, after `before` (tempo events).
+std::string one_note(int division, std::uint32_t ticks, const std::string& before = "") {
+    return header(0, 1, division) + track_chunk(before + delta(0) + kNoteOn + delta(ticks) +
+                                                kNoteOff + delta(0) + kEndOfTrack);
+}
+
+std::string import_error(const std::string& bytes) {
+    return format(testing::first_diagnostic(
+        [&] { formats::read_midi(bytes, "m.mid", lra_phone(), std::nullopt); }));
+}
+
+// The files of issue 27: a few bytes whose delta times claim years. Refused at the byte that
+// claims them, before anything is laid out (the old reader laid out 67 million bars first:
+// 13.6 GB and more than a minute).
+TEST(Midi, AFileOfAFewBytesThatClaimsYearsIsRefusedAtTheByteThatClaimsThem) {
+    // 37 bytes: division 1, a note on, a delta of 0x0FFFFFFF ticks, a note off.
+    const auto years = one_note(1, 0x0FFF'FFFF);
+    ASSERT_EQ(years.size(), 37u);
+    EXPECT_EQ(import_error(years),
+              "m.mid: byte 26: a note ends 268435455 beats in; a score holds at most 10000 bars "
+              "of four beats");
+    // 45 bytes: the same at MIDI's fastest tempo (1 us a quarter: 268 s as the file says, but a
+    // clef's tempo is 1 ms at least), ending 128 ticks after its note.
+    const auto fast =
+        header(0, 1, 1) + track_chunk(tempo_event(1) + delta(0) + kNoteOn + delta(0x0FFF'FFFF) +
+                                      kNoteOff + delta(128) + kEndOfTrack);
+    ASSERT_EQ(fast.size(), 45u);
+    EXPECT_EQ(import_error(fast),
+              "m.mid: byte 33: a note ends 268435455 beats in; a score holds at most 10000 bars "
+              "of four beats");
+}
+
+TEST(Midi, ANoteEndingOnTheHourIsReadAndOneEndingA32ndLaterIsRefused) {
+    // Division 8: a tick is a 32nd. At the standard's 120 bpm an hour is 7200 quarters.
+    EXPECT_EQ(formats::read_midi(one_note(8, 57'600), "m.mid", lra_phone(), std::nullopt)
+                  .score.bars.size(),
+              1800u);
+    EXPECT_EQ(import_error(one_note(8, 57'601)),
+              "m.mid: byte 26: a note ends at 3600.062 s; a score lasts at most 3600 s");
+}
+
+TEST(Midi, ANoteEndingOnTheLastBeatOfTenThousandBarsIsReadAndOneA32ndLaterIsRefused) {
+    // At 20 ms a quarter ten thousand bars last 800 s.
+    const auto quick = tempo_event(20'000);
+    const auto longest =
+        formats::read_midi(one_note(8, 320'000, quick), "m.mid", lra_phone(), std::nullopt);
+    EXPECT_EQ(longest.score.bars.size(), 10'000u);
+    EXPECT_EQ(import_error(one_note(8, 320'001, quick)),
+              "m.mid: byte 33: a note ends 40000.125 beats in; a score holds at most 10000 bars "
+              "of four beats");
+}
+
+TEST(Midi, ATrackThatEndsPastTheHourIsRefusedAtItsEnd) {
+    const auto bytes = header(0, 1, 8) + track_chunk(delta(0) + kNoteOn + delta(8) + kNoteOff +
+                                                     delta(57'600) + kEndOfTrack);
+    EXPECT_EQ(import_error(bytes),
+              "m.mid: byte 30: the track ends at 3600.5 s; a score lasts at most 3600 s");
+}
+
+// Issue 27: a ritardando with a tempo change in each of 40 bars was refused as "too long",
+// with every number it printed within the limits. It needs 40 clefs; a score declares 32.
+TEST(Midi, ARitardandoOfFortyTemposIsRefusedForItsClefsNotItsLength) {
+    std::string events;
+    for (int bar = 0; bar < 40; ++bar) {
+        events += tempo_event(500'000 + 10'000 * static_cast<std::uint32_t>(bar)) + delta(0) +
+                  kNoteOn + delta(32) + kNoteOff;
+        events += std::string(1, '\0') + std::string("\x90\x3E\x40", 3) + delta(32) +
+                  std::string("\x80\x3E\x40", 3);
+    }
+    const auto bytes = header(0, 1, 16) + track_chunk(events + delta(0) + kEndOfTrack);
+    EXPECT_EQ(import_error(bytes),
+              "m.mid: too many tempos for a score: 40, each on a clef of its own; a score "
+              "declares at most 32 clefs");
+}
+
+// Issue 27 item 5: velocity 0 is a note off; the quietest note is velocity 1 however quiet its
+// number, and the loudest 127.
+TEST(Midi, TheQuietestNoteIsWrittenWithVelocityOneNeverZeroWhichReadsAsANoteOff) {
+    const auto bundle = testing::bundle_from(
+        testing::one_clef_score(R"(<Bar clef="c"><Note length="quarter" number="1" string="1" />
+                                   <Note length="quarter" number="2" string="1" />
+                                   <Note length="quarter" number="3" string="1" /></Bar>)"),
+        {{"c.xml", testing::sine_clef(0.5, {100}, {0.001, 0.006, 1.0})}});
+    const auto file = formats::midi::read(formats::write_midi(bundle), "w.mid");
+    std::vector<int> velocities;
+    for (const auto& event : file.tracks.at(0).events) {
+        if ((event.status & 0xF0) == 0x90) {
+            EXPECT_TRUE(event.note_on()) << "a note on of velocity 0 is a note off";
+            velocities.push_back(event.data2);
+        }
+    }
+    // 0.001 and 0.006 of the strongest are 0.127 and 0.762 of 127: the floor, and rounded to 1.
+    EXPECT_EQ(velocities, (std::vector<int>{1, 1, 127}));
+}
+
 TEST(Midi, ImportsATrackMidoWroteWithTheTempoOfItsTempoTrack) {
     testing::TempDir dir;
     const auto file = dir.path() / "melody.mid";

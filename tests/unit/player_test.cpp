@@ -1,6 +1,13 @@
 #include <gtest/gtest.h>
 
+#include <gmock/gmock.h>
+
+#include <algorithm>
+#include <limits>
+
+#include "daemon/play_request.hpp"
 #include "daemon/player.hpp"
+#include "tests/support/support.hpp"
 
 namespace vibscore::daemon {
 namespace {
@@ -49,6 +56,7 @@ class RecordingListener : public PlayerListener {
     void playback_position(std::uint64_t id, std::size_t bar, std::size_t symbol) override {
         events.push_back("position " + std::to_string(id) + " " + std::to_string(bar) + "." +
                          std::to_string(symbol));
+        position_times_us.push_back(monotonic_now_us());
     }
     void playback_finished(std::uint64_t id, const std::string& reason) override {
         events.push_back("finished " + std::to_string(id) + " " + reason);
@@ -57,6 +65,7 @@ class RecordingListener : public PlayerListener {
         }
     }
     std::vector<std::string> events;
+    std::vector<std::uint64_t> position_times_us;
     bool exit_on_finish = true;
 
   private:
@@ -131,8 +140,10 @@ TEST_F(PlayerTest, PlaysEveryCueInOrderNeverEarlyThenCompletes) {
 TEST_F(PlayerTest, RepeatsTheWholeScoreTheAskedNumberOfTimesMore) {
     player.play(request(Usage::ringtone, 2));
     loop.run();
-    EXPECT_EQ(std::count_if(listener.events.begin(), listener.events.end(),
-                            [](const std::string& e) { return e == "position 1 0.0"; }),
+    EXPECT_EQ(std::count_if(actuator.applied.begin(), actuator.applied.end(),
+                            [](const Applied& applied) {
+                                return applied.drive == drivers::Drive{0.5, 170};
+                            }),
               3);
     EXPECT_EQ(listener.events.back(), "finished 1 completed");
 }
@@ -244,6 +255,141 @@ TEST_F(PlayerTest, AnEndlessPlaybackEndsWhenItsCallerLeavesTheBus) {
     player.sender_vanished(":1.7");
     EXPECT_EQ(listener.events.back(), "finished 1 client-vanished");
     EXPECT_EQ(actuator.applied.back().drive.amplitude, 0.0);
+}
+
+// A repeating playback `repeat` more times of one-drive passes `duration_s` long.
+PlaybackRequest passes(int repeat, double duration_s) {
+    auto repeating = request(Usage::notification, repeat);
+    repeating.cues = cue_list({drive(0, 0.5, 170), position(0, 0, 0), drive(duration_s * 0.8, 0)});
+    repeating.duration_s = duration_s;
+    return repeating;
+}
+
+TEST_F(PlayerTest, ARepeatingPlaybackThatEndsWithinTheBoundOutlivesItsCaller) {
+    // 3000 passes of 10 ms: 30 s, the longest a playback plays on without its caller.
+    ASSERT_EQ(kPlaysOnWithoutItsCaller_s, 30.0);
+    player.play(passes(2999, 0.010));
+    player.sender_vanished(":1.7");
+    EXPECT_TRUE(player.current_id());
+    EXPECT_THAT(listener.events,
+                ::testing::Not(::testing::Contains(::testing::StartsWith("finished"))));
+}
+
+TEST_F(PlayerTest, ARepeatingPlaybackThatWouldOutlastTheBoundEndsWhenItsCallerLeaves) {
+    // One pass more, 30.01 s: the first that ends with its caller, as repeat 2147483647 does.
+    player.play(passes(3000, 0.010));
+    player.sender_vanished(":1.99");
+    EXPECT_TRUE(player.current_id()) << "another caller left";
+    player.sender_vanished(":1.7");
+    EXPECT_EQ(listener.events.back(), "finished 1 client-vanished");
+    EXPECT_EQ(actuator.applied.back().drive.amplitude, 0.0);
+    player.play(passes(std::numeric_limits<int>::max(), 0.010));
+    player.sender_vanished(":1.7");
+    EXPECT_EQ(listener.events.back(), "finished 2 client-vanished");
+}
+
+TEST_F(PlayerTest, StoppingEveryPlaybackEndsAnyonesAndSaysWhichItEnded) {
+    EXPECT_TRUE(player.stop_every_playback().empty()) << "nothing plays";
+    const auto id = player.play(request(Usage::ringtone, -1, 65534));
+    actuator.applied.clear();
+    EXPECT_EQ(player.stop_every_playback(), std::vector<std::uint64_t>{id});
+    EXPECT_EQ(listener.events.back(), "finished 1 stopped");
+    ASSERT_EQ(actuator.applied.size(), 1u);
+    EXPECT_EQ(actuator.applied[0].drive.amplitude, 0.0);
+    EXPECT_FALSE(player.current_id());
+    EXPECT_TRUE(player.stop_every_playback().empty());
+}
+
+// Issue 27: positions were reported at every note and rest, thousands a second.
+TEST_F(PlayerTest, PositionsAreReportedAtMostFiftyTimesASecondEndingWithTheLastOne) {
+    std::vector<Cue> cues{drive(0, 0.5, 170)};
+    for (std::size_t i = 0; i < 500; ++i) {
+        cues.push_back(position(static_cast<double>(i) * 0.001, 0, i));  // one every 1 ms
+    }
+    cues.push_back(drive(0.5, 0));
+    auto dense = request();
+    dense.cues = cue_list(cues);
+    dense.duration_s = 0.5;
+    player.play(dense);
+    loop.run();
+    const auto& times = listener.position_times_us;
+    ASSERT_GE(times.size(), 2u);
+    EXPECT_LE(times.size(), 0.5 * 50 + 2) << "at most 50 a second, and one as it ends";
+    // The listener reads the clock a little after the player did: up to 1 ms of it.
+    for (std::size_t i = 1; i + 1 < times.size(); ++i) {
+        EXPECT_GE(times[i] - times[i - 1] + 1000, kPositionReportInterval_us) << i;
+    }
+    EXPECT_EQ(listener.events.at(1), "position 1 0.0") << "the first at once";
+    EXPECT_EQ(listener.events.at(listener.events.size() - 2), "position 1 0.499");
+    EXPECT_EQ(listener.events.back(), "finished 1 completed");
+}
+
+TEST_F(PlayerTest, AHeldPositionIsReportedWhenItsIntervalEndsNotAtTheNextCue) {
+    // Two positions 1 ms apart, then a long rest: the second must not wait for the rest's end.
+    auto sparse = request();
+    sparse.cues = cue_list({drive(0, 0.5, 170), position(0, 0, 0), position(0.001, 0, 1),
+                            drive(0.3, 0), position(0.3, 0, 2)});
+    sparse.duration_s = 0.31;
+    const auto started = monotonic_now_us();
+    player.play(sparse);
+    loop.run();
+    ASSERT_EQ(listener.position_times_us.size(), 3u);
+    EXPECT_EQ(listener.events.at(2), "position 1 0.1");
+    EXPECT_GE(listener.position_times_us[1], started + kPositionReportInterval_us);
+    EXPECT_LT(listener.position_times_us[1], started + 200'000) << "long before the rest ends";
+}
+
+// Issue 27: an inline clef of tempo 0.001 and 2,000 rests, repeated until stopped, made the daemon
+// report 8,000 positions a second, on and on.
+TEST_F(PlayerTest, AScoreAskingForMoreCuesASecondThanAPlaybackMayRunEndsWithLimitExceeded) {
+    std::string rests;
+    for (int i = 0; i < 2000; ++i) {
+        rests += "<Rest length=\"32th\"/>";
+    }
+    const ScoreToPlay flood{
+        vibscore::testing::bundle_from(
+            vibscore::testing::one_clef_score("<Bar clef=\"c\"><Note length=\"32th\" number=\"1\" "
+                                              "string=\"1\"/>" +
+                                              rests + "</Bar>"),
+            {{"c.xml", vibscore::testing::sine_clef(0.001, {170}, {1.0})}}),
+        "<inline>"};
+    PlayOptions options;
+    options.repeat = -1;
+    const auto started = monotonic_now_us();
+    EventLoop::Timer give_up(loop, [this] { loop.exit(0); });  // it would flood on for ever
+    give_up.arm(started + 2'000'000);
+    player.play(make_playback_request(flood, options, 0.030));
+    loop.run();
+    EXPECT_THAT(listener.events.back(),
+                ::testing::StartsWith("finished 1 limit-exceeded: the score asks for more than "
+                                      "1000 actuator commands and positions a second"));
+    EXPECT_LT(monotonic_now_us() - started, 1'000'000u);
+    EXPECT_LE(listener.position_times_us.size(), 12u);
+    EXPECT_EQ(actuator.applied.back().drive.amplitude, 0.0);
+}
+
+TEST_F(PlayerTest, AFiniteRepeatKeepsItsTurnAgainstAnEqualOneShotUntilItsLastPass) {
+    // Three passes of 100 ms; an equally important one-shot asks in each of them.
+    player.play(passes(2, 0.100));
+    std::vector<bool> admitted;
+    const auto started = monotonic_now_us();
+    std::optional<EventLoop::Timer> asking;
+    int asked = 0;
+    asking.emplace(loop, [&] {
+        try {
+            player.check_admission(Usage::notification, 0);
+            admitted.push_back(true);
+        } catch (const PlayerBusy&) {
+            admitted.push_back(false);
+        }
+        if (++asked < 3) {
+            asking->arm(started + 50'000 + static_cast<std::uint64_t>(asked) * 100'000);
+        }
+    });
+    asking->arm(started + 50'000);
+    loop.run();
+    EXPECT_EQ(admitted, (std::vector<bool>{false, false, true}));
+    EXPECT_EQ(listener.events.back(), "finished 1 completed");
 }
 
 TEST_F(PlayerTest, APlaybackThatEndsByItselfOutlivesItsCaller) {

@@ -11,7 +11,9 @@ namespace vibscore::daemon {
 namespace {
 
 using ::testing::ElementsAre;
+using ::testing::HasSubstr;
 using ::testing::IsEmpty;
+using ::testing::Not;
 
 class ReloadTest : public ::testing::Test {
   protected:
@@ -90,6 +92,38 @@ TEST_F(ReloadTest, ABadSettingChangesNothingAtAll) {
     EXPECT_THAT(reasons.reasons, IsEmpty());
 }
 
+// Each alone, so that neither hides behind the other: the warning must come for either change.
+TEST_F(ReloadTest, AReloadThatChangesOnlyTheStoreKeepsItAndSaysItChangesOnlyOnRestart) {
+    DaemonConfig fresh = parse_config("[daemon]\nstore = /elsewhere/store\n", "v.conf", running);
+    ::testing::internal::CaptureStderr();
+    reload_config(running, fresh, *host, callers);
+    const std::string log = ::testing::internal::GetCapturedStderr();
+    EXPECT_EQ(running.store, "/var/lib/vibscore");
+    EXPECT_THAT(log, HasSubstr("v.conf:2: store = \"/elsewhere/store\" changes only on restart; "
+                               "until then it stays /var/lib/vibscore"));
+    EXPECT_THAT(log, Not(HasSubstr("shipped")));
+}
+
+TEST_F(ReloadTest, AReloadThatChangesOnlyTheShippedFolderKeepsItAndSaysItChangesOnlyOnRestart) {
+    DaemonConfig fresh = running;
+    fresh.shipped = "/elsewhere/clefs";
+    ::testing::internal::CaptureStderr();
+    reload_config(running, fresh, *host, callers);
+    const std::string log = ::testing::internal::GetCapturedStderr();
+    EXPECT_EQ(running.shipped, "/usr/share/vibscore/clefs");
+    EXPECT_THAT(log, HasSubstr("shipped = \"/elsewhere/clefs\" changes only on restart; until "
+                               "then it stays /usr/share/vibscore/clefs"));
+    EXPECT_THAT(log, Not(HasSubstr("store")));
+}
+
+TEST_F(ReloadTest, AReloadThatChangesNeitherFolderSaysNothingAboutThem) {
+    DaemonConfig fresh = running;
+    fresh.separation_ms = 10.0;
+    ::testing::internal::CaptureStderr();
+    reload_config(running, fresh, *host, callers);
+    EXPECT_THAT(::testing::internal::GetCapturedStderr(), Not(HasSubstr("only on restart")));
+}
+
 TEST_F(ReloadTest, TheStoreAndShippedDirectoriesKeepTheirRunningValues) {
     DaemonConfig fresh = running;
     fresh.store = "/elsewhere/store";
@@ -99,6 +133,16 @@ TEST_F(ReloadTest, TheStoreAndShippedDirectoriesKeepTheirRunningValues) {
     EXPECT_EQ(running.store, "/var/lib/vibscore");
     EXPECT_EQ(running.shipped, "/usr/share/vibscore/clefs");
     EXPECT_EQ(running.separation_ms, 10.0);
+}
+
+TEST_F(ReloadTest, AnUnknownDriverChangesNothingAndNamesTheLineThatNamesIt) {
+    const DaemonConfig fresh = parse_config("[daemon]\n\ndriver = evdevv\n", "v.conf", running);
+    EXPECT_THAT([&] { reload_config(running, fresh, *host, callers); },
+                ::testing::ThrowsMessage<std::invalid_argument>(::testing::StartsWith(
+                    "v.conf:3: unknown driver \"evdevv\" (available: sim, evdev")));
+    EXPECT_EQ(host->driver(), "sim");
+    EXPECT_EQ(running.driver, "sim");
+    EXPECT_THAT(reasons.reasons, IsEmpty()) << "the playback was not stopped for it";
 }
 
 TEST_F(ReloadTest, ADriverThatWillNotOpenLeavesThePreviousOneRunning) {

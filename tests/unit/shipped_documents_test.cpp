@@ -1,6 +1,7 @@
 // Every document in clefs/ loads, validates, survives a write/read round trip and renders.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "daemon/render/performance.hpp"

@@ -164,6 +164,25 @@ TEST(SimActuator, OffAfterApplyTracesAZeroLine) {
     EXPECT_LE(on.time_ns, off.time_ns);  // the real monotonic clock
 }
 
+// vibscored --safe-off after a crash, and the daemon restarted after it, open the trace again.
+TEST(SimActuator, AnotherActuatorOnTheSameTraceAppendsKeepingTheRecordBeforeIt) {
+    TempDir dir;
+    SimSettings settings;
+    settings.trace = dir.path() / "t.csv";
+    {
+        SimActuator crashed(settings);
+        crashed.apply({0.6, 0.0});
+    }
+    SimActuator safe_off(settings);
+    safe_off.off();
+    const auto lines = lines_of(*settings.trace);
+    ASSERT_EQ(lines.size(), 3u) << "one header, both runs' lines";
+    EXPECT_EQ(lines[0], "time_ns,amplitude,frequency_hz,response");
+    EXPECT_EQ(parse(lines[1]).amplitude, 0.6);
+    EXPECT_EQ(parse(lines[2]).amplitude, 0.0);
+    EXPECT_LE(parse(lines[1]).time_ns, parse(lines[2]).time_ns);
+}
+
 TEST(SimActuator, UnwritableTracePathThrowsNamingIt) {
     TempDir dir;
     SimSettings settings;

@@ -3,6 +3,7 @@
 // uinput device itself is in the hil tier (tests/hil/virtual_vibra_test.cpp).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cerrno>
 
 #include "daemon/player.hpp"

@@ -1,0 +1,134 @@
+// The real daemon with driver modules that misbehave (tests/support/modules): it comes up
+// whatever a module does while loading, refuses modules others may have put there, lists
+// modules without loading them, and a module that crashes it does so once, not on every start.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+
+#include <csignal>
+#include <fstream>
+
+#include "tests/support/daemon_fixture.hpp"
+#include "tests/support/test_modules.hpp"
+
+namespace vibscore {
+namespace {
+
+using testing::DaemonFixture;
+using ::testing::HasSubstr;
+using testing::ModulesDir;
+using ::testing::Not;
+
+constexpr uid_t kNobody = 65534;
+
+std::string drivers_dir_line(const ModulesDir& modules) {
+    return "drivers-dir = " + modules.path().string() + "\n";
+}
+
+// Each load of the "counted" module appends the loading process's id to this file.
+class LoadLog {
+  public:
+    LoadLog() { ::setenv("VIBSCORE_TEST_LOAD_LOG", file_.c_str(), 1); }
+    ~LoadLog() { ::unsetenv("VIBSCORE_TEST_LOAD_LOG"); }
+    std::size_t loads() const {
+        std::ifstream in(file_);
+        std::size_t count = 0;
+        for (std::string line; std::getline(in, line);) {
+            ++count;
+        }
+        return count;
+    }
+
+  private:
+    testing::TempDir dir_;
+    std::filesystem::path file_ = dir_.path() / "loads";
+};
+
+std::string property(const DaemonFixture& daemon, const std::string& name) {
+    return daemon
+        .busctl({"get-property", "org.vibscore.Haptics1", "/org/vibscore/Haptics1",
+                 "org.vibscore.Haptics1", name})
+        .out;
+}
+
+TEST(DriverModules, AConstructorThatHangsDoesNotKeepTheDaemonFromStarting) {
+    ModulesDir modules;
+    const auto hang = modules.add("hang");
+    modules.add_example();
+    DaemonFixture daemon{drivers_dir_line(modules)};  // throws unless it takes its name
+    EXPECT_THAT(daemon.daemon_log(),
+                HasSubstr("driver module " + hang.string() +
+                          " is not loaded: did not finish loading within 2000 ms"));
+    const auto listed = daemon.call({"ListDrivers"});
+    EXPECT_THAT(listed.out, HasSubstr("\"trace\""));
+    EXPECT_THAT(listed.out, Not(HasSubstr("\"hang\"")));
+    EXPECT_EQ(property(daemon, "Driver"), "s \"sim\"\n");
+}
+
+TEST(DriverModules, AModuleThatCrashesInApplyKillsTheDaemonOnceAndTheRestartRunsSim) {
+    ModulesDir modules;
+    const auto segv = modules.add("segv");
+    DaemonFixture daemon{drivers_dir_line(modules)};  // a first run makes the store
+    daemon.write_config(drivers_dir_line(modules) + "driver = segv",
+                        "trace = " + daemon.trace().string());
+    EXPECT_EQ(daemon.stop_daemon(), 0);
+    daemon.start_daemon();
+    EXPECT_EQ(property(daemon, "Driver"), "s \"segv\"\n");
+    EXPECT_NE(daemon.call({"Play", "sa{sv}", "touch-click", "0"}).exit_code, 0);
+    EXPECT_EQ(daemon.wait_daemon(), 128 + SIGSEGV);
+
+    // Restart=on-failure starts it again: it serves, on sim, and says why.
+    daemon.start_daemon();
+    EXPECT_EQ(property(daemon, "Driver"), "s \"sim\"\n");
+    EXPECT_THAT(daemon.daemon_log(),
+                HasSubstr("driver module segv (" + segv.string() +
+                          ") was in use when vibscored last ended without closing it"));
+    const auto played = daemon.call({"Play", "sa{sv}", "touch-click", "0"});
+    EXPECT_EQ(played.exit_code, 0) << played.err;
+    // And the run after that one, a clean stop and start, tries the module again.
+    EXPECT_EQ(daemon.stop_daemon(), 0);
+    daemon.start_daemon();
+    EXPECT_EQ(property(daemon, "Driver"), "s \"segv\"\n");
+}
+
+TEST(DriverModules, ListingTheDriversLoadsNoModule) {
+    ModulesDir modules;
+    modules.add("counted");
+    LoadLog log;
+    DaemonFixture daemon{drivers_dir_line(modules)};
+    ASSERT_EQ(log.loads(), 1u) << "tried once at start, in a child";
+    for (int i = 0; i < 20; ++i) {
+        const auto listed = daemon.call({"ListDrivers"}, kNobody);
+        ASSERT_THAT(listed.out, HasSubstr("\"counted\"")) << listed.err;
+    }
+    EXPECT_EQ(log.loads(), 1u) << "ListDrivers ran no module's constructor";
+    ASSERT_EQ(daemon.call({"SwitchDriver", "s", "counted"}).exit_code, 0);
+    ASSERT_EQ(daemon.call({"SwitchDriver", "s", "sim"}).exit_code, 0);
+    ASSERT_EQ(daemon.call({"SwitchDriver", "s", "counted"}).exit_code, 0);
+    EXPECT_EQ(log.loads(), 2u) << "loaded into the daemon once, when first used";
+}
+
+TEST(DriverModules, ModulesOthersCouldHavePutThereAreRefusedWithALogLineNamingThemAndWhy) {
+    ModulesDir modules;
+    const auto writable = modules.add("counted", "writable.so");
+    std::filesystem::permissions(writable, std::filesystem::perms(0666));
+    const auto foreign = modules.add("counted", "foreign.so");
+    const bool root = ::geteuid() == 0;
+    if (root) {
+        ASSERT_EQ(::chown(foreign.c_str(), kNobody, kNobody), 0);
+    }
+    DaemonFixture daemon{drivers_dir_line(modules)};
+    const auto log = daemon.daemon_log();
+    EXPECT_THAT(log, HasSubstr("driver module " + writable.string() + " is not loaded: " +
+                               writable.string() + " is writable by group or others (mode 0666)"));
+    if (root) {
+        EXPECT_THAT(log, HasSubstr("driver module " + foreign.string() +
+                                   " is not loaded: " + foreign.string() +
+                                   " is owned by uid 65534, neither root nor the daemon's user"));
+        EXPECT_THAT(daemon.call({"ListDrivers"}).out, Not(HasSubstr("\"counted\"")));
+    }
+}
+
+}  // namespace
+}  // namespace vibscore

@@ -1,0 +1,97 @@
+/*
+ * Driver modules that misbehave, built by the tests to prove vibscored survives them
+ * (docs/drivers.md, "How modules are loaded"). One source, one misdeed per build:
+ *   HANG_AT_LOAD    a constructor that never returns
+ *   CRASH_AT_LOAD   a constructor that segfaults
+ *   EXIT_AT_LOAD    a constructor that calls exit()
+ *   CRASH_IN_APPLY  an apply() that segfaults (open and off work)
+ *   COUNT_LOADS     well behaved; each load appends the loading process's id to the file
+ *                   $VIBSCORE_TEST_LOAD_LOG, so a test can count the loads and tell where
+ * DRIVER_NAME is the driver's name.
+ */
+#include <vibscore/driver.h>
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <unistd.h>
+
+#ifndef DRIVER_NAME
+#error "DRIVER_NAME must be defined"
+#endif
+
+/* A real invalid write, which the compiler cannot see is one (a literal null it would turn into
+ * a trap, or drop). */
+static int* volatile nowhere = NULL;
+
+__attribute__((constructor)) static void at_load(void) {
+#if defined(HANG_AT_LOAD)
+    for (;;) {
+        pause();
+    }
+#elif defined(CRASH_AT_LOAD)
+    *nowhere = 1;
+#elif defined(EXIT_AT_LOAD)
+    exit(3);
+#elif defined(COUNT_LOADS)
+    const char* log = getenv("VIBSCORE_TEST_LOAD_LOG");
+    FILE* out = log ? fopen(log, "a") : NULL;
+    if (out) {
+        fprintf(out, "%ld\n", (long)getpid());
+        fclose(out);
+    }
+#endif
+}
+
+static int handle_storage;
+
+static void* misbehaving_open(const struct vibscore_setting* settings, size_t count, char* error,
+                              size_t error_size) {
+    (void)settings;
+    (void)count;
+    (void)error;
+    (void)error_size;
+    return &handle_storage;
+}
+
+static void misbehaving_close(void* handle) {
+    (void)handle;
+}
+
+static uint32_t misbehaving_capabilities(void* handle, double* max_on_time_s) {
+    (void)handle;
+    *max_on_time_s = 0.0;
+    return VIBSCORE_CAP_AMPLITUDE;
+}
+
+static int misbehaving_apply(void* handle, const struct vibscore_drive* drive, char* error,
+                             size_t error_size) {
+    (void)handle;
+    (void)drive;
+    (void)error;
+    (void)error_size;
+#if defined(CRASH_IN_APPLY)
+    *nowhere = 1;
+#endif
+    return 0;
+}
+
+static void misbehaving_off(void* handle) {
+    (void)handle;
+}
+
+static const struct vibscore_driver driver = {
+    .abi_version = VIBSCORE_DRIVER_ABI_VERSION,
+    .name = DRIVER_NAME,
+    .description = "a test module that misbehaves",
+    .open = misbehaving_open,
+    .close = misbehaving_close,
+    .capabilities = misbehaving_capabilities,
+    .apply = misbehaving_apply,
+    .off = misbehaving_off,
+    .prepare = NULL,
+    .set_gain = NULL,
+};
+
+const struct vibscore_driver* vibscore_driver_entry(void) {
+    return &driver;
+}
