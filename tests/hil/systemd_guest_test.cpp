@@ -104,13 +104,24 @@ TEST(SystemdGuest, DbusActivationStartsItAsUserVibscoreOnTheFirstCall) {
     EXPECT_EQ(uid, "vibscore\n");
 }
 
+// "FILE:LINE" of the installed configuration's driver = auto, as the daemon's reasons name it.
+std::string auto_line() {
+    auto line = out_of("grep -n '^driver = auto$' " + kConfig + " | cut -d: -f1");
+    if (!line.empty() && line.back() == '\n') {
+        line.pop_back();
+    }
+    return kConfig + ":" + line;
+}
+
 TEST(SystemdGuest, TheJournalHasItsMessages) {
     const auto journal = out_of("journalctl -u vibscored -b -o cat --no-pager");
     EXPECT_NE(journal.find("ready on org.vibscore.Haptics1"), std::string::npos) << journal;
     EXPECT_NE(journal.find("registry: "), std::string::npos) << journal;
     // Installed with no actuator in the guest, driver = auto runs sim, and warns saying so.
     const auto warnings = out_of("journalctl -u vibscored -b -p warning -o cat --no-pager");
-    EXPECT_NE(warnings.find("driver = auto found no actuator, so driver sim plays (nothing "
+    // The reason names the line of the file that says auto.
+    EXPECT_NE(warnings.find("driver = auto (" + auto_line() +
+                            ") found no actuator, so driver sim plays (nothing "
                             "vibrates). Searched: evdev: no force-feedback device in /dev/input"),
               std::string::npos)
         << warnings;
@@ -134,7 +145,7 @@ TEST(SystemdGuest, AFreshInstallPlaysOnTheUdevTaggedVibraWithNoConfiguration) {
     const auto driver = as_alice("vibscore driver");
     EXPECT_EQ(driver.exit_code, 0) << driver.err;
     EXPECT_EQ(driver.out.rfind("driver evdev: ", 0), 0u) << driver.out;
-    EXPECT_NE(driver.out.find("driver = auto: evdev on " + node +
+    EXPECT_NE(driver.out.find("driver = auto (" + auto_line() + "): evdev on " + node +
                               ", the force-feedback device udev tags FEEDBACKD_TYPE=vibra"),
               std::string::npos)
         << driver.out;
