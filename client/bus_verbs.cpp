@@ -14,6 +14,7 @@
 #include <sstream>
 #include <thread>
 
+#include "client/clef_verbs.hpp"
 #include "client/daemon_errors.hpp"
 #include "client/daemon_watch.hpp"
 #include "client/editor/documents.hpp"
@@ -91,6 +92,27 @@ class Haptics : public sdbus::ProxyInterfaces<org::vibscore::Haptics1_proxy> {
 
 std::string explain(const sdbus::Error& error) {
     return describe_daemon_error(error.getName(), error.getMessage());
+}
+
+// The declaration the Actuator property holds: [actuator]'s own keys and values.
+actuator::Declaration declaration_of(const std::map<std::string, std::string>& settings) {
+    std::vector<actuator::Setting> lines;
+    for (const auto& [key, value] : settings) {
+        lines.push_back({key, value, "vibscored's Actuator property"});
+    }
+    try {
+        return actuator::parse_declaration(lines, "vibscored's Actuator property");
+    } catch (const actuator::DeclarationError& error) {
+        throw std::runtime_error(error.what());
+    }
+}
+
+std::string actuator_line(const std::map<std::string, std::string>& settings) {
+    if (settings.empty()) {
+        return "none declared: strengths play as written ([actuator] in vibscored.conf, "
+               "docs/drivers.md)";
+    }
+    return actuator::describe(declaration_of(settings));
 }
 
 template <typename Body>
@@ -314,9 +336,31 @@ int list(const std::string& kind, std::ostream& out, std::ostream& err) {
     });
 }
 
-int get(const std::string& kind, const std::string& name, std::ostream& out, std::ostream& err) {
+int get(const std::string& kind, const std::string& name, std::ostream& out, std::ostream& err,
+        bool device) {
     return with_daemon(err, [&](Haptics& haptics) {
-        out << haptics.Get(kind, name);
+        if (!device) {
+            out << haptics.Get(kind, name);
+            return exit_ok;
+        }
+        if (!kind.starts_with("clef")) {
+            err << "vibscore: get --device: only a clef has a device form, not a " << kind << "\n";
+            return exit_usage;
+        }
+        // The clef a bar written for NAME plays through here, as BarClefs tells it.
+        const std::string probe = "<VibScore><Clef id=\"c\" href=\"" + name +
+                                  ".clef.xml\"/><Bar clef=\"c\"><Rest length=\"quarter\"/>"
+                                  "</Bar></VibScore>";
+        const std::string device_clef = haptics.BarClefs(probe).at(0).get<1>();
+        const std::string fitted_mark(render::kFittedMark);
+        if (!device_clef.ends_with(fitted_mark)) {
+            out << haptics.Get("clef", device_clef);
+            return exit_ok;
+        }
+        // Fitted: the same pure fit vibscored makes, to the actuator it declares.
+        const auto declared = declaration_of(haptics.Actuator());
+        const Clef written = read_clef(haptics.Get("clef", name), "clef \"" + name + "\"");
+        out << fitted_document(render::fit_clef(written, declared), name, declared);
         return exit_ok;
     });
 }
@@ -369,6 +413,7 @@ int describe_registry_score(const std::string& name, std::ostream& out, std::ost
             out << "  " << b + 1 << "  " << written
                 << (device == written ? " (as written)" : " -> " + device) << "\n";
         }
+        out << "actuator: " << actuator_line(haptics.Actuator()) << "\n";
         return exit_ok;
     });
 }
@@ -397,8 +442,25 @@ int driver(const std::string& name, std::ostream& out, std::ostream& err) {
             out << " " << capability;
         }
         out << "\n" << haptics.DriverReason() << "\n";
+        out << "actuator: " << actuator_line(haptics.Actuator()) << "\n";
         return exit_ok;
     });
+}
+
+actuator::Declaration daemon_actuator() {
+    std::map<std::string, std::string> settings;
+    try {
+        Haptics haptics(sdbus::createSystemBusConnection());
+        settings = haptics.Actuator();
+    } catch (const sdbus::Error& error) {
+        throw std::runtime_error("cannot ask vibscored for its actuator: " + explain(error));
+    }
+    if (settings.empty()) {
+        throw std::runtime_error(
+            "vibscored declares no actuator ([actuator] in its vibscored.conf); give --actuator "
+            "FILE");
+    }
+    return declaration_of(settings);
 }
 
 }  // namespace vibscore::client

@@ -5,8 +5,10 @@
 #include <iterator>
 #include <limits>
 
+#include "client/actuator_option.hpp"
 #include "client/assign_verb.hpp"
 #include "client/bus_verbs.hpp"
+#include "client/clef_verbs.hpp"
 #include "client/convert_verb.hpp"
 #include "client/editor/documents.hpp"
 #include "client/editor/editor_app.hpp"
@@ -25,6 +27,8 @@ constexpr const char* kUsages[] = {"ringtone",      "alarm",         "notificati
                                    "communication", "accessibility", "hardware-feedback",
                                    "touch",         "media"};
 constexpr const char* kKindHelp = "score or clef (scores and clefs work too)";
+// What `--actuator` without a file stands for: ask vibscored.
+constexpr const char* kDaemonActuator = "daemon";
 
 // Registry kinds, the plural too, as vibscored takes them.
 CLI::Validator kind_validator() {
@@ -38,6 +42,36 @@ void add_clefs_option(CLI::App* verb, ClefSearch& search) {
                      "folder of NAME.clef.xml files where a clef the score names by registry "
                      "name is looked up first (repeatable; then vibscored, then the shipped clefs)")
         ->check(CLI::ExistingDirectory);
+}
+
+// `--actuator [FILE]` on the verbs that show what an actuator makes of a score: a file with an
+// [actuator] section (vibscored.conf will do), or without one the daemon's declaration.
+void add_actuator_option(CLI::App* verb, std::string& spec, const std::string& what) {
+    verb->add_option("--actuator", spec,
+                     "the actuator declared in FILE's [actuator] section (vibscored.conf will "
+                     "do), or without FILE the one vibscored declares: " +
+                         what)
+        ->expected(0, 1)
+        ->default_str(kDaemonActuator)
+        ->type_name("[FILE]");
+}
+
+// The declaration `--actuator` names, into `declared` (nothing when not given). exit_ok, or,
+// having said why there is none, exit_usage for a bad file and exit_failed when vibscored could
+// not give one.
+int resolve_actuator(const std::string& spec,
+                     std::optional<vibscore::actuator::Declaration>& declared, std::ostream& err) {
+    if (spec.empty()) {
+        return exit_ok;
+    }
+    const bool daemon = spec == kDaemonActuator;
+    try {
+        declared = daemon ? daemon_actuator() : load_actuator(spec);
+        return exit_ok;
+    } catch (const std::exception& error) {
+        err << "vibscore: " << error.what() << "\n";
+        return daemon ? exit_failed : exit_usage;
+    }
 }
 
 // "unknown command "x"" with the commands, instead of CLI11's "arguments were not expected".
@@ -92,6 +126,10 @@ int main(int argc, char** argv) {
         "check", "Validate scores (with the clefs they name) and clefs; list every problem.");
     check->add_option("FILE", check_files, "VibScore or VibClef documents")->required();
     add_clefs_option(check, clef_search);
+    std::string check_actuator;
+    add_actuator_option(check, check_actuator,
+                        "also warn, naming bar, note and numbers, where a score asks what the "
+                        "actuator cannot give");
 
     RenderRequest render;
     auto* render_verb = app.add_subcommand(
@@ -109,6 +147,11 @@ int main(int argc, char** argv) {
                             "draw the signal and its envelope, with bar and note boundaries, "
                             "as an SVG picture");
     render_verb->add_option("--png", render.png, "the same picture as a PNG image");
+    std::string render_actuator;
+    add_actuator_option(render_verb, render_actuator,
+                        "--out FILE.csv then has t,written,uncompensated,compensated: the "
+                        "strength written and what the actuator produces without and with "
+                        "compensation; --plot, --svg and --png draw those three");
 
     ConvertRequest convert_request;
     auto* convert_verb = app.add_subcommand(
@@ -134,6 +177,28 @@ int main(int argc, char** argv) {
         ->check(number_between(1, 65535, NumberKind::whole));
     convert_verb->add_flag("--loop", convert_request.loop,
                            "Android: the pattern repeats (repeat index 0, <repeating>)");
+
+    auto* clef_verb = app.add_subcommand("clef", "Work on clefs: fit one to the actuator.");
+    clef_verb->require_subcommand(1);
+    ClefFitRequest clef_fit;
+    std::string clef_fit_actuator = kDaemonActuator;
+    auto* clef_fit_verb = clef_verb->add_subcommand(
+        "fit",
+        "Write a device clef for the declared actuator from a written clef: strings where it "
+        "plays them at full strength (or roughness), numbers keeping their strengths, shapes it "
+        "cannot follow smoothed (docs/clefs.md). What changed goes to standard error.");
+    clef_fit_verb->add_option("CLEF", clef_fit.clef, "VibClef file or registry clef name")
+        ->required();
+    clef_fit_verb
+        ->add_option("--actuator", clef_fit_actuator,
+                     "the actuator declared in FILE's [actuator] section (vibscored.conf will "
+                     "do), or 'daemon' (the default): the one vibscored declares")
+        ->type_name("FILE|daemon");
+    clef_fit_verb
+        ->add_option("-o,--output", clef_fit.output,
+                     "write the fitted clef to OUT (default: standard output)")
+        ->type_name("OUT");
+    add_clefs_option(clef_fit_verb, clef_search);
 
     std::string info_file;
     auto* info = app.add_subcommand(
@@ -187,6 +252,10 @@ int main(int argc, char** argv) {
     auto* get_verb = app.add_subcommand("get", "Print a registry score or clef.");
     get_verb->add_option("KIND", kind, kKindHelp)->required()->check(kind_validator());
     get_verb->add_option("NAME", name, "registry name")->required();
+    bool get_device = false;
+    get_verb->add_flag("--device", get_device,
+                       "a clef as this device plays it: the clef [clefs] maps it to, or fitted to "
+                       "the declared actuator (fit = auto)");
     auto* compose_verb = app.add_subcommand(
         "compose",
         "Store a score or clef file in the registry (polkit: org.vibscore.compose; without "
@@ -271,10 +340,25 @@ int main(int argc, char** argv) {
     }
 
     if (check->parsed()) {
-        return check_documents(check_files, clef_search, std::cout, std::cerr);
+        std::optional<vibscore::actuator::Declaration> declared;
+        if (const int failed = resolve_actuator(check_actuator, declared, std::cerr)) {
+            return failed;
+        }
+        return check_documents(check_files, clef_search, std::cout, std::cerr, declared);
     }
     if (render_verb->parsed()) {
+        if (const int failed = resolve_actuator(render_actuator, render.actuator, std::cerr)) {
+            return failed;
+        }
         return render_document(render, clef_search, std::cout, std::cerr);
+    }
+    if (clef_fit_verb->parsed()) {
+        std::optional<vibscore::actuator::Declaration> declared;
+        if (const int failed = resolve_actuator(clef_fit_actuator, declared, std::cerr)) {
+            return failed;
+        }
+        clef_fit.actuator = *declared;
+        return fit_clef_document(clef_fit, clef_search, std::cout, std::cerr);
     }
     if (convert_verb->parsed()) {
         return convert(convert_request, clef_search, std::cout, std::cerr);
@@ -289,7 +373,7 @@ int main(int argc, char** argv) {
         return list(kind, std::cout, std::cerr);
     }
     if (get_verb->parsed()) {
-        return get(kind, name, std::cout, std::cerr);
+        return get(kind, name, std::cout, std::cerr, get_device);
     }
     if (compose_verb->parsed()) {
         return compose(name, file, clef_search, std::cout, std::cerr);

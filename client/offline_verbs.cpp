@@ -2,12 +2,19 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <fstream>
 #include <map>
+#include <memory>
+#include <optional>
 
+#include "client/pictures/response_picture.hpp"
 #include "client/pictures/signal_picture.hpp"
 #include "client/signal_output.hpp"
 #include "client/terminal_plot.hpp"
 #include "common/number_text.hpp"
+#include "daemon/render/actuator_check.hpp"
+#include "daemon/render/actuator_response.hpp"
+#include "daemon/render/clef_check.hpp"
 #include "daemon/render/performance.hpp"
 #include "score/bundle.hpp"
 #include "score/clef_xml.hpp"
@@ -120,20 +127,60 @@ void describe_score(const LoadedScore& loaded, std::ostream& out) {
     }
 }
 
+namespace {
+
+// Samples a second of what a declared actuator produces, for --plot and the picture: a pixel or
+// a column is at least a millisecond for all but the shortest scores.
+constexpr double kResponsePictureRate = 1000.0;
+
+// The strengths written and produced, one row per sample: what `render --actuator --out F.csv`
+// writes, for plots and spreadsheets.
+std::size_t write_actuator_csv(const render::ActuatorResponse& response, const std::string& path) {
+    std::ofstream csv(path);
+    csv << "t,written,uncompensated,compensated\n";
+    for (std::size_t k = 0; k < response.written.size(); ++k) {
+        csv << number(static_cast<double>(k) / response.rate_hz) << ","
+            << number(response.written[k]) << "," << number(response.uncompensated[k]) << ","
+            << number(response.compensated[k]) << "\n";
+    }
+    csv.close();
+    if (!csv) {
+        throw std::runtime_error(path + ": cannot write");
+    }
+    return response.written.size();
+}
+
+}  // namespace
+
 int check_documents(const std::vector<std::string>& files, const ClefSearch& clefs,
-                    std::ostream& out, std::ostream& err) {
+                    std::ostream& out, std::ostream& err,
+                    const std::optional<actuator::Declaration>& declared) {
     int failed = 0;
+    std::size_t warned = 0;
     for (const auto& file : files) {
         try {
             const auto text = read_document_file(file);
             if (document_kind(text, file) == DocumentKind::clef) {
                 const Clef clef = read_clef(text, file);
                 out << file << ": ok (clef: " << clef_summary(clef) << ")\n";
+                if (declared) {
+                    for (const auto& warning : render::clef_warnings(clef, *declared)) {
+                        err << file << ": warning: " << warning << "\n";
+                        ++warned;
+                    }
+                }
             } else {
                 const auto bundle = load_score(file, clefs).bundle;
                 const render::Performance performance(bundle);
                 out << file << ": ok (score: " << count(bundle.score.bars.size(), "bar") << ", "
                     << fixed(performance.duration()) << " s)\n";
+                if (declared) {
+                    for (const auto& warning :
+                         render::actuator_warnings(bundle, performance, *declared)) {
+                        err << file << ": warning: " << render::describe(warning) << "\n";
+                        ++warned;
+                    }
+                }
             }
         } catch (const DocumentError& error) {
             report(error, err);
@@ -143,6 +190,10 @@ int check_documents(const std::vector<std::string>& files, const ClefSearch& cle
     if (failed > 0 && files.size() > 1) {
         err << failed << " of " << files.size() << " documents are invalid\n";
     }
+    if (declared) {
+        out << count(warned, "warning") << " for the actuator (" << actuator::describe(*declared)
+            << ")\n";
+    }
     return failed == 0 ? exit_ok : exit_failed;
 }
 
@@ -151,6 +202,11 @@ int render_document(const RenderRequest& request, const ClefSearch& clefs, std::
     if (request.out.empty() && !request.plot && request.svg.empty() && request.png.empty()) {
         err << "render: nothing to do: give --out FILE.csv|FILE.wav, --plot, --svg FILE or "
                "--png FILE\n";
+        return exit_usage;
+    }
+    const std::optional<actuator::Declaration>& declared = request.actuator;
+    if (declared && !request.out.empty() && !request.out.ends_with(".csv")) {
+        err << "render: --actuator writes strengths to a .csv file, not " << request.out << "\n";
         return exit_usage;
     }
     try {
@@ -174,23 +230,46 @@ int render_document(const RenderRequest& request, const ClefSearch& clefs, std::
         }
         const auto bundle = load_score(request.file, clefs).bundle;
         const render::Performance performance(bundle);
+        const std::string title = bundle.score.title.empty() ? request.file : bundle.score.title;
+        // What the declared actuator makes of the score, sampled at `rate`.
+        const auto response = [&](double rate) {
+            render::ResponseOptions options;
+            options.rate_hz = rate;
+            options.reverse = declared->brake == actuator::Brake::reverse;
+            return render::actuator_response(performance, *declared, options);
+        };
         if (request.plot) {
-            out << (bundle.score.title.empty() ? request.file : bundle.score.title) << "  ("
-                << fixed(performance.duration()) << " s, peak "
+            out << title << "  (" << fixed(performance.duration()) << " s, peak "
                 << number(performance.peak_amplitude()) << ")\n";
-            plot_envelope(out, performance, request.plot_width, 8);
+            if (declared) {
+                out << "on the actuator: " << actuator::describe(*declared) << "\n";
+                plot_response(out, response(kResponsePictureRate), request.plot_width, 4);
+            } else {
+                plot_envelope(out, performance, request.plot_width, 8);
+            }
         }
-        if (!request.out.empty()) {
+        if (!request.out.empty() && declared) {
+            const auto samples = write_actuator_csv(response(request.rate), request.out);
+            out << "wrote " << request.out << ": " << samples << " samples at " << request.rate
+                << " Hz of the written strength and what the actuator produces without and with "
+                   "compensation\n";
+        } else if (!request.out.empty()) {
             const auto samples = write_signal(performance, request.rate, request.out);
             out << "wrote " << request.out << ": " << samples << " samples at " << request.rate
                 << " Hz, " << fixed(performance.duration()) << " s\n";
         }
         if (!request.svg.empty() || !request.png.empty()) {
-            const pictures::SignalPicture picture(
-                performance, bundle.score.title.empty() ? request.file : bundle.score.title);
+            std::unique_ptr<pictures::Drawing> picture;
+            if (declared) {
+                picture = std::make_unique<pictures::ResponsePicture>(
+                    performance, response(kResponsePictureRate), title,
+                    "on the actuator: " + actuator::describe(*declared));
+            } else {
+                picture = std::make_unique<pictures::SignalPicture>(performance, title);
+            }
             for (const auto& path : {request.svg, request.png}) {
                 if (!path.empty()) {
-                    pictures::write_picture(picture, path);
+                    pictures::write_picture(*picture, path);
                     out << "wrote " << path << "\n";
                 }
             }

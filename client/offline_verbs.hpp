@@ -1,20 +1,25 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <ostream>
 #include <string>
 #include <vector>
 
 #include "client/clef_search.hpp"
+#include "daemon/actuator/declaration.hpp"
 
 namespace vibscore::client {
 
 // Exit codes shared by every verb.
 enum ExitCode : int { exit_ok = 0, exit_failed = 1, exit_usage = 2 };
 
-// vibscore check FILE...: validates scores (with their clefs, found by `clefs`) and clefs.
+// vibscore check FILE... [--actuator [FILE]]: validates scores (with their clefs, found by
+// `clefs`) and clefs. With a declared actuator, also warns where a score asks what it cannot give
+// (render::actuator_warnings); warnings do not fail the check.
 int check_documents(const std::vector<std::string>& files, const ClefSearch& clefs,
-                    std::ostream& out, std::ostream& err);
+                    std::ostream& out, std::ostream& err,
+                    const std::optional<actuator::Declaration>& actuator = std::nullopt);
 
 struct RenderRequest {
     std::string file;
@@ -23,6 +28,11 @@ struct RenderRequest {
     bool plot = false;
     int plot_width = 72;
     std::string svg, png;  // the signal and its envelope as a picture; empty for none
+    // --actuator [FILE] (an [actuator] section, or the daemon's): --out FILE.csv then has the
+    // written strength and the strength that actuator produces without and with compensation
+    // (render::actuator_response); --plot draws the three as charts and --svg/--png as a
+    // picture (pictures::ResponsePicture) in place of the envelope and the signal.
+    std::optional<actuator::Declaration> actuator;
 };
 
 // vibscore render FILE --rate HZ --out OUT.csv|OUT.wav [--plot] [--svg F] [--png F]

@@ -22,6 +22,7 @@ ActuatorHost::ActuatorHost(const DaemonConfig& config)
     : config_(config),
       driver_(config.driver),
       running_modules_(modules_of(config)),
+      declared_(config.actuator),
       configured_(config.driver),
       modules_(running_modules_) {
     const auto crashed = read_module_record(config.module_record);
@@ -41,7 +42,7 @@ ActuatorHost::ActuatorHost(const DaemonConfig& config)
         follows_config_ = false;  // a reload tries the configured module again
     }
     try {
-        auto opened = open_naming(driver_, reason, *running_modules_);
+        auto opened = open_naming(driver_, reason, *running_modules_, declared_);
         driver_ = opened.driver;
         settings_ = config.settings_of(opened.driver);
         auto_fell_back_ = opened.fell_back;
@@ -54,6 +55,14 @@ ActuatorHost::ActuatorHost(const DaemonConfig& config)
     } catch (const DeviceError& error) {
         throw DeviceError(config.where(driver_, "") + error.what());
     }
+    if (declared_) {
+        log::info("actuator: " + actuator::describe(*declared_));
+    }
+}
+
+void ActuatorHost::attach(Player& player) {
+    player_ = &player;
+    player_->set_actuator(config_.actuator);
 }
 
 ActuatorHost::~ActuatorHost() {
@@ -86,10 +95,11 @@ std::string ActuatorHost::reason_to_run_sim_instead(
     return {};
 }
 
-drivers::AutoChoice ActuatorHost::open_naming(const std::string& driver, const std::string& reason,
-                                              const drivers::ModuleCatalog& modules) {
-    const auto open_configured = [this, &modules](const std::string& name) {
-        return open(name, config_.settings_of(name), modules);
+drivers::AutoChoice ActuatorHost::open_naming(
+    const std::string& driver, const std::string& reason, const drivers::ModuleCatalog& modules,
+    const std::optional<actuator::Declaration>& declared) {
+    const auto open_configured = [this, &modules, &declared](const std::string& name) {
+        return open(name, config_.settings_of(name), modules, declared);
     };
     if (driver != drivers::kAutoDriver) {
         return {driver, reason, false, open_configured(driver)};
@@ -113,15 +123,15 @@ drivers::AutoChoice ActuatorHost::open_naming(const std::string& driver, const s
     return choice;
 }
 
-std::unique_ptr<drivers::Actuator> ActuatorHost::open(const std::string& driver,
-                                                      const DriverSettingsMap& settings,
-                                                      const drivers::ModuleCatalog& modules) {
+std::unique_ptr<drivers::Actuator> ActuatorHost::open(
+    const std::string& driver, const DriverSettingsMap& settings,
+    const drivers::ModuleCatalog& modules, const std::optional<actuator::Declaration>& declared) {
     std::optional<ModuleRecord> record;
     if (const auto* module = drivers::is_built_in_driver(driver) ? nullptr : modules.find(driver)) {
         record.emplace(config_.module_record, ModuleInUse{driver, module->path});
     }
     try {
-        auto actuator = drivers::make_actuator(driver, settings, modules);
+        auto actuator = drivers::make_actuator(driver, settings, modules, declared);
         if (record) {
             record_.emplace(std::move(*record));  // removed once this actuator has closed
         }
@@ -161,6 +171,7 @@ void ActuatorHost::switch_running(const std::string& driver, const std::string& 
 
 void ActuatorHost::open_in_place_of_running(const std::string& driver, const std::string& reason,
                                             bool follows_config) {
+    const std::optional<actuator::Declaration> declared = config_.actuator;
     std::shared_ptr<const drivers::ModuleCatalog> modules;
     {
         const std::lock_guard lock(modules_mutex_);
@@ -176,13 +187,13 @@ void ActuatorHost::open_in_place_of_running(const std::string& driver, const std
     record_.reset();
     drivers::AutoChoice opened;
     try {
-        opened = open_naming(driver, reason, *modules);
+        opened = open_naming(driver, reason, *modules, declared);
     } catch (const std::exception& error) {
         log::error("driver " + driver + " failed to open (" + error.what() + "); reopening " +
                    driver_);
         follows_config_ = false;  // a reload tries the configuration's driver again
         try {
-            actuator_ = open(driver_, settings_, *running_modules_);
+            actuator_ = open(driver_, settings_, *running_modules_, declared_);
         } catch (const std::exception& reopen_error) {
             actuator_ = std::make_unique<drivers::DisconnectedActuator>(
                 "driver " + driver + " failed (" + error.what() + ") and driver " + driver_ +
@@ -206,6 +217,7 @@ void ActuatorHost::open_in_place_of_running(const std::string& driver, const std
     driver_ = opened.driver;
     settings_ = config_.settings_of(opened.driver);
     running_modules_ = std::move(modules);
+    declared_ = declared;
     reason_ = std::move(opened.reason);
     auto_fell_back_ = opened.fell_back;
     follows_config_ = follows_config;
@@ -216,6 +228,14 @@ void ActuatorHost::open_in_place_of_running(const std::string& driver, const std
 }
 
 bool ActuatorHost::follow_config() {
+    const bool declaration_changed = config_.actuator != declared_;
+    if (declaration_changed) {
+        log::info("actuator: " +
+                  (config_.actuator ? actuator::describe(*config_.actuator) : "none declared"));
+    }
+    if (player_) {
+        player_->set_actuator(config_.actuator);
+    }
     const auto fresh = modules_of(config_);
     {
         const std::lock_guard lock(modules_mutex_);
@@ -225,13 +245,19 @@ bool ActuatorHost::follow_config() {
     // scanned again.
     const bool module_changed = !drivers::is_built_in_driver(driver_) && driver_ != "none" &&
                                 !fresh->same_module(*running_modules_, driver_);
+    // Only the sim is made of the declaration; a real backend drives whatever is on the board.
     const bool differs = config_.driver != configured_ || !follows_config_ ||
                          (config_.driver == drivers::kAutoDriver && auto_fell_back_) ||
-                         config_.settings_of(driver_) != settings_ || module_changed;
+                         config_.settings_of(driver_) != settings_ || module_changed ||
+                         (declaration_changed && driver_ == "sim");
     if (differs) {
         switch_running(config_.driver, configured_reason(), true);
     } else {
         running_modules_ = fresh;
+        declared_ = config_.actuator;
+        if (declaration_changed && changed_) {
+            changed_();  // the bus announces the new declaration
+        }
     }
     return differs;
 }

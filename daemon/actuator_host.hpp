@@ -52,9 +52,13 @@ class ActuatorHost {
     // may be called from another thread than the one that switches.
     std::vector<drivers::DriverInfo> drivers() const;
 
-    // The player that plays on the actuator: stopped and pointed at the new backend on a switch.
-    void attach(Player& player) { player_ = &player; }
-    // Called after every switch attempt, since even a failed one may leave another backend.
+    // The player that plays on the actuator: stopped and pointed at the new backend on a switch,
+    // and told the declared actuator ([actuator]) now and after every reload.
+    void attach(Player& player);
+    // The actuator [actuator] declares, as the player uses it.
+    const std::optional<actuator::Declaration>& declaration() const { return config_.actuator; }
+    // Called after every switch attempt, since even a failed one may leave another backend, and
+    // when a reload changes only the declared actuator.
     void on_change(std::function<void()> changed) { changed_ = std::move(changed); }
 
     // Ends playback with reason "driver-switch" and opens `driver` with its configured settings.
@@ -67,7 +71,8 @@ class ActuatorHost {
     // driver when the driver, its settings or the running module's file differ from what runs,
     // or what runs came from a run-time switch (or ran sim in place of a refused module). With
     // driver = auto it chooses again when the last choice fell back to sim (a device may have
-    // appeared since). Returns whether it switched.
+    // appeared since); and when the sim runs and the declared actuator it simulates changed.
+    // Hands the player the declaration. Returns whether it switched.
     bool follow_config();
 
   private:
@@ -77,23 +82,27 @@ class ActuatorHost {
     void open_in_place_of_running(const std::string& driver, const std::string& reason,
                                   bool follows_config);
     drivers::AutoChoice open_naming(const std::string& driver, const std::string& reason,
-                                    const drivers::ModuleCatalog& modules);
+                                    const drivers::ModuleCatalog& modules,
+                                    const std::optional<actuator::Declaration>& declared);
     // The reason of a driver the configuration names.
     std::string configured_reason() const;
     std::unique_ptr<drivers::Actuator> open(const std::string& driver,
                                             const DriverSettingsMap& settings,
-                                            const drivers::ModuleCatalog& modules);
+                                            const drivers::ModuleCatalog& modules,
+                                            const std::optional<actuator::Declaration>& declared);
     // Why the configured driver must not be opened at start ("" when it may be).
     std::string reason_to_run_sim_instead(const std::optional<ModuleInUse>& crashed) const;
 
     const DaemonConfig& config_;
     Player* player_ = nullptr;
     std::function<void()> changed_;
-    // What runs: the backend, the name, settings and modules it was opened with, and the record
-    // of the module in use (before the actuator: the record goes once the module has closed).
+    // What runs: the backend, the name, settings, modules and declared actuator it was opened
+    // with, and the record of the module in use (before the actuator: the record goes once the
+    // module has closed).
     std::string driver_;
     DriverSettingsMap settings_;
     std::shared_ptr<const drivers::ModuleCatalog> running_modules_;
+    std::optional<actuator::Declaration> declared_;
     std::optional<ModuleRecord> record_;
     std::string configured_;       // the configuration's driver when it was last followed
     bool follows_config_ = true;   // false after a run-time switch

@@ -10,6 +10,7 @@
 
 #include "common/closest_name.hpp"
 #include "common/number_text.hpp"
+#include "daemon/actuator_config.hpp"
 
 namespace vibscore::daemon {
 
@@ -64,6 +65,14 @@ void add_device_clef(DeviceClefs& clefs, const std::string& written, const std::
         throw ConfigError(where + ": [clefs] \"" + written +
                           "\" is neither a registry clef name nor \"*\"");
     }
+}
+
+// [clefs] fit = auto | off.
+bool fit_mode(const std::string& value, const std::string& where) {
+    if (value == "auto" || value == "off") {
+        return value == "auto";
+    }
+    throw ConfigError(where + ": [clefs] fit = \"" + value + "\" is neither auto nor off");
 }
 
 }  // namespace
@@ -138,6 +147,8 @@ DaemonConfig parse_config(const std::string& text, const std::string& file, Daem
     std::string line;
     std::string section;
     int number = 0;
+    bool fit_auto = false;  // [clefs] fit = auto
+    std::string fit_where;
     // Every value as the file gave it, by section and key, for the messages about repeated keys.
     std::map<std::string, std::map<std::string, std::string>> values;
     while (std::getline(lines, line)) {
@@ -180,7 +191,12 @@ DaemonConfig parse_config(const std::string& text, const std::string& file, Daem
         }
         refuse_repeated(config.setting_lines[section], section, key, value, where, values[section]);
         if (section == "clefs") {
-            add_device_clef(config.device_clefs, key, value, where);
+            if (key == "fit") {
+                fit_where = where;
+                fit_auto = fit_mode(value, where);
+            } else {
+                add_device_clef(config.device_clefs, key, value, where);
+            }
             continue;
         }
         if (section != "daemon") {
@@ -218,6 +234,15 @@ DaemonConfig parse_config(const std::string& text, const std::string& file, Daem
         if (value.empty()) {
             throw ConfigError(where + ": " + key + " has no value");
         }
+    }
+    config.actuator = declared_actuator(config);
+    config.device_clefs.fit_to.reset();
+    if (fit_auto) {
+        if (!config.actuator) {
+            throw ConfigError(fit_where +
+                              ": [clefs] fit = auto needs an [actuator] section to fit to");
+        }
+        config.device_clefs.fit_to = config.actuator;
     }
     return config;
 }

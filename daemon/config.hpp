@@ -1,11 +1,13 @@
 #pragma once
 
 #include "config.h"
+#include "daemon/actuator/declaration.hpp"
 #include "daemon/device_clefs.hpp"
 
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -20,8 +22,9 @@ namespace vibscore::daemon {
 // of a line or after a blank; anywhere else they are an error, as is a key set twice in a section.
 //   [daemon]  driver, drivers-dir, store, shipped, separation-ms, requests-per-second,
 //             request-burst, rt-priority
+//   [actuator] the actuator's physics, declared once (daemon/actuator_config.hpp)
 //   [clefs]   WRITTEN = DEVICE: the clef bars written for WRITTEN play through on this device;
-//             "* = DEVICE" for any other clef
+//             "* = DEVICE" for any other clef; "fit = auto" fits every other clef to [actuator]
 //   [NAME]    the settings of driver NAME (e.g. [sim] model = erm), handed to that driver
 // docs/daemon.md documents every key.
 struct DaemonConfig {
@@ -35,6 +38,7 @@ struct DaemonConfig {
     int rt_priority = 40;  // SCHED_FIFO of the playback thread; 0: normal scheduling
     std::map<std::string, std::map<std::string, std::string>> driver_settings;  // by driver
     DeviceClefs device_clefs;
+    std::optional<actuator::Declaration> actuator;  // [actuator]; nothing: playback as written
     // Where each [section] begins and each of its keys is set, as "file:line", for messages:
     // section_lines for every section but [daemon], setting_lines for every key ([daemon]'s and
     // [clefs]' too).
@@ -70,7 +74,8 @@ DaemonConfig load_config(const std::filesystem::path& path, DaemonConfig default
 std::vector<std::string> missing_device_clefs(const DaemonConfig& config, const Registry& registry);
 
 // Sections besides [daemon] and the backends' that configure parts of the service.
-inline constexpr const char* kServiceSections[] = {"clefs", "virtual-vibra"};
+inline constexpr const char* kActuatorSection = "actuator";
+inline constexpr const char* kServiceSections[] = {"clefs", "virtual-vibra", kActuatorSection};
 
 // A warning for each section of `config` that is neither [daemon], a service section nor one of
 // `known` (the drivers), whose keys therefore apply nowhere: "file:line: unknown section [x] ...

@@ -2,6 +2,10 @@
 
 #include <cstddef>
 
+#include "daemon/log.hpp"
+#include "daemon/render/clef_check.hpp"
+#include "daemon/render/clef_fit.hpp"
+
 namespace vibscore::daemon {
 
 namespace {
@@ -23,14 +27,77 @@ std::map<std::string, std::string, std::less<>> written_clef_names(
     return names;
 }
 
+// The written clef fitted to the actuator; as written when it cannot be fitted (said in the log).
+Clef fitted(const Clef& written, const std::string& name, const actuator::Declaration& actuator) {
+    try {
+        return render::fit_clef(written, actuator).clef;
+    } catch (const render::ClefFitError& error) {
+        log::warning("clef \"" + name + "\" plays as written: cannot fit it: " + error.what());
+        return written;
+    }
+}
+
+void log_fit(const std::string& name, const Clef& written, const actuator::Declaration& actuator) {
+    try {
+        const auto fit = render::fit_clef(written, actuator);
+        if (fit.notes.empty()) {
+            log::info("clef \"" + name + "\" fits the actuator as written");
+        }
+        for (const auto& note : fit.notes) {
+            log::info("clef \"" + name + "\" fitted to the actuator: " + note);
+        }
+        for (const auto& warning : render::clef_warnings(fit.clef, actuator)) {
+            log::warning("clef \"" + name + "\" (fitted): " + warning);
+        }
+    } catch (const render::ClefFitError& error) {
+        log::warning("clef \"" + name + "\" plays as written: cannot fit it: " + error.what());
+    }
+}
+
 }  // namespace
+
+void log_clef_fits(const Registry& registry, const DeviceClefs& clefs) {
+    if (!clefs.fit_to) {
+        return;
+    }
+    for (const auto& entry : registry.list(DocumentKind::clef)) {
+        if (!clefs.fits(entry.name)) {
+            continue;
+        }
+        try {
+            log_fit(entry.name, registry.clef(entry.name), *clefs.fit_to);
+        } catch (const std::exception& error) {
+            log::warning("clef \"" + entry.name + "\" cannot be read to fit: " + error.what());
+        }
+    }
+}
+
+void log_stored_clef(const Registry& registry, const DeviceClefs& clefs,
+                     const std::optional<actuator::Declaration>& actuator,
+                     const std::string& name) {
+    try {
+        if (clefs.fits(name)) {
+            log_fit(name, registry.clef(name), *clefs.fit_to);
+        } else if (actuator) {
+            for (const auto& warning : render::clef_warnings(registry.clef(name), *actuator)) {
+                log::warning("clef \"" + name + "\": " + warning);
+            }
+        }
+    } catch (const std::exception& error) {
+        // Only the log is lost: the clef is stored.
+        log::warning("clef \"" + name + "\" cannot be read to check: " + error.what());
+    }
+}
 
 std::string DeviceClefs::for_written(std::string_view written) const {
     const auto found = by_written.find(written);
     if (found != by_written.end()) {
         return found->second;
     }
-    return otherwise.empty() ? std::string(written) : otherwise;
+    if (!otherwise.empty()) {
+        return otherwise;
+    }
+    return std::string(written) + (fit_to ? std::string(render::kFittedMark) : std::string());
 }
 
 std::string describe(const DeviceClefs& clefs) {
@@ -40,6 +107,12 @@ std::string describe(const DeviceClefs& clefs) {
     }
     if (!clefs.otherwise.empty()) {
         text += (text.empty() ? "" : ", ") + std::string("* -> ") + clefs.otherwise;
+    }
+    if (clefs.fit_to) {
+        text += (text.empty() ? "" : ", ") + std::string("fit = auto (") +
+                (clefs.otherwise.empty() ? "every other clef fitted to the actuator"
+                                         : "no clef left to fit: * maps them all") +
+                ")";
     }
     return text.empty() ? "none" : text;
 }
@@ -59,7 +132,20 @@ ScoreBundle bind_device_clefs(const Registry& registry, const ScoreBundle& writt
                               const DeviceClefs& clefs,
                               const std::map<std::string, std::string>& sent) {
     std::map<std::string, Clef, std::less<>> device_clefs = written.clefs;  // by declaration id
+    if (clefs.fit_to) {
+        for (const auto& declaration : written.score.clefs) {
+            if (sent.contains(declaration.href)) {
+                device_clefs.insert_or_assign(
+                    declaration.id,
+                    fitted(written.clefs.at(declaration.id), declaration.href, *clefs.fit_to));
+            }
+        }
+    }
     for (const auto& [id, name] : written_clef_names(written, sent)) {
+        if (clefs.fits(name)) {
+            device_clefs.insert_or_assign(id, fitted(registry.clef(name), name, *clefs.fit_to));
+            continue;
+        }
         const auto device = clefs.for_written(name);
         if (!registry.contains(DocumentKind::clef, device)) {
             throw RegistryError(RegistryError::Code::not_found,

@@ -5,6 +5,7 @@
 #include "common/monotonic_clock.hpp"
 #include "common/number_text.hpp"
 #include "config.h"
+#include "daemon/actuator/declaration.hpp"
 #include "daemon/bus_errors.hpp"
 #include "daemon/log.hpp"
 #include "daemon/request_error.hpp"
@@ -39,7 +40,8 @@ HapticsService::HapticsService(sdbus::IConnection& connection, const DaemonConfi
       authorizer_(authorizer),
       announced_driver_(Driver()),
       announced_reason_(DriverReason()),
-      announced_capabilities_(Capabilities()) {
+      announced_capabilities_(Capabilities()),
+      announced_actuator_(Actuator()) {
     vanish_watch_ = dbus::watch_connections_leaving(connection, [this](const std::string& name) {
         callers_.forget(name);
         authorizer_.forget(name);
@@ -83,6 +85,21 @@ std::vector<std::string> HapticsService::Capabilities() {
     });
 }
 
+std::map<std::string, std::string> HapticsService::Actuator() {
+    return guarded("Actuator", [&] {
+        return playback_.call([&host = host_](Player&) {
+            const auto& declared = host.declaration();
+            std::map<std::string, std::string> settings;
+            if (declared) {
+                for (auto& [key, value] : actuator::to_settings(*declared)) {
+                    settings.emplace(std::move(key), std::move(value));
+                }
+            }
+            return settings;
+        });
+    });
+}
+
 double HapticsService::Intensity() {
     return guarded("Intensity", [&] {
         return playback_.call([](Player& player) { return player.master_intensity(); });
@@ -92,23 +109,26 @@ double HapticsService::Intensity() {
 void HapticsService::driver_switched() {
     std::string driver, reason;
     std::vector<std::string> capabilities;
+    std::map<std::string, std::string> actuator;
     try {
         driver = Driver();
         reason = DriverReason();
         capabilities = Capabilities();
+        actuator = Actuator();
     } catch (const sdbus::Error& error) {
         log::error("after a driver switch: " + error.getMessage());
         return;
     }
     if (driver == announced_driver_ && reason == announced_reason_ &&
-        capabilities == announced_capabilities_) {
+        capabilities == announced_capabilities_ && actuator == announced_actuator_) {
         return;
     }
     announced_driver_ = std::move(driver);
     announced_reason_ = std::move(reason);
     announced_capabilities_ = std::move(capabilities);
+    announced_actuator_ = std::move(actuator);
     dbus::emit_properties_changed(getObject(), INTERFACE_NAME,
-                                  {"Driver", "DriverReason", "Capabilities"});
+                                  {"Driver", "DriverReason", "Capabilities", "Actuator"});
 }
 
 Caller HapticsService::admit_caller() {
@@ -255,6 +275,10 @@ void HapticsService::Compose(sdbus::Result<>&& result, std::string name, std::st
                          const auto stored = registry_.compose(name, document);
                          log::info("uid " + std::to_string(caller.uid) + " composed " +
                                    std::string(to_string(stored)) + " \"" + name + "\"");
+                         if (stored == DocumentKind::clef) {
+                             log_stored_clef(registry_, config_.device_clefs, config_.actuator,
+                                             name);
+                         }
                          emitRegistryChanged(std::string(to_string(stored)), name);
                      });
     });

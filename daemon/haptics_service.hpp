@@ -60,6 +60,7 @@ class HapticsService final : public sdbus::AdaptorInterfaces<org::vibscore::Hapt
     std::string DriverReason() override;
     std::map<std::string, std::string> RegistryFolders() override;
     std::vector<std::string> Capabilities() override;
+    std::map<std::string, std::string> Actuator() override;
     double Intensity() override;
     void Intensity(const double& value) override;
     std::string Version() override;
@@ -76,8 +77,8 @@ class HapticsService final : public sdbus::AdaptorInterfaces<org::vibscore::Hapt
     std::uint64_t play(const Caller& caller, const std::string& score, const PlayOptions& options);
     Player::StopResult stop(const Caller& caller, std::uint64_t playback_id, bool privileged);
     void set_intensity(const Caller& caller, double value);
-    // Driver, DriverReason and Capabilities changed with a switch: announced with
-    // PropertiesChanged.
+    // Driver, DriverReason, Capabilities or Actuator changed with a switch or reload: announced
+    // with PropertiesChanged.
     void driver_switched();
 
     const DaemonConfig& config_;
@@ -89,6 +90,7 @@ class HapticsService final : public sdbus::AdaptorInterfaces<org::vibscore::Hapt
     std::string announced_driver_;
     std::string announced_reason_;
     std::vector<std::string> announced_capabilities_;
+    std::map<std::string, std::string> announced_actuator_;
     sdbus::Slot vanish_watch_;  // NameOwnerChanged: a caller left the bus
 };
 

@@ -90,6 +90,7 @@ int serve(const CommandLine& command_line) {
     if (!config.device_clefs.empty()) {
         log::info("device clefs: " + describe(config.device_clefs));
     }
+    log_clef_fits(registry, config.device_clefs);
     warn_about_missing_device_clefs(config, registry);
     // From here on every actuator call happens on the playback thread.
     PlaybackThread playback(loop, host.actuator(),
@@ -143,6 +144,7 @@ int serve(const CommandLine& command_line) {
                 [&config, &host, &callers, fresh = read_config(command_line)](Player&) mutable {
                     reload_config(config, std::move(fresh), host, callers);
                 });
+            log_clef_fits(registry, config.device_clefs);  // refitted to what was declared now
             warn_about_missing_device_clefs(config, registry);
         } catch (const std::exception& error) {
             log::error(std::string("reload failed, keeping the running configuration: ") +

@@ -23,6 +23,7 @@ PlaybackCues::PlaybackCues(std::shared_ptr<const render::CueSource> source, doub
       duration_s_(duration_s),
       repeat_(repeat),
       adaptation_(adaptation),
+      carry_(std::make_shared<render::PlannerCarry>()),
       credit_us_(kSecond_us) {}
 
 bool PlaybackCues::within_rate(std::int64_t at_us) {
@@ -38,8 +39,9 @@ bool PlaybackCues::within_rate(std::int64_t at_us) {
 bool PlaybackCues::read() {
     while (!ended_) {
         if (!pass_stream_) {
-            pass_stream_ = std::make_unique<render::AdaptedCueStream>(source_->pass(), duration_s_,
-                                                                      adaptation_);
+            const bool last = repeat_ >= 0 && pass_ >= static_cast<std::uint64_t>(repeat_);
+            pass_stream_ = std::make_unique<render::AdaptedCueStream>(
+                source_->pass(), duration_s_, adaptation_, render::PassLink{carry_, last});
             pass_had_cues_ = false;
         }
         if (auto cue = pass_stream_->next()) {

@@ -19,7 +19,9 @@ struct PassCue {
 // The cues a playback runs: pass after pass of its score (`repeat` more after the first, -1
 // without end), each adapted to the actuator, made as playback advances. The player reads a
 // few cues ahead (the next drive to prepare, the next switch-off for a kernel timer); nothing
-// else is kept, so the memory a playback holds does not grow with its score's length.
+// else is kept, so the memory a playback holds does not grow with its score's length. With a
+// declared actuator the passes continue each other (render::PassLink): the actuator's state
+// carries over, and only the last pass drives on after its end (braking its last note).
 //
 // The work a playback may cause is bounded: at most limits::max_playback_cues_per_second cues
 // per second of its schedule, with a burst of as many (a token bucket counted in schedule time,
@@ -50,6 +52,8 @@ class PlaybackCues {
     double duration_s_;
     int repeat_;
     render::CueAdaptation adaptation_;
+    // Where the declared actuator is when a pass ends, for the next one to go on from.
+    std::shared_ptr<render::PlannerCarry> carry_;
     std::unique_ptr<render::CueStream> pass_stream_;
     std::uint64_t pass_ = 0;
     bool pass_had_cues_ = false;

@@ -99,13 +99,22 @@ std::uint64_t Player::play(PlaybackRequest request) {
     adaptation.envelopes = capabilities.envelopes;
     adaptation.scale = request.intensity * master_intensity_;
     adaptation.pulse_period_s = capabilities.pulse_period_s;
+    if (declared_) {
+        adaptation.actuator = declared_;
+        adaptation.reverse = capabilities.reverse;
+        // A device with gain scales the drives itself; the model is linear, so drives planned
+        // without the master intensity still follow the envelope once the device scales them.
+        if (capabilities.gain_control && capabilities.amplitude_control) {
+            adaptation.scale = request.intensity;
+        }
+    }
     PlaybackCues cues(request.cues, request.duration_s, request.repeat, adaptation);
     on_since_us_.reset();
     held_off_ = false;
     last_report_us_.reset();
     held_position_.reset();
-    current_.emplace(
-        Playback{id, std::move(request), std::move(cues), monotonic_now_us(), 0, capabilities});
+    current_.emplace(Playback{id, std::move(request), std::move(cues), monotonic_now_us(), 0,
+                              capabilities, declared_.has_value()});
     if (capabilities.gain_control) {
         try {
             actuator_->set_gain(master_intensity_);
@@ -141,6 +150,10 @@ std::uint64_t Player::play(PlaybackRequest request) {
     return id;
 }
 
+void Player::set_actuator(std::optional<actuator::Declaration> declaration) {
+    declared_ = std::move(declaration);
+}
+
 void Player::set_master_intensity(double intensity) {
     master_intensity_ = intensity;
     if (actuator_->capabilities().gain_control) {
@@ -157,6 +170,17 @@ drivers::Drive Player::drive_for(const render::Cue& cue) const {
     const auto& capabilities = current_->capabilities;
     if (!capabilities.amplitude_control) {
         return {cue.amplitude > 0.0 ? 1.0 : 0.0, cue.frequency_hz};  // pulses carry the strength
+    }
+    if (current_->final_drives) {
+        // Planned for the declared actuator: never beyond full scale, and backwards only on a
+        // backend that can.
+        const double lowest = capabilities.reverse ? -1.0 : 0.0;
+        drivers::Drive drive{std::clamp(cue.amplitude, lowest, 1.0), cue.frequency_hz};
+        if (cue.ramp_s > 0.0) {
+            drive.ramp_to = std::clamp(cue.ramp_to, lowest, 1.0);
+            drive.ramp_s = cue.ramp_s;
+        }
+        return drive;
     }
     double scale = current_->request.intensity;
     if (!capabilities.gain_control) {
@@ -180,7 +204,7 @@ void Player::prepare_next_drive() {
         if (next == nullptr) {
             return;
         }
-        if (is_drive(next->cue) && next->cue.amplitude > 0.0) {
+        if (is_drive(next->cue) && !is_off(drive_for(next->cue))) {
             try {
                 actuator_->prepare(drive_for(next->cue));
             } catch (const drivers::DeviceError& error) {

@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "daemon/actuator/declaration.hpp"
 #include "daemon/drivers/actuator.hpp"
 #include "daemon/event_loop.hpp"
 #include "daemon/playback_cues.hpp"
@@ -109,6 +110,11 @@ class Player {
     // Uses another actuator from now on; the current one is switched off first.
     void replace_actuator(drivers::Actuator& actuator);
 
+    // The actuator [actuator] declares, from the next play() on: strength 1 is its rated drive,
+    // and with compensation the cues are shaped to its physics (render::DrivePlanner). nullopt:
+    // strengths are sent as written, as before there was a declaration.
+    void set_actuator(std::optional<actuator::Declaration> declaration);
+
     void set_master_intensity(double intensity);
     double master_intensity() const { return master_intensity_; }
 
@@ -125,6 +131,8 @@ class Player {
         std::uint64_t start_us = 0;          // when pass 0 began
         std::uint64_t pass = 0;              // of the next cue
         drivers::Capabilities capabilities;  // of the actuator when it started
+        // The cues are drives of the backend's full scale already (a declared actuator).
+        bool final_drives = false;
     };
 
     std::uint64_t due_us(const Playback& playback, const PassCue& cue) const;
@@ -152,6 +160,7 @@ class Player {
     std::uint64_t first_id_;
     std::uint64_t next_id_;
     double master_intensity_ = 1.0;
+    std::optional<actuator::Declaration> declared_;
     // Since when the actuator has been on without a break, and whether it is held off until
     // the score itself stops driving it (after exceeding its maximum on-time).
     std::optional<std::uint64_t> on_since_us_;

@@ -29,11 +29,11 @@ _vibscore() {
     cur=${COMP_WORDS[COMP_CWORD]}
     prev=${COMP_WORDS[COMP_CWORD-1]}
     program=${COMP_WORDS[0]}
-    local verbs="check render info play stop list get compose delete show edit drivers driver convert assign"
+    local verbs="check render info play stop list get compose delete show edit drivers driver convert assign clef"
     # What convert reads (--from) and writes (--to).
     local readable="score ahap android-json android-xml rtttl midi"
     local writable="score ahap android-json android-xml android-envelope midi"
-    local valued="--usage|--clef|--clefs|--out|--rate|--repeat|--intensity|--width|--buttons|--keymap|--button-map|--from|--to|--track|--svg|--png"
+    local valued="--usage|--clef|--clefs|--out|-o|--output|--rate|--repeat|--intensity|--width|--buttons|--keymap|--button-map|--from|--to|--track|--svg|--png|--actuator"
 
     verb=
     for ((i = 1; i < COMP_CWORD; i++)); do
@@ -69,6 +69,14 @@ _vibscore() {
         --clefs)
             _vibscore_files "$cur" '*/'
             return ;;
+        --actuator)
+            # clef fit takes the word daemon for vibscored's own declaration.
+            [[ $verb == clef ]] && COMPREPLY=($(compgen -W "daemon" -- "$cur"))
+            _vibscore_files "$cur" '*.conf'
+            return ;;
+        -o|--output)
+            _vibscore_files "$cur" '*.xml'
+            return ;;
         --out)
             _vibscore_files "$cur" '*.@(csv|wav)'
             return ;;
@@ -82,8 +90,9 @@ _vibscore() {
     if [[ $cur == -* ]]; then
         local options="--help"
         case $verb in
-            check|info) options+=" --clefs" ;;
-            render) options+=" --rate --out --plot --width --svg --png --clefs" ;;
+            check) options+=" --clefs --actuator" ;;
+            info) options+=" --clefs" ;;
+            render) options+=" --rate --out --plot --width --svg --png --clefs --actuator" ;;
             play) options+=" --usage --repeat --clef --intensity --wait --clefs" ;;
             stop) options+=" --all" ;;
             compose) options+=" --clefs" ;;
@@ -91,6 +100,7 @@ _vibscore() {
             convert) options+=" --from --to --clef --clefs --track --loop" ;;
             edit) options+=" --buttons --keymap --button-map --grab --clef" ;;
             assign) options+=" --default --list" ;;
+            clef) options+=" --actuator -o --output --clefs" ;;
         esac
         COMPREPLY=($(compgen -W "$options" -- "$cur"))
         return
@@ -130,6 +140,14 @@ _vibscore() {
                 _vibscore_files "$cur" '*.@(xml|ahap|json|rtttl|rtx|mid|midi)'
             elif [[ $position -eq 1 ]]; then
                 _vibscore_files "$cur" '*'
+            fi ;;
+        clef)
+            # clef fit CLEF: a registry clef or a clef file.
+            if [[ $position -eq 0 ]]; then
+                COMPREPLY=($(compgen -W "fit" -- "$cur"))
+            elif [[ $position -eq 1 ]]; then
+                COMPREPLY=($(compgen -W "$(_vibscore_registry "$program" clefs)" -- "$cur"))
+                _vibscore_files "$cur" '*.xml'
             fi ;;
         assign)
             if [[ $position -eq 0 ]]; then

@@ -14,6 +14,8 @@ std::vector<std::string> Capabilities::names() const {
         names.emplace_back("envelopes");
     if (gain_control)
         names.emplace_back("gain-control");
+    if (reverse)
+        names.emplace_back("reverse-drive");
     if (max_on_time_s > 0.0)
         names.emplace_back("max-on-time");
     return names;

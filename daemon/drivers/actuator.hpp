@@ -19,7 +19,10 @@ struct Capabilities {
     bool effect_memory = false;      // effects can be uploaded ahead of their onset (prepare)
     bool envelopes = false;          // a linear ramp can be handed over whole (Drive::ramp_s)
     bool gain_control = false;       // the device scales every drive itself (set_gain)
-    double max_on_time_s = 0.0;      // longest continuous drive allowed; 0 = no limit
+    // The backend can drive backwards: a negative amplitude reverses an ERM (an H-bridge) or
+    // drives an LRA in anti-phase. Without it a negative amplitude counts as 0.
+    bool reverse = false;
+    double max_on_time_s = 0.0;  // longest continuous drive allowed; 0 = no limit
     // The kernel switches the actuator off by itself after the time set_off_timer() gave, so a
     // note ends even when the daemon dies in it. Not one of the D-Bus names.
     bool off_timer = false;
@@ -32,7 +35,9 @@ struct Capabilities {
 
 // One instruction: from now on vibrate with this strength and frequency.
 struct Drive {
-    double amplitude = 0.0;     // 0..1 of the actuator's full drive; 0 is off
+    // -1..1 of the backend's full drive; 0 is off. Negative only for backends with the reverse
+    // capability: reverse polarity (ERM) or anti-phase (LRA), as the renderer brakes with it.
+    double amplitude = 0.0;
     double frequency_hz = 0.0;  // 0: the actuator's own (an ERM's, or an LRA's resonance)
     // Only for backends with envelopes: the strength moves linearly from `amplitude` to
     // `ramp_to` over `ramp_s` seconds and then holds there. ramp_s = 0: no ramp.

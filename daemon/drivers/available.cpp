@@ -64,9 +64,10 @@ std::vector<DriverInfo> available_drivers(const std::filesystem::path& drivers_d
 namespace {
 
 std::unique_ptr<Actuator> make_backend(const std::string& name,
-                                       const std::map<std::string, std::string>& settings) {
+                                       const std::map<std::string, std::string>& settings,
+                                       const std::optional<actuator::Declaration>& declared) {
     if (name == "sim") {
-        return make_sim_actuator(settings);
+        return make_sim_actuator(settings, declared);
     }
     if (name == "evdev") {
         return make_evdev_actuator(settings);
@@ -93,10 +94,11 @@ std::unique_ptr<Actuator> make_backend(const std::string& name,
 
 std::unique_ptr<Actuator> make_actuator(const std::string& name,
                                         const std::map<std::string, std::string>& settings,
-                                        const ModuleCatalog& modules) {
+                                        const ModuleCatalog& modules,
+                                        const std::optional<actuator::Declaration>& declared) {
     auto own_settings = settings;
     const CommonSettings common = take_common_settings(name, own_settings);
-    auto backend = is_built_in_driver(name) ? make_backend(name, own_settings)
+    auto backend = is_built_in_driver(name) ? make_backend(name, own_settings, declared)
                                             : modules.open(name, own_settings);
     if (backend) {
         return std::make_unique<ConfiguredActuator>(std::move(backend), common);
@@ -114,8 +116,9 @@ std::unique_ptr<Actuator> make_actuator(const std::string& name,
 
 std::unique_ptr<Actuator> make_actuator(const std::string& name,
                                         const std::map<std::string, std::string>& settings,
-                                        const std::filesystem::path& drivers_dir) {
-    return make_actuator(name, settings, *scan_driver_modules(drivers_dir));
+                                        const std::filesystem::path& drivers_dir,
+                                        const std::optional<actuator::Declaration>& declared) {
+    return make_actuator(name, settings, *scan_driver_modules(drivers_dir), declared);
 }
 
 }  // namespace vibscore::drivers

@@ -3,9 +3,11 @@
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "daemon/actuator/declaration.hpp"
 #include "daemon/drivers/actuator.hpp"
 #include "daemon/drivers/module_catalog.hpp"
 
@@ -33,13 +35,16 @@ std::vector<DriverInfo> available_drivers(const std::filesystem::path& drivers_d
 // Creates backend `name` from its configuration section: a built-in one, or else a driver
 // module of `modules`. The common settings (max-on-time-ms, pulse-period-ms) are taken here.
 // Throws std::invalid_argument naming an unknown driver, a refused module and why, or a bad
-// setting; DeviceError when its device cannot be opened.
-std::unique_ptr<Actuator> make_actuator(const std::string& name,
-                                        const std::map<std::string, std::string>& settings,
-                                        const ModuleCatalog& modules);
+// setting; DeviceError when its device cannot be opened. `declared` is the actuator [actuator]
+// declares, which the sim backend simulates.
+std::unique_ptr<Actuator> make_actuator(
+    const std::string& name, const std::map<std::string, std::string>& settings,
+    const ModuleCatalog& modules,
+    const std::optional<actuator::Declaration>& declared = std::nullopt);
 // The same with the modules of `drivers_dir`, scanned now.
-std::unique_ptr<Actuator> make_actuator(const std::string& name,
-                                        const std::map<std::string, std::string>& settings,
-                                        const std::filesystem::path& drivers_dir = {});
+std::unique_ptr<Actuator> make_actuator(
+    const std::string& name, const std::map<std::string, std::string>& settings,
+    const std::filesystem::path& drivers_dir = {},
+    const std::optional<actuator::Declaration>& declared = std::nullopt);
 
 }  // namespace vibscore::drivers

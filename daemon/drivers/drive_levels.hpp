@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include "daemon/drivers/actuator.hpp"
 
@@ -15,6 +16,15 @@ constexpr double kMaxLraHz = 1000.0;
 // The drive's amplitude within 0..1; NaN counts as 0 (off).
 inline double drive_amplitude(const Drive& drive) {
     return drive.amplitude > 0.0 ? std::min(drive.amplitude, 1.0) : 0.0;
+}
+
+// How much of each half period an LRA's pulse lasts for a drive of this amplitude (its sign
+// aside): the LRA's resonance responds to the pulses' fundamental, and a pulse d x T/2 wide has
+// sin(pi d / 2) of the full square wave's, so d = (2 / pi) asin(|amplitude|) makes the strength
+// proportional to the amplitude, as the actuator model (and a sine clef's A) mean it.
+inline double lra_pulse_share(double amplitude) {
+    const double a = std::isfinite(amplitude) ? std::min(std::abs(amplitude), 1.0) : 0.0;
+    return 2.0 / std::numbers::pi * std::asin(a);
 }
 
 // The frequency to drive an LRA at: the drive's own, or the resonance when the drive leaves the

@@ -17,9 +17,11 @@ double unit(double value) {
     return std::isfinite(value) ? std::clamp(value, 0.0, 1.0) : 0.0;
 }
 
-// Periodic magnitudes and envelope levels share the scale 0..0x7fff.
+// Periodic magnitudes and envelope levels share the scale 0..0x7fff; a magnitude may be negative
+// (anti-phase, where the device plays it so).
 std::int16_t periodic_level(double fraction) {
-    return static_cast<std::int16_t>(std::lround(unit(fraction) * 0x7fff));
+    const double level = std::isfinite(fraction) ? std::clamp(fraction, -1.0, 1.0) : 0.0;
+    return static_cast<std::int16_t>(std::lround(level * 0x7fff));
 }
 
 std::uint16_t milliseconds(double seconds) {
@@ -112,6 +114,7 @@ void EvdevActuator::ensure_open() {
     capabilities_.envelopes = periodic;
     capabilities_.effect_memory = slot_count_ == 2;
     capabilities_.gain_control = has_gain_;
+    capabilities_.reverse = periodic && settings_.anti_phase;
 
     std::string effects =
         periodic ? (waveform_ == FF_SINE ? "periodic sine" : "periodic square") : "rumble";
@@ -166,10 +169,17 @@ void EvdevActuator::reopening_once(Operation&& operation) {
     }
 }
 
+double EvdevActuator::level(double amplitude) const {
+    if (capabilities_.reverse && std::isfinite(amplitude)) {
+        return std::clamp(amplitude, -1.0, 1.0);
+    }
+    return unit(amplitude);
+}
+
 bool EvdevActuator::plays_nothing(const Drive& drive) const {
     const bool rising_from_zero =
         kind_ == EffectKind::periodic && has_ramp(drive) && unit(drive.ramp_to) > 0.0;
-    return unit(drive.amplitude) == 0.0 && !rising_from_zero;
+    return level(drive.amplitude) == 0.0 && !rising_from_zero;
 }
 
 ff_effect EvdevActuator::effect_for(const Drive& drive) const {
@@ -201,11 +211,11 @@ ff_effect EvdevActuator::effect_for(const Drive& drive) const {
         // in either direction: envelope levels are absolute (linux/input.h), and an attack that
         // falls is as valid as one that rises. A fade would need a finite replay length and
         // would drop to nothing at its end instead of holding.
-        periodic.magnitude = periodic_level(drive.ramp_to);
+        periodic.magnitude = periodic_level(unit(drive.ramp_to));
         periodic.envelope.attack_length = milliseconds(drive.ramp_s);
         periodic.envelope.attack_level = static_cast<std::uint16_t>(periodic_level(amplitude));
     } else {
-        periodic.magnitude = periodic_level(amplitude);
+        periodic.magnitude = periodic_level(level(drive.amplitude));
     }
     return effect;
 }
@@ -320,6 +330,7 @@ std::unique_ptr<Actuator> make_evdev_actuator(const std::map<std::string, std::s
                          : motor == "both" ? RumbleMotor::both
                                            : RumbleMotor::strong;
     evdev.frequency_control = read.flag("frequency-control", evdev.frequency_control);
+    evdev.anti_phase = read.flag("anti-phase", evdev.anti_phase);
     read.reject_unknown();
 
     FfDeviceOpener opener;

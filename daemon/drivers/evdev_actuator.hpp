@@ -24,6 +24,11 @@ struct EvdevSettings {
     // ff-memless drivers (most phone vibras) claim FF_PERIODIC but ignore the period: false
     // stops the player from sending frequencies such a device cannot play.
     bool frequency_control = true;
+    // The device plays a periodic effect of negative magnitude as the same waveform inverted
+    // (anti-phase), so the renderer may brake with it. Not ff-memless drivers, which play
+    // |magnitude| as a rumble: braking would become full strength. Off unless a test on the
+    // device shows it (docs/drivers/evdev.md).
+    bool anti_phase = false;
 };
 
 // Opens the device to drive: the configured node, or whatever discovery finds now. Called again
@@ -91,6 +96,8 @@ class EvdevActuator : public Actuator {
     void apply_now(const Drive& drive);
     void prepare_now(const Drive& next);
     bool plays_nothing(const Drive& drive) const;
+    // The drive's strength for this device: -1..1 where it plays anti-phase, else 0..1.
+    double level(double amplitude) const;
     ff_effect effect_for(const Drive& drive) const;
     void load(Slot& slot, const Drive& drive);
     void stop_playing();
@@ -116,6 +123,7 @@ class EvdevActuator : public Actuator {
 //   waveform              sine | square (default sine) for periodic devices
 //   default-frequency-hz  frequency for drives without one (default 175)
 //   rumble-motor          strong | weak | both (default strong) for rumble-only devices
+//   anti-phase            true | false (default false): negative magnitudes brake (periodic)
 // Throws std::invalid_argument naming a bad or unknown setting, DeviceError when no device can
 // be opened (saying where it looked).
 std::unique_ptr<Actuator> make_evdev_actuator(const std::map<std::string, std::string>& settings);

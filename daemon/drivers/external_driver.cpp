@@ -37,7 +37,9 @@ vibscore_drive to_c(const Drive& drive) {
 class ExternalActuator final : public Actuator {
   public:
     ExternalActuator(std::shared_ptr<DriverModule> module, void* handle)
-        : module_(std::move(module)), driver_(module_->entry()), handle_(handle) {}
+        : module_(std::move(module)), driver_(module_->entry()), handle_(handle) {
+        reverse_ = capabilities().reverse;
+    }
     ~ExternalActuator() override { driver_.close(handle_); }
     ExternalActuator(const ExternalActuator&) = delete;
     ExternalActuator& operator=(const ExternalActuator&) = delete;
@@ -54,12 +56,14 @@ class ExternalActuator final : public Actuator {
             (bits & VIBSCORE_CAP_EFFECT_MEMORY) != 0 && driver_.prepare != nullptr;
         capabilities.envelopes = (bits & VIBSCORE_CAP_ENVELOPES) != 0;
         capabilities.gain_control = (bits & VIBSCORE_CAP_GAIN) != 0 && driver_.set_gain != nullptr;
+        // Version 1 knew no reverse bit: whatever it set there means nothing.
+        capabilities.reverse = driver_.abi_version >= 2 && (bits & VIBSCORE_CAP_REVERSE) != 0;
         capabilities.max_on_time_s = max_on_time_s > 0.0 ? max_on_time_s : 0.0;
         return capabilities;
     }
 
     void apply(const Drive& drive) override {
-        const vibscore_drive c_drive = to_c(drive);
+        const vibscore_drive c_drive = to_c(for_module(drive));
         check("apply", driver_.apply(handle_, &c_drive, error_.data(), error_.size()));
     }
 
@@ -67,7 +71,7 @@ class ExternalActuator final : public Actuator {
 
     void prepare(const Drive& next) override {
         if (driver_.prepare) {
-            const vibscore_drive c_drive = to_c(next);
+            const vibscore_drive c_drive = to_c(for_module(next));
             check("prepare", driver_.prepare(handle_, &c_drive, error_.data(), error_.size()));
         }
     }
@@ -79,6 +83,15 @@ class ExternalActuator final : public Actuator {
     }
 
   private:
+    // A module that cannot drive backwards never sees a negative amplitude.
+    Drive for_module(Drive drive) const {
+        if (!reverse_) {
+            drive.amplitude = std::max(drive.amplitude, 0.0);
+            drive.ramp_to = std::max(drive.ramp_to, 0.0);
+        }
+        return drive;
+    }
+
     void check(const char* call, int result) {
         if (result != 0) {
             const std::string fallback =
@@ -91,6 +104,7 @@ class ExternalActuator final : public Actuator {
     const vibscore_driver& driver_;
     void* handle_;
     ErrorText error_;
+    bool reverse_ = false;
 };
 
 bool valid_name(const char* name) {
@@ -123,9 +137,11 @@ std::string entry_problem(void* handle, const vibscore_driver*& entry) {
     if (entry == nullptr) {
         return "vibscore_driver_entry() returned NULL";
     }
-    if (entry->abi_version != VIBSCORE_DRIVER_ABI_VERSION) {
+    if (entry->abi_version < VIBSCORE_DRIVER_ABI_OLDEST ||
+        entry->abi_version > VIBSCORE_DRIVER_ABI_VERSION) {
         return "built for driver ABI " + std::to_string(entry->abi_version) +
-               ", this vibscored speaks " + std::to_string(VIBSCORE_DRIVER_ABI_VERSION);
+               ", this vibscored speaks " + std::to_string(VIBSCORE_DRIVER_ABI_OLDEST) + " to " +
+               std::to_string(VIBSCORE_DRIVER_ABI_VERSION);
     }
     if (!valid_name(entry->name)) {
         return "its name must be 1-64 of a-z, 0-9 and '-'";

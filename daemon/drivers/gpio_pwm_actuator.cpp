@@ -1,5 +1,6 @@
 #include "daemon/drivers/gpio_pwm_actuator.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 #include <stdexcept>
@@ -27,6 +28,11 @@ std::vector<int> with_enable(std::vector<int> values, bool enable_line) {
     return values;
 }
 
+// The drive's amplitude within -1..1; NaN counts as 0 (off).
+double signed_amplitude(const Drive& drive) {
+    return std::isnan(drive.amplitude) ? 0.0 : std::clamp(drive.amplitude, -1.0, 1.0);
+}
+
 // The line offsets `keys` name, all read before any is found missing, so that a misspelt key
 // ("lines = 17") is reported as unknown rather than the key it misspells as missing.
 std::vector<unsigned> required_lines(DriverSettings& read, std::vector<std::string> keys) {
@@ -44,19 +50,31 @@ std::vector<unsigned> required_lines(DriverSettings& read, std::vector<std::stri
     return lines;
 }
 
-// The enable line, if configured, goes last; no line may be named twice.
+// The direction line (gpio-erm), then the enable line, if configured, go last; no line may be
+// named twice.
 std::vector<unsigned> with_enable_line(DriverSettings& read, std::vector<unsigned> offsets,
                                        GpioPwmSettings& settings) {
+    std::vector<std::string> keys = settings.kind == GpioPwmKind::erm
+                                        ? std::vector<std::string>{"line"}
+                                        : std::vector<std::string>{"line-a", "line-b"};
+    if (settings.kind == GpioPwmKind::erm) {
+        if (const auto direction = read.integer("direction-line", 0, kMaxLineOffset)) {
+            offsets.push_back(static_cast<unsigned>(*direction));
+            keys.emplace_back("direction-line");
+            settings.direction_line = true;
+        }
+    }
     if (const auto enable = read.integer("enable-line", 0, kMaxLineOffset)) {
         offsets.push_back(static_cast<unsigned>(*enable));
+        keys.emplace_back("enable-line");
         settings.enable_line = true;
     }
     for (std::size_t i = 0; i < offsets.size(); ++i) {
         for (std::size_t j = i + 1; j < offsets.size(); ++j) {
             if (offsets[i] == offsets[j]) {
-                throw SettingError("enable-line", read.driver() + " settings name line " +
-                                                      std::to_string(offsets[i]) +
-                                                      " twice: every line needs its own offset");
+                throw SettingError(keys[j], read.driver() + " settings name line " +
+                                                std::to_string(offsets[i]) +
+                                                " twice: every line needs its own offset");
             }
         }
     }
@@ -74,28 +92,41 @@ std::unique_ptr<Actuator> finish_gpio_actuator(DriverSettings& read, GpioPwmSett
 
 }  // namespace
 
-PwmWaveform erm_waveform(double duty, double carrier_hz, bool enable_line) {
+PwmWaveform erm_waveform(double amplitude, double carrier_hz, bool enable_line,
+                         bool direction_line) {
+    const bool backwards = amplitude < 0.0;
+    if (backwards && !direction_line) {
+        return {};  // no way to drive it backwards
+    }
     const std::int64_t period = period_ns(carrier_hz);
-    const std::int64_t high = std::llround(duty * static_cast<double>(period));
+    const std::int64_t high = std::llround(std::abs(amplitude) * static_cast<double>(period));
     if (!(high > 0)) {
         return {};
     }
-    const std::vector<int> on = with_enable({1}, enable_line);
+    const auto lines = [&](int motor) {
+        std::vector<int> values{motor};
+        if (direction_line) {
+            values.push_back(backwards ? 1 : 0);
+        }
+        return with_enable(values, enable_line);
+    };
     if (high >= period) {
-        return {period, {{0, on}}};
+        return {period, {{0, lines(1)}}};
     }
-    return {period, {{0, on}, {high, with_enable({0}, enable_line)}}};
+    return {period, {{0, lines(1)}, {high, lines(0)}}};
 }
 
-PwmWaveform lra_waveform(double duty, double frequency_hz, bool enable_line) {
+PwmWaveform lra_waveform(double amplitude, double frequency_hz, bool enable_line) {
     const std::int64_t period = period_ns(frequency_hz);
     const std::int64_t half = period / 2;
-    const std::int64_t high = std::llround(duty * static_cast<double>(half));
+    const std::int64_t high = std::llround(lra_pulse_share(amplitude) * static_cast<double>(half));
     if (!(high > 0)) {
         return {};
     }
-    const std::vector<int> a_high = with_enable({1, 0}, enable_line);
-    const std::vector<int> b_high = with_enable({0, 1}, enable_line);
+    // Anti-phase is the same drive half a period on: B leads.
+    const bool anti = amplitude < 0.0;
+    const std::vector<int> a_high = with_enable({anti ? 0 : 1, anti ? 1 : 0}, enable_line);
+    const std::vector<int> b_high = with_enable({anti ? 1 : 0, anti ? 0 : 1}, enable_line);
     if (high >= half) {
         return {period, {{0, a_high}, {half, b_high}}};
     }
@@ -116,6 +147,7 @@ Capabilities GpioPwmActuator::capabilities() const {
     Capabilities capabilities;
     capabilities.amplitude_control = true;
     capabilities.frequency_control = settings_.kind == GpioPwmKind::lra;
+    capabilities.reverse = settings_.kind == GpioPwmKind::lra || settings_.direction_line;
     return capabilities;
 }
 
@@ -134,10 +166,11 @@ void GpioPwmActuator::apply(const Drive& drive) {
         handed_over_.reset();
         throw DeviceError(std::string(driver_name()) + " on " + lines_description_ + ": " + *error);
     }
-    const double duty = drive_amplitude(drive);
+    const double amplitude = signed_amplitude(drive);
     hand_over(settings_.kind == GpioPwmKind::erm
-                  ? erm_waveform(duty, settings_.frequency_hz, settings_.enable_line)
-                  : lra_waveform(duty, lra_frequency_hz(drive, settings_.frequency_hz),
+                  ? erm_waveform(amplitude, settings_.frequency_hz, settings_.enable_line,
+                                 settings_.direction_line)
+                  : lra_waveform(amplitude, lra_frequency_hz(drive, settings_.frequency_hz),
                                  settings_.enable_line));
 }
 

@@ -12,20 +12,39 @@ namespace vibscore::drivers {
 
 namespace {
 
-std::string meter_label(ActuatorKind kind) {
-    return kind == ActuatorKind::erm ? "sim erm" : "sim lra";
+using actuator::Kind;
+
+std::string meter_label(Kind kind) {
+    return kind == Kind::erm ? "sim erm" : "sim lra";
 }
+
+// The [sim] keys that describe the simulated actuator itself.
+constexpr const char* kModelKeys[] = {"model", "resonance-hz", "q", "spin-up-ms", "spin-down-ms"};
 
 }  // namespace
 
+actuator::Declaration undeclared_sim_actuator() {
+    actuator::Declaration declaration;
+    declaration.kind = Kind::lra;
+    declaration.rated_drive = 1.0;
+    declaration.spin_up_s = 0.050;
+    declaration.spin_down_s = 0.080;
+    declaration.resonance_hz = 175.0;
+    declaration.q = 8.0;
+    declaration.compensation = false;
+    return declaration;
+}
+
 SimActuator::SimActuator(SimSettings settings, MonotonicClock clock)
-    : clock_(clock ? std::move(clock) : MonotonicClock(monotonic_now_ns)), model_(settings.model) {
+    : clock_(clock ? std::move(clock) : MonotonicClock(monotonic_now_ns)),
+      reverse_(settings.declared && settings.actuator.brake == actuator::Brake::reverse),
+      model_(settings.actuator) {
     if (settings.trace) {
         trace_.emplace(*settings.trace);
     }
     if (settings.meter) {
         meter_ =
-            std::make_unique<TerminalMeter>(settings.meter_fd, meter_label(settings.model.kind),
+            std::make_unique<TerminalMeter>(settings.meter_fd, meter_label(settings.actuator.kind),
                                             TerminalMeter::glyphs_for_environment());
     }
 }
@@ -35,6 +54,7 @@ Capabilities SimActuator::capabilities() const {
     capabilities.amplitude_control = true;
     capabilities.frequency_control = true;
     capabilities.effect_memory = false;
+    capabilities.reverse = reverse_;
     return capabilities;
 }
 
@@ -42,16 +62,17 @@ void SimActuator::take(double amplitude, double frequency_hz) {
     const std::int64_t now_ns = clock_();
     const double t_s = static_cast<double>(now_ns) * 1e-9;
     // The strength is continuous, so its value at the command instant is the same before and
-    // after it: how far the actuator got with the previous command.
+    // after it: how far the actuator got with the previous drive.
     const double response = model_.response_at(t_s);
-    model_.command(t_s, amplitude, frequency_hz);
+    model_.command(t_s, {amplitude, frequency_hz});
     ++commands_;
     if (meter_) {
-        // The meter shows where the actuator is heading; an ERM has no frequency to show.
-        const bool erm = model_.settings().kind == ActuatorKind::erm;
+        // The meter shows where the actuator is heading (rest, while braking); an ERM has no
+        // frequency to show.
+        const bool erm = model_.physics().declaration().kind == Kind::erm;
         const double shown_hz =
-            erm ? -1.0 : (frequency_hz == 0.0 ? model_.settings().resonance_hz : frequency_hz);
-        meter_->show(model_.target(), shown_hz);
+            erm ? -1.0 : model_.physics().frequency_of({amplitude, frequency_hz});
+        meter_->show(amplitude > 0.0 ? model_.target() : 0.0, shown_hz);
     }
     if (trace_) {
         trace_->record(now_ns, amplitude, frequency_hz, response);
@@ -59,7 +80,9 @@ void SimActuator::take(double amplitude, double frequency_hz) {
 }
 
 void SimActuator::apply(const Drive& drive) {
-    const double amplitude = drive.amplitude > 0.0 ? std::min(drive.amplitude, 1.0) : 0.0;
+    const double lowest = reverse_ ? -1.0 : 0.0;
+    const double amplitude =
+        std::isnan(drive.amplitude) ? 0.0 : std::clamp(drive.amplitude, lowest, 1.0);
     const double frequency_hz =
         std::isfinite(drive.frequency_hz) && drive.frequency_hz > 0.0 ? drive.frequency_hz : 0.0;
     try {
@@ -84,17 +107,31 @@ void SimActuator::off() noexcept {
     }
 }
 
-std::unique_ptr<Actuator> make_sim_actuator(const std::map<std::string, std::string>& settings) {
+std::unique_ptr<Actuator> make_sim_actuator(const std::map<std::string, std::string>& settings,
+                                            const std::optional<actuator::Declaration>& declared) {
     DriverSettings read("sim", settings);
     SimSettings sim;
-    sim.model.kind = read.choice("model", "lra", {"erm", "lra"}) == "erm" ? ActuatorKind::erm
-                                                                          : ActuatorKind::lra;
-    sim.model.resonance_hz = read.number("resonance-hz", sim.model.resonance_hz, 1.0, 1000.0);
-    sim.model.q = read.number("q", sim.model.q, 0.1, 1000.0);
-    sim.model.spin_up_s =
-        read.number("spin-up-ms", sim.model.spin_up_s * 1000.0, 0.1, 10000.0) / 1000.0;
-    sim.model.spin_down_s =
-        read.number("spin-down-ms", sim.model.spin_down_s * 1000.0, 0.1, 10000.0) / 1000.0;
+    if (declared) {
+        for (const char* key : kModelKeys) {
+            if (read.has(key)) {
+                throw SettingError(key, std::string("sim setting ") + key + " = \"" +
+                                            settings.at(key) +
+                                            "\": the actuator is declared in [actuator], and the "
+                                            "sim simulates that one (declare it there only)");
+            }
+        }
+        sim.actuator = *declared;
+        sim.declared = true;
+    } else {
+        auto& model = sim.actuator;
+        model.kind = read.choice("model", "lra", {"erm", "lra"}) == "erm" ? Kind::erm : Kind::lra;
+        model.resonance_hz = read.number("resonance-hz", model.resonance_hz, 1.0, 1000.0);
+        model.q = read.number("q", model.q, 0.1, 1000.0);
+        model.spin_up_s =
+            read.number("spin-up-ms", model.spin_up_s * 1000.0, 0.1, 10000.0) / 1000.0;
+        model.spin_down_s =
+            read.number("spin-down-ms", model.spin_down_s * 1000.0, 0.1, 10000.0) / 1000.0;
+    }
     if (auto trace = read.text("trace")) {
         sim.trace = *trace;
     }

@@ -10,16 +10,23 @@
 #include <string_view>
 
 #include "common/monotonic_clock.hpp"
+#include "daemon/actuator/timeline.hpp"
 #include "daemon/drivers/actuator.hpp"
-#include "daemon/drivers/actuator_model.hpp"
 #include "daemon/drivers/terminal_meter.hpp"
 #include "daemon/drivers/trace_file.hpp"
 
 namespace vibscore::drivers {
 
+// The actuator [sim] simulates when vibscored.conf declares none ([actuator] absent): an LRA at
+// 175 Hz with Q 8, strength 1 at full drive, as before the declaration existed.
+actuator::Declaration undeclared_sim_actuator();
+
 struct SimSettings {
-    ModelSettings model;
-    std::optional<std::filesystem::path> trace;  // CSV of every command, when set
+    actuator::Declaration actuator = undeclared_sim_actuator();
+    // The actuator is the one [actuator] declares: its brake says whether the simulated board
+    // has an H-bridge (the reverse-drive capability).
+    bool declared = false;
+    std::optional<std::filesystem::path> trace;  // CSV of every drive as sent, when set
     bool meter = false;                          // draw a live meter on meter_fd
     int meter_fd = 2;
 };
@@ -28,24 +35,27 @@ struct SimSettings {
 using MonotonicClock = std::function<std::int64_t()>;
 
 // An actuator that exists only as a model: the default on a development machine. It records what
-// it is told (trace file), shows it (terminal meter) and models what a real ERM or LRA would do
-// with it (model()).
+// it is told (trace file: every drive as sent, its amplitude -1..1 with negative = reverse or
+// anti-phase, and its frequency), shows it (terminal meter) and simulates what the declared ERM
+// or LRA does with it (model()): spin-up, coasting and reverse drive of an ERM, the resonance of
+// an LRA building up, ringing down and pushed down by anti-phase drive.
 class SimActuator : public Actuator {
   public:
     // Throws std::runtime_error naming the trace path when the trace file cannot be created, and
-    // std::invalid_argument for impossible model constants.
+    // std::invalid_argument for impossible constants.
     explicit SimActuator(SimSettings settings, MonotonicClock clock = monotonic_now_ns);
 
     std::string_view driver_name() const override { return "sim"; }
     Capabilities capabilities() const override;
 
-    // Amplitude is clamped to 0..1 (NaN counts as 0); a negative or non-finite frequency counts
-    // as 0, the actuator's own. Throws DeviceError naming the trace path when the trace write
-    // fails; the model and the meter have already taken the command by then.
+    // Amplitude is clamped to -1..1 (0..1 without the reverse-drive capability; NaN counts as 0);
+    // a negative or non-finite frequency counts as 0, the actuator's own. Throws DeviceError
+    // naming the trace path when the trace write fails; the model and the meter have already
+    // taken the drive by then.
     void apply(const Drive& drive) override;
     void off() noexcept override;
 
-    const ActuatorModel& model() const { return model_; }
+    const actuator::Timeline& model() const { return model_; }
     // Commands taken so far, apply() and off() alike.
     std::uint64_t command_count() const { return commands_; }
 
@@ -53,7 +63,8 @@ class SimActuator : public Actuator {
     void take(double amplitude, double frequency_hz);
 
     MonotonicClock clock_;
-    ActuatorModel model_;
+    bool reverse_;
+    actuator::Timeline model_;
     std::optional<TraceFile> trace_;
     std::unique_ptr<TerminalMeter> meter_;
     std::uint64_t commands_ = 0;
@@ -61,15 +72,19 @@ class SimActuator : public Actuator {
 };
 
 // Builds a SimActuator from the string settings of the daemon's configuration:
+//   trace         path of a CSV trace of every drive (default none)
+//   meter         true | false: live meter on stderr (default false)
+// and, only when no actuator is declared ([actuator] absent), the simulated actuator's own:
 //   model         erm | lra (default lra)
 //   resonance-hz  LRA resonance f0 (default 175)
 //   q             LRA quality factor (default 8)
 //   spin-up-ms    ERM spin-up time constant (default 50)
 //   spin-down-ms  ERM spin-down time constant (default 80)
-//   trace         path of a CSV trace of every command (default none)
-//   meter         true | false: live meter on stderr (default false)
-// Throws std::invalid_argument naming the key and the value for an invalid value or an unknown
-// key, and std::runtime_error when the trace file cannot be created.
-std::unique_ptr<Actuator> make_sim_actuator(const std::map<std::string, std::string>& settings);
+// With `declared`, the sim simulates that actuator, and those five keys are refused: the physics
+// is declared once. Throws SettingError naming the key and the value for an invalid value or an
+// unknown key, and std::runtime_error when the trace file cannot be created.
+std::unique_ptr<Actuator> make_sim_actuator(
+    const std::map<std::string, std::string>& settings,
+    const std::optional<actuator::Declaration>& declared = std::nullopt);
 
 }  // namespace vibscore::drivers

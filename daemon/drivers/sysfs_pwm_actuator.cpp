@@ -1,5 +1,6 @@
 #include "daemon/drivers/sysfs_pwm_actuator.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <utility>
@@ -19,12 +20,14 @@ std::int64_t period_ns(double frequency_hz) {
 }  // namespace
 
 SysfsPwmActuator::SysfsPwmActuator(const SysfsPwmSettings& settings,
-                                   std::unique_ptr<SysfsAttributes> attributes)
+                                   std::unique_ptr<SysfsAttributes> attributes,
+                                   std::unique_ptr<GpioLines> direction)
     : settings_(settings),
       attributes_(std::move(attributes)),
       chip_dir_(settings.sysfs_root / "class" / "pwm" /
                 ("pwmchip" + std::to_string(settings.chip))),
-      channel_dir_(chip_dir_ / ("pwm" + std::to_string(settings.channel))) {
+      channel_dir_(chip_dir_ / ("pwm" + std::to_string(settings.channel))),
+      direction_(std::move(direction)) {
     try {
         open_channel();
     } catch (...) {
@@ -79,6 +82,7 @@ Capabilities SysfsPwmActuator::capabilities() const {
     Capabilities capabilities;
     capabilities.amplitude_control = true;
     capabilities.frequency_control = settings_.mode == SysfsPwmMode::lra;
+    capabilities.reverse = direction_ != nullptr;
     return capabilities;
 }
 
@@ -125,8 +129,26 @@ void SysfsPwmActuator::set(std::int64_t period, std::int64_t duty) {
     }
 }
 
+void SysfsPwmActuator::turn(bool backwards) {
+    if (backwards == backwards_) {
+        return;
+    }
+    if (duty_ns_ != 0) {
+        write("duty_cycle", 0);
+        duty_ns_ = 0;
+    }
+    direction_->set_values({backwards ? 1 : 0});
+    backwards_ = backwards;
+}
+
 void SysfsPwmActuator::apply(const Drive& drive) {
-    const double amplitude = drive_amplitude(drive);
+    double amplitude = drive_amplitude(drive);
+    if (direction_ && drive.amplitude < 0.0) {
+        amplitude = std::min(-drive.amplitude, 1.0);
+        turn(true);
+    } else if (direction_ && amplitude > 0.0) {
+        turn(false);
+    }
     if (settings_.mode == SysfsPwmMode::erm) {
         const std::int64_t period = period_ns(settings_.carrier_hz);
         set(period, std::llround(amplitude * static_cast<double>(period)));
@@ -138,7 +160,7 @@ void SysfsPwmActuator::apply(const Drive& drive) {
         return;
     }
     const std::int64_t period = period_ns(lra_frequency_hz(drive, settings_.resonance_hz));
-    set(period, std::llround(amplitude * static_cast<double>(period) / 2.0));
+    set(period, std::llround(lra_pulse_share(amplitude) * static_cast<double>(period) / 2.0));
 }
 
 void SysfsPwmActuator::off() noexcept {
@@ -146,6 +168,10 @@ void SysfsPwmActuator::off() noexcept {
         if (duty_ns_ != 0) {
             write("duty_cycle", 0);
             duty_ns_ = 0;
+        }
+        if (direction_ && backwards_) {
+            direction_->set_values({0});
+            backwards_ = false;
         }
         off_failure_logged_ = false;
     } catch (const std::exception& error) {
@@ -159,8 +185,8 @@ void SysfsPwmActuator::off() noexcept {
 }
 
 std::unique_ptr<Actuator> make_sysfs_pwm_actuator(
-    const std::map<std::string, std::string>& settings,
-    std::unique_ptr<SysfsAttributes> attributes) {
+    const std::map<std::string, std::string>& settings, std::unique_ptr<SysfsAttributes> attributes,
+    const GpioLinesOpener& open_direction) {
     DriverSettings read("sysfs-pwm", settings);
     SysfsPwmSettings pwm;
     pwm.sysfs_root = read.text("sysfs-root", pwm.sysfs_root.string());
@@ -174,8 +200,19 @@ std::unique_ptr<Actuator> make_sysfs_pwm_actuator(
     } else {
         pwm.resonance_hz = read.number("resonance-hz", pwm.resonance_hz, kMinLraHz, kMaxLraHz);
     }
+    const std::string direction_chip = read.text("direction-chip", "gpiochip0");
+    const auto direction_line = read.integer("direction-line", 0, 65535);
+    if (read.has("direction-chip") && !direction_line) {
+        throw SettingError("direction-chip",
+                           "sysfs-pwm setting direction-chip = \"" + direction_chip +
+                               "\" needs direction-line: the line offset on that chip");
+    }
     read.reject_unknown();
-    return std::make_unique<SysfsPwmActuator>(pwm, std::move(attributes));
+    std::unique_ptr<GpioLines> direction;
+    if (direction_line) {
+        direction = open_direction(direction_chip, {static_cast<unsigned>(*direction_line)});
+    }
+    return std::make_unique<SysfsPwmActuator>(pwm, std::move(attributes), std::move(direction));
 }
 
 }  // namespace vibscore::drivers

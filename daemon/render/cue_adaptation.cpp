@@ -202,6 +202,80 @@ class Envelopes final : public Stage {
     std::deque<Cue> unread_;  // read ahead and given back: at most two
 };
 
+// Strengths become drives of the declared actuator (CueAdaptation::actuator), segment by segment:
+// each input drive holds until the next one, and the planner chooses what makes the actuator
+// follow that. It reads one drive ahead, to know where a segment ends and whether silence
+// follows; the planner's drives lie within the segment, so none precedes a position not yet
+// read. Between passes the actuator's state carries over (PassLink); only the last pass drives on
+// past its end, to brake after its last note.
+class ActuatorDrives final : public Stage {
+  public:
+    ActuatorDrives(Stage& input, double duration_s, const CueAdaptation& adaptation,
+                   const PassLink& link)
+        : input_(input),
+          duration_s_(duration_s),
+          scale_(adaptation.scale),
+          link_(link),
+          planner_(*adaptation.actuator,
+                   {adaptation.scale, adaptation.actuator->compensation,
+                    adaptation.reverse && adaptation.actuator->brake == actuator::Brake::reverse,
+                    adaptation.min_drive_pulse_s},
+                   link.carry ? *link.carry : PlannerCarry{}) {}
+
+    std::optional<Cue> next() override {
+        while (made_.empty()) {
+            if (!step()) {
+                return std::nullopt;
+            }
+        }
+        const Cue cue = made_.front();
+        made_.pop_front();
+        return cue;
+    }
+
+  private:
+    bool step() {
+        if (done_) {
+            return false;
+        }
+        std::vector<Cue> made;
+        if (!started_) {
+            started_ = true;
+            ahead_ = input_.next();
+            // Silence until the first drive: what the previous pass left ringing is stopped.
+            const double first = ahead_ ? ahead_->at : end_of_pass();
+            planner_.segment(0.0, first, 0.0, 0.0, false, made);
+        } else if (ahead_) {
+            const Cue current = *ahead_;
+            ahead_ = input_.next();
+            const double until = ahead_ ? ahead_->at : end_of_pass();
+            const bool silence_follows = !ahead_ || !(ahead_->amplitude * scale_ > 0.0);
+            planner_.segment(current.at, until, current.amplitude, current.frequency_hz,
+                             silence_follows, made);
+        } else {
+            done_ = true;
+            if (link_.carry && !link_.last) {
+                *link_.carry = planner_.carry();
+            }
+        }
+        made_.insert(made_.end(), made.begin(), made.end());
+        return true;
+    }
+
+    // Where the last segment ends: the pass's end, unless the last pass brakes on after it.
+    double end_of_pass() const { return link_.last ? INFINITY : duration_s_; }
+
+    Stage& input_;
+    double duration_s_;
+    double scale_;
+    PassLink link_;
+    DrivePlanner planner_;
+    std::deque<Cue> made_;
+    std::optional<Cue> ahead_;  // the next input drive
+    bool started_ = false;
+    bool done_ = false;
+};
+
 }  // namespace
 
 // The input's drives (without frequency when the actuator has no choice of it); its positions
@@ -231,14 +305,19 @@ class AdaptedCueStream::InputDrives final : public Stage {
 };
 
 AdaptedCueStream::AdaptedCueStream(std::unique_ptr<CueStream> input, double duration_s,
-                                   const CueAdaptation& adaptation)
+                                   const CueAdaptation& adaptation, const PassLink& link)
     : input_(std::make_unique<InputDrives>(std::move(input), adaptation.frequency, positions_)) {
     const auto add = [&](std::unique_ptr<Stage> stage) { stages_.push_back(std::move(stage)); };
     const auto last = [&]() -> Stage& {
         return stages_.empty() ? static_cast<Stage&>(*input_) : *stages_.back();
     };
+    CueAdaptation after = adaptation;
+    if (adaptation.actuator) {
+        add(std::make_unique<ActuatorDrives>(last(), duration_s, adaptation, link));
+        after.scale = 1.0;  // the drives are final: pulse modulation takes them as they are
+    }
     if (!adaptation.amplitude) {
-        add(std::make_unique<PulseModulation>(last(), duration_s, adaptation));
+        add(std::make_unique<PulseModulation>(last(), duration_s, after));
         add(std::make_unique<WithoutRepeats>(last()));
     } else if (adaptation.envelopes) {
         add(std::make_unique<WithoutRepeats>(last()));

@@ -5,7 +5,9 @@
 #include <optional>
 #include <vector>
 
+#include "daemon/actuator/declaration.hpp"
 #include "daemon/render/cue_schedule.hpp"
+#include "daemon/render/drive_planner.hpp"
 
 namespace vibscore::render {
 
@@ -22,10 +24,29 @@ struct CueAdaptation {
     // The actuator takes a linear ramp whole (an FF envelope): runs of update steps that lie
     // on one line become one drive with ramp_to/ramp_s.
     bool envelopes = false;
-    double scale = 1.0;  // pulse modulation only: the strength scale the playback asked for
+    // The strength scale the playback asked for: applied by pulse modulation, or, with a declared
+    // actuator, by the drives made for it.
+    double scale = 1.0;
     double pulse_period_s = 0.040;
     double min_pulse_s = 0.004;
     double update_interval_s = CueOptions{}.update_interval_s;
+    // The actuator [actuator] declares. With it, strengths leave as drives of the backend's full
+    // scale, -1..1: strength x scale x rated-drive, or with its compensation the drives a
+    // DrivePlanner shapes to its physics; pulse modulation and envelopes then work on those
+    // drives. Without it, strengths leave as written (the player scales them).
+    std::optional<actuator::Declaration> actuator;
+    // The backend can drive backwards (Capabilities::reverse): with brake = reverse declared,
+    // the planner brakes with it.
+    bool reverse = false;
+    double min_drive_pulse_s = PlannerOptions{}.min_pulse_s;
+};
+
+// How the passes of one playback continue each other: the actuator's state where one pass ends
+// is where the next one plans from, and only the last pass may drive beyond its end (a brake
+// after its last note).
+struct PassLink {
+    std::shared_ptr<PlannerCarry> carry;  // read at the pass's start, written at its end
+    bool last = true;
 };
 
 // The cues of one pass (duration_s long) rewritten for an actuator, as they are asked for.
@@ -35,7 +56,7 @@ struct CueAdaptation {
 class AdaptedCueStream final : public CueStream {
   public:
     AdaptedCueStream(std::unique_ptr<CueStream> input, double duration_s,
-                     const CueAdaptation& adaptation);
+                     const CueAdaptation& adaptation, const PassLink& link = {});
     ~AdaptedCueStream() override;
     std::optional<Cue> next() override;
 

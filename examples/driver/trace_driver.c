@@ -9,6 +9,8 @@
  *     path = /run/vibscore/trace-driver.log   where the lines go (required)
  *     on-off = true                           report no amplitude control, so vibscored
  *                                             pulse-modulates (default false)
+ *     reverse = true                          report VIBSCORE_CAP_REVERSE: negative amplitudes
+ *                                             (backwards, anti-phase) come through (default false)
  * Build: cc -shared -fPIC -I<vibscore>/include -o trace.so trace_driver.c, then install it
  * into vibscored's drivers directory (install -m 0755 -o root trace.so DIR: a module others may
  * write is refused) and set "driver = trace".
@@ -24,6 +26,7 @@
 struct trace_actuator {
     FILE* out;
     int on_off;
+    int reverse;
 };
 
 static long long now_ns(void) {
@@ -49,17 +52,21 @@ static void* trace_open(const struct vibscore_setting* settings, size_t count, c
                         size_t error_size) {
     const char* path = NULL;
     int on_off = 0;
+    int reverse = 0;
     for (size_t i = 0; i < count; ++i) {
+        const int flag = strcmp(settings[i].value, "true") == 0;
+        const int is_flag = flag || strcmp(settings[i].value, "false") == 0;
         if (strcmp(settings[i].key, "path") == 0) {
             path = settings[i].value;
-        } else if (strcmp(settings[i].key, "on-off") == 0 &&
-                   (strcmp(settings[i].value, "true") == 0 ||
-                    strcmp(settings[i].value, "false") == 0)) {
-            on_off = strcmp(settings[i].value, "true") == 0;
+        } else if (strcmp(settings[i].key, "on-off") == 0 && is_flag) {
+            on_off = flag;
+        } else if (strcmp(settings[i].key, "reverse") == 0 && is_flag) {
+            reverse = flag;
         } else {
             say(error, error_size,
-                "bad trace setting %s = \"%s\" (known: path, on-off = true|false)", settings[i].key,
-                settings[i].value);
+                "bad trace setting %s = \"%s\" (known: path, on-off = true|false, reverse = "
+                "true|false)",
+                settings[i].key, settings[i].value);
             return NULL;
         }
     }
@@ -79,6 +86,7 @@ static void* trace_open(const struct vibscore_setting* settings, size_t count, c
         return NULL;
     }
     actuator->on_off = on_off;
+    actuator->reverse = reverse;
     line(actuator, "open");
     return actuator;
 }
@@ -93,7 +101,11 @@ static void trace_close(void* handle) {
 static uint32_t trace_capabilities(void* handle, double* max_on_time_s) {
     const struct trace_actuator* actuator = handle;
     *max_on_time_s = 0.0;
-    return actuator->on_off ? 0u : VIBSCORE_CAP_AMPLITUDE | VIBSCORE_CAP_FREQUENCY;
+    if (actuator->on_off) {
+        return 0u;
+    }
+    return VIBSCORE_CAP_AMPLITUDE | VIBSCORE_CAP_FREQUENCY |
+           (actuator->reverse ? VIBSCORE_CAP_REVERSE : 0u);
 }
 
 static int trace_apply(void* handle, const struct vibscore_drive* drive, char* error,

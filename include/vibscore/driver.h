@@ -29,8 +29,14 @@
 extern "C" {
 #endif
 
-/* Bump on any incompatible change; the daemon refuses a driver built for another version. */
-#define VIBSCORE_DRIVER_ABI_VERSION 1u
+/* Bump on any change. The daemon loads modules built for this version and the older ones it
+ * names below, and refuses others.
+ *   1  the first
+ *   2  VIBSCORE_CAP_REVERSE: a negative amplitude drives backwards. The structures are unchanged,
+ *      so a module built for version 1 still loads; it never gets a negative amplitude (its
+ *      capability bits are read as version 1 defines them). */
+#define VIBSCORE_DRIVER_ABI_VERSION 2u
+#define VIBSCORE_DRIVER_ABI_OLDEST 1u
 
 /* What the actuator can do (vibscore_driver.capabilities). The daemon adapts what it sends:
  * without AMPLITUDE it sends only 0 and 1 and expresses strength as pulse width; without
@@ -41,6 +47,10 @@ extern "C" {
 #define VIBSCORE_CAP_EFFECT_MEMORY (1u << 2) /* prepare() loads the next drive ahead of time */
 #define VIBSCORE_CAP_ENVELOPES (1u << 3)     /* a linear ramp can be taken whole */
 #define VIBSCORE_CAP_GAIN (1u << 4)          /* set_gain() scales every drive in the device */
+/* ABI 2: the actuator can be driven backwards: a negative amplitude reverses an ERM (an
+ * H-bridge) or drives an LRA in anti-phase, continuing the drive's phase. With an [actuator]
+ * declaring brake = reverse, the daemon brakes with it (docs/drivers.md). */
+#define VIBSCORE_CAP_REVERSE (1u << 5)
 
 /* One "key = value" line of the driver's configuration section. */
 struct vibscore_setting {
@@ -48,9 +58,10 @@ struct vibscore_setting {
     const char* value;
 };
 
-/* From now on vibrate with this strength (0..1; 0 is off) at this frequency (Hz; 0 = the
- * actuator's own). With VIBSCORE_CAP_ENVELOPES, ramp_s > 0 asks for a linear move from
- * amplitude to ramp_to over ramp_s seconds, then holding there. */
+/* From now on vibrate with this strength (0..1 of the actuator's full drive; 0 is off) at this
+ * frequency (Hz; 0 = the actuator's own). With VIBSCORE_CAP_REVERSE the amplitude may be
+ * negative, -1..0: as strong, backwards (anti-phase). With VIBSCORE_CAP_ENVELOPES, ramp_s > 0
+ * asks for a linear move from amplitude to ramp_to over ramp_s seconds, then holding there. */
 struct vibscore_drive {
     double amplitude;
     double frequency_hz;
@@ -59,7 +70,7 @@ struct vibscore_drive {
 };
 
 struct vibscore_driver {
-    uint32_t abi_version;    /* VIBSCORE_DRIVER_ABI_VERSION */
+    uint32_t abi_version;    /* VIBSCORE_DRIVER_ABI_VERSION, as the module was built */
     const char* name;        /* [a-z0-9-]+, unique among drivers */
     const char* description; /* one line for --list-drivers */
 

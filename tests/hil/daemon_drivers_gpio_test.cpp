@@ -233,13 +233,14 @@ TEST(DaemonGpio, LraDrivesTwoLinesInAntiphaseAtTheNotesFrequencyNeverBothHigh) {
     };
     // Inside each note (20 ms in from its edges): how much of the time one line or the other
     // is high (at full strength the square wave has no gap; at half strength each line is high
-    // for a quarter of the period), and at most one pulse per line in each period of the note's
+    // for a sixth of the period, (2/pi) asin(0.5) = 1/3 of its half, so that the pulses'
+    // fundamental is half), and at most one pulse per line in each period of the note's
     // frequency (late wake-ups only take pulses away).
     struct Note {
         double from_s, to_s, driven_share;
     };
     for (const Note note :
-         {Note{drives[0].at, drives[1].at, 1.0}, Note{drives[2].at, drives[3].at, 0.5}}) {
+         {Note{drives[0].at, drives[1].at, 1.0}, Note{drives[2].at, drives[3].at, 1.0 / 3.0}}) {
         SCOPED_TRACE("note at " + std::to_string(note.from_s) + " s");
         const auto begin = at(note.from_s + 0.02);
         const auto end = at(note.to_s - 0.02);

@@ -8,6 +8,7 @@
 #include <optional>
 #include <sstream>
 
+#include "daemon/drivers/drive_levels.hpp"
 #include "tests/hil/kernel_files.hpp"
 #include "tests/hil/pwm_sim_chip.hpp"
 #include "tests/hil/score_expectations.hpp"
@@ -151,9 +152,12 @@ std::vector<std::pair<double, PwmSetting>> expected_settings(const std::vector<r
         } else if (drive.amplitude > 0.0) {
             period = static_cast<std::uint64_t>(std::llround(1e9 / drive.frequency_hz));
         }
-        const double share = lra ? 0.5 : 1.0;  // an LRA's drive is unipolar: at most half
-        const auto duty = static_cast<std::uint64_t>(
-            std::llround(drive.amplitude * static_cast<double>(period) * share));
+        // An LRA's drive is unipolar, at most half the period, and as wide as puts the pulses'
+        // fundamental at the amplitude: (2/pi) asin(amplitude) of that half.
+        const double share =
+            lra ? 0.5 * drivers::lra_pulse_share(drive.amplitude) : drive.amplitude;
+        const auto duty =
+            static_cast<std::uint64_t>(std::llround(static_cast<double>(period) * share));
         settings.push_back({drive.at, {period, duty}});
     }
     return settings;
@@ -246,7 +250,8 @@ TEST(DaemonSysfs, SysfsPwmLraFollowsEachNotesFrequencyWithHalfThePeriodAtFullStr
     const auto expected = expected_settings(expected_drives(score, {}), true);
     ASSERT_EQ(expected.size(), 4u);
     EXPECT_EQ(expected[0].second, (PwmSetting{6451613, 3225807}));
-    EXPECT_EQ(expected[2].second, (PwmSetting{4255319, 1063830}));
+    // Half strength: (2/pi) asin(0.5) = 1/3 of the half period, whose fundamental is half.
+    EXPECT_EQ(expected[2].second, (PwmSetting{4255319, 709220}));
     play_to_the_end(daemon, score);
     expect_the_channel_follows(pwm, channel, expected);
     EXPECT_EQ(daemon.stop_daemon(), 0) << daemon.daemon_log();

@@ -49,7 +49,8 @@ TEST(WrongUsage, EachEndsWithTheReadmesStatusAndAMessageNamingWhatIsWrong) {
         {"VIBSCORE",
          {"frobnicate"},
          2,
-         "vibscore: unknown command \"frobnicate\"; the commands are: check render convert info "
+         "vibscore: unknown command \"frobnicate\"; the commands are: check render convert clef "
+         "info "
          "play stop "
          "list get compose delete drivers driver show assign edit"},
         {"VIBSCORE",
@@ -57,7 +58,7 @@ TEST(WrongUsage, EachEndsWithTheReadmesStatusAndAMessageNamingWhatIsWrong) {
          2,
          "vibscore: unknown command \"lsit\" (did you mean list?); the commands are: check render "
          "convert "
-         "info play stop list get compose delete drivers driver show assign edit"},
+         "clef info play stop list get compose delete drivers driver show assign edit"},
         {"VIBSCORE",
          {"play", "x", "--usage", "bogus"},
          2,

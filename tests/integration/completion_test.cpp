@@ -95,6 +95,14 @@ TEST_F(Completion, OffersEveryAliasAndTheClefsFolderOption) {
     EXPECT_EQ(complete("vibscore check --c"), "--clefs\n");
 }
 
+TEST_F(Completion, OffersClefFitItsOptionsAndTheDaemonsClefs) {
+    EXPECT_EQ(complete("vibscore cle"), "clef\n");
+    EXPECT_EQ(complete("vibscore clef "), "fit\n");
+    EXPECT_THAT(complete("vibscore clef fit lra-"), HasSubstr("lra-phone\n"));
+    EXPECT_EQ(complete("vibscore clef fit lra-phone --o"), "--output\n");
+    EXPECT_THAT(complete("vibscore clef fit lra-phone --actuator dae"), HasSubstr("daemon\n"));
+}
+
 TEST_F(Completion, WorksForTheClientInTheBuildTreeNotOnPath) {
     const std::string built = client.string();
     EXPECT_EQ(complete(built + " driver tr", false), "trace\n");

@@ -6,6 +6,7 @@
 
 #include <unistd.h>
 
+#include <chrono>
 #include <csignal>
 #include <fstream>
 
@@ -90,6 +91,37 @@ TEST(DriverModules, AModuleThatCrashesInApplyKillsTheDaemonOnceAndTheRestartRuns
     EXPECT_EQ(daemon.stop_daemon(), 0);
     daemon.start_daemon();
     EXPECT_EQ(property(daemon, "Driver"), "s \"segv\"\n");
+}
+
+TEST(DriverModules, AModuleStuckInApplyCostsCallersTheDeviceErrorNotTheBus) {
+    ModulesDir modules;
+    modules.add("stall");
+    DaemonFixture daemon{drivers_dir_line(modules)};
+    daemon.write_config(drivers_dir_line(modules) + "driver = stall",
+                        "trace = " + daemon.trace().string());
+    EXPECT_EQ(daemon.stop_daemon(), 0);
+    daemon.start_daemon();
+    ASSERT_EQ(property(daemon, "Driver"), "s \"stall\"\n");
+
+    // The first cue goes to the module on the playback thread, which never comes back from it.
+    daemon.call({"Play", "sa{sv}", "ringtone", "0"});
+    const auto asked = std::chrono::steady_clock::now();
+    const auto stopped = daemon.call({"StopAll"});
+    const auto waited = std::chrono::steady_clock::now() - asked;
+    EXPECT_NE(stopped.exit_code, 0);
+    EXPECT_THAT(stopped.err, HasSubstr("the playback thread is still stuck"));
+    // Bounded by the daemon's call timeout (2 s), not by the module; the bound here is loose
+    // because the sanitizer builds and a loaded CI machine are slow.
+    EXPECT_LT(waited, std::chrono::seconds(15));
+
+    // What needs no actuator still answers, at once, for anyone.
+    const auto listed = daemon.call({"List", "s", "score"}, kNobody);
+    EXPECT_EQ(listed.exit_code, 0) << listed.err;
+    EXPECT_THAT(listed.out, HasSubstr("\"ringtone\""));
+
+    // SIGTERM ends the daemon although its playback thread never will.
+    EXPECT_NE(daemon.stop_daemon(), 0);
+    EXPECT_THAT(daemon.daemon_log(), HasSubstr("stopping"));
 }
 
 TEST(DriverModules, ListingTheDriversLoadsNoModule) {

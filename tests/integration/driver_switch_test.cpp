@@ -113,7 +113,9 @@ TEST_F(DriverSwitch, TheClientListsAndSwitchesDrivers) {
     EXPECT_EQ(switched.out,
               "driver trace: amplitude-control frequency-control\nswitched at run time "
               "(SwitchDriver, vibscore driver trace); a reload or a restart returns to the "
-              "configuration's driver = sim\n");
+              "configuration's driver = sim\n"
+              "actuator: none declared: strengths play as written ([actuator] in vibscored.conf, "
+              "docs/drivers.md)\n");
     const auto unknown = testing::run_command({vibscore, "driver", "piezo"});
     EXPECT_EQ(unknown.exit_code, 1);
     EXPECT_EQ(unknown.err,
@@ -127,7 +129,11 @@ TEST_F(DriverSwitch, TheClientSaysWhyTheDriverRunsAndWhenItIsAlreadyInUse) {
     EXPECT_EQ(shown.exit_code, 0) << shown.err;
     // The reason names the line of the file that says so.
     const std::string configured = "configured at " + daemon.config().string() + ":2: driver = sim";
-    EXPECT_EQ(shown.out, "driver sim: amplitude-control frequency-control\n" + configured + "\n");
+    const std::string undeclared =
+        "actuator: none declared: strengths play as written ([actuator] in vibscored.conf, "
+        "docs/drivers.md)\n";
+    EXPECT_EQ(shown.out,
+              "driver sim: amplitude-control frequency-control\n" + configured + "\n" + undeclared);
     EXPECT_EQ(property("DriverReason"), "s \"" + configured + "\"\n");
     // Switching to the driver in use would only end what plays and reopen it: it says so.
     auto client = daemon.client();
@@ -138,7 +144,7 @@ TEST_F(DriverSwitch, TheClientSaysWhyTheDriverRunsAndWhenItIsAlreadyInUse) {
     EXPECT_EQ(same.out,
               "driver sim is already in use; nothing changed\ndriver sim: amplitude-control "
               "frequency-control\n" +
-                  configured + "\n");
+                  configured + "\n" + undeclared);
     std::string reason;
     EXPECT_FALSE(client->wait_finished(ringing, &reason, std::chrono::milliseconds(300))) << reason;
     EXPECT_THAT(daemon.daemon_log(), ::testing::Not(HasSubstr("driver is now")));

@@ -202,6 +202,30 @@ TEST_F(ActuatorHostTest, FollowingTheConfigurationSwitchesOnlyWhenWhatRunsDiffer
     EXPECT_FALSE(host->follow_config());
 }
 
+TEST_F(ActuatorHostTest, ADeclarationChangeReopensOnlyTheSimWhichSimulatesIt) {
+    config.driver_settings["sim"] = {};
+    start();
+    actuator::Declaration board;
+    board.kind = actuator::Kind::erm;
+    board.brake = actuator::Brake::reverse;
+    config.actuator = board;
+    EXPECT_TRUE(host->follow_config());  // the sim is made of the declaration
+    EXPECT_TRUE(host->capabilities().reverse);
+    EXPECT_FALSE(host->follow_config());
+
+    config.driver = "timed-output";
+    EXPECT_TRUE(host->follow_config());
+    player->play(endless());
+    const int announced = changes;
+    config.actuator->rated_drive = 0.6;  // the board's vibra is whatever it is
+    EXPECT_FALSE(host->follow_config());
+    EXPECT_TRUE(player->current_id().has_value()) << "the backend was not reopened";
+    EXPECT_EQ(changes, announced + 1) << "the new declaration is announced";
+    EXPECT_EQ(host->declaration(), config.actuator);
+    EXPECT_FALSE(host->follow_config());
+    EXPECT_EQ(changes, announced + 1);
+}
+
 TEST_F(ActuatorHostTest, AfterASwitchOverTheBusAReloadReturnsToTheConfiguredDriver) {
     start();
     host->switch_to("timed-output");

@@ -191,6 +191,35 @@ TEST(Config, AnUnknownSectionIsAWarningWithItsLineAndTheClosestName) {
     EXPECT_THAT(unknown_sections(config, {"sim", "led-vibrater", "zzzzzz"}), ::testing::IsEmpty());
 }
 
+TEST(Config, TheActuatorIsDeclaredInItsOwnSection) {
+    EXPECT_FALSE(parse_config("[daemon]\ndriver = sim\n", "t.conf").actuator);
+    const auto config = parse_config(
+        "[daemon]\ndriver = gpio-erm\n"
+        "[actuator]\nkind = erm\nrated-drive = 0.7\nspin-up-ms = 40\nspin-down-ms = 80\n"
+        "brake = reverse\ncompensation = on\n",
+        "t.conf");
+    ASSERT_TRUE(config.actuator);
+    EXPECT_EQ(config.actuator->kind, actuator::Kind::erm);
+    EXPECT_EQ(config.actuator->rated_drive, 0.7);
+    EXPECT_EQ(config.actuator->brake, actuator::Brake::reverse);
+    // A section of the service, not a driver's: no warning.
+    EXPECT_THAT(unknown_sections(config, {"sim", "gpio-erm"}), ::testing::IsEmpty());
+}
+
+TEST(Config, AnActuatorErrorNamesTheFileLineKeyAndValue) {
+    EXPECT_EQ(config_error("[actuator]\nkind = lra\nq = 0\n"),
+              "test.conf:3: [actuator] q = \"0\": expected a number from 1 to 500");
+    EXPECT_EQ(config_error("[daemon]\n\n[actuator]\nrated-drive = 0.7\n"),
+              "test.conf:3: [actuator] needs kind = erm or lra");
+    EXPECT_THAT(config_error("[actuator]\nkind = erm\nq = 15\n"),
+                StartsWith("test.conf:3: [actuator] q = \"15\" is for kind = lra"));
+    EXPECT_THAT(config_error("[actuator]\nkind = erm\nbrakes = reverse\n"),
+                StartsWith("test.conf:3: unknown key \"brakes\" in [actuator] (did you mean "
+                           "brake?)"));
+    EXPECT_EQ(config_error("[actuator]\nkind = erm\nbrake =\n"),
+              "test.conf:3: [actuator] brake has no value");
+}
+
 TEST(Config, ADirectoryIsNotAConfigurationFile) {
     vibscore::testing::TempDir dir;
     try {

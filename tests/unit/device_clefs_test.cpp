@@ -10,7 +10,9 @@
 #include "daemon/config.hpp"
 #include "daemon/device_clefs.hpp"
 #include "daemon/play_request.hpp"
+#include "daemon/render/clef_fit.hpp"
 #include "daemon/render/cue_schedule.hpp"
+#include "score/clef_xml.hpp"
 #include "tests/support/run_command.hpp"
 #include "tests/support/support.hpp"
 
@@ -166,6 +168,94 @@ TEST(DeviceClefsConfig, TheClefsSectionTakesRegistryNamesAndStarForAnyOther) {
                   "test.conf:2: [clefs] lra-phone = \"My-Clef\" is not a registry clef name "
                   "(a-z 0-9 . _ -)");
     }
+}
+
+// --- fit = auto ---
+
+const char* const kLra =
+    "[actuator]\nkind = lra\nresonance-hz = 175\nq = 15\nrated-drive = 0.7\nbrake = reverse\n";
+const char* const kErm =
+    "[actuator]\nkind = erm\nspin-up-ms = 40\nspin-down-ms = 80\nrated-drive = 0.7\n"
+    "brake = reverse\n";
+
+DeviceClefs fitting(const std::string& actuator, const std::string& lines = "") {
+    return parse_config(actuator + "[clefs]\nfit = auto\n" + lines, "test.conf").device_clefs;
+}
+
+TEST_F(DeviceClefsTest, FitAutoPlaysEachWrittenClefFittedToTheDeclaredActuator) {
+    const auto map = fitting(kLra);
+    ASSERT_TRUE(map.fit_to);
+    const auto found = find_score_to_play(registry, "success", with_clef(), map);
+    const Clef expected = render::fit_clef(registry.clef("lra-phone"), *map.fit_to).clef;
+    EXPECT_EQ(found.bundle.clefs.at("lra"), expected);
+    EXPECT_EQ(expected.type, ClefType::line);  // the LRA's band is too narrow: roughness
+    for (const auto& bar : bar_clefs(registry.score("success"), map)) {
+        EXPECT_EQ(bar, (BarClef{"lra-phone", "lra-phone (fitted)"}));
+    }
+    EXPECT_EQ(describe(map), "fit = auto (every other clef fitted to the actuator)");
+}
+
+TEST_F(DeviceClefsTest, AnExplicitMapWinsOverFitting) {
+    const auto map = fitting(kLra, "lra-phone = erm-phone\n");
+    const auto found = find_score_to_play(registry, "success", with_clef(), map);
+    EXPECT_EQ(found.bundle.clefs.at("lra"), registry.clef("erm-phone"));
+    EXPECT_EQ(bar_clefs(registry.score("success"), map).at(0), (BarClef{"lra-phone", "erm-phone"}));
+    // Another clef of the same score is still fitted.
+    const auto other = bar_clefs(registry.score("delete-folder"), map);
+    EXPECT_EQ(other.at(0), (BarClef{"shaker-sine-high", "shaker-sine-high (fitted)"}));
+    const auto star = fitting(kLra, "* = erm-phone\n");
+    EXPECT_FALSE(star.fits("lra-phone"));
+    EXPECT_EQ(find_score_to_play(registry, "success", with_clef(), star).bundle.clefs.at("lra"),
+              registry.clef("erm-phone"));
+}
+
+TEST_F(DeviceClefsTest, AClefSentAlongIsFittedToo) {
+    const auto mine = vibscore::testing::sine_clef(0.5, {60, 80, 100, 120, 140, 160},
+                                                   {0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9});
+    auto score = vibscore::testing::read_file(shipped / "delete-folder.score.xml");
+    const std::string high = "href=\"shaker-sine-high.clef.xml\"";
+    score.replace(score.find(high), high.size(), "href=\"clefs/mine.clef.xml\"");
+    PlayOptions options;
+    options.clef_documents["clefs/mine.clef.xml"] = mine;
+    const auto map = fitting(kErm);
+    const auto found = find_score_to_play(registry, score, options, map);
+    EXPECT_EQ(found.bundle.clef_of(found.bundle.score.bars[0]),
+              render::fit_clef(read_clef(mine, "mine"), *map.fit_to).clef);
+}
+
+TEST(DeviceClefsConfig, FitTakesAutoOrOffAndNeedsADeclaredActuator) {
+    EXPECT_FALSE(
+        parse_config(std::string(kLra) + "[clefs]\nfit = off\n", "t.conf").device_clefs.fit_to);
+    EXPECT_FALSE(parse_config(kLra, "t.conf").device_clefs.fit_to);
+    try {
+        parse_config(std::string(kLra) + "[clefs]\nfit = yes\n", "t.conf");
+        FAIL() << "accepted";
+    } catch (const ConfigError& error) {
+        EXPECT_EQ(std::string(error.what()),
+                  "t.conf:8: [clefs] fit = \"yes\" is neither auto nor off");
+    }
+    try {
+        parse_config("[clefs]\nfit = auto\n", "t.conf");
+        FAIL() << "accepted";
+    } catch (const ConfigError& error) {
+        EXPECT_EQ(std::string(error.what()),
+                  "t.conf:2: [clefs] fit = auto needs an [actuator] section to fit to");
+    }
+    // The [actuator] section may come after [clefs].
+    EXPECT_TRUE(
+        parse_config("[clefs]\nfit = auto\n" + std::string(kErm), "t.conf").device_clefs.fit_to);
+}
+
+TEST_F(DeviceClefsTest, AReloadedActuatorRefitsTheClefs) {
+    DaemonConfig running = parse_config(std::string(kLra) + "[clefs]\nfit = auto\n", "a.conf");
+    const auto on_lra = find_score_to_play(registry, "success", with_clef(), running.device_clefs);
+    const DaemonConfig fresh = parse_config(std::string(kErm) + "[clefs]\nfit = auto\n", "a.conf");
+    EXPECT_NE(fresh.device_clefs, running.device_clefs);
+    running = fresh;
+    const auto on_erm = find_score_to_play(registry, "success", with_clef(), running.device_clefs);
+    EXPECT_NE(on_lra.bundle.clefs.at("lra"), on_erm.bundle.clefs.at("lra"));
+    EXPECT_EQ(on_erm.bundle.clefs.at("lra"),
+              render::fit_clef(registry.clef("lra-phone"), *running.actuator).clef);
 }
 
 }  // namespace

@@ -180,6 +180,35 @@ TEST_F(EvdevActuatorTest, ZeroAmplitudeStopsInsteadOfUploading) {
     EXPECT_THAT(kernel->writes().back().events, ElementsAre(stop(id)));
 }
 
+TEST_F(EvdevActuatorTest, WithAntiPhaseANegativeDriveIsANegativeMagnitude) {
+    EXPECT_FALSE(make()->capabilities().reverse);  // off unless the device is known to honour it
+    settings.anti_phase = true;
+    auto actuator = make();
+    EXPECT_TRUE(actuator->capabilities().reverse);
+    actuator->apply({-1.0, 175.0});
+    actuator->apply({-0.5, 175.0});
+    const auto uploads = kernel->uploads();
+    ASSERT_EQ(uploads.size(), 2u);
+    EXPECT_EQ(uploads[0].effect.u.periodic.magnitude, -0x7fff);
+    EXPECT_EQ(uploads[1].effect.u.periodic.magnitude, -16384);
+    EXPECT_THAT(kernel->writes().back().events.back(), play(uploads[1].id));
+}
+
+TEST_F(EvdevActuatorTest, WithoutAntiPhaseANegativeDrivePlaysNothing) {
+    auto actuator = make();
+    actuator->apply({0.5, 100.0});
+    const int id = kernel->uploads().at(0).id;
+    actuator->apply({-0.5, 100.0});
+    EXPECT_EQ(kernel->uploads().size(), 1u);
+    EXPECT_THAT(kernel->writes().back().events, ElementsAre(stop(id)));
+}
+
+TEST_F(EvdevActuatorTest, RumbleDevicesHaveNoAntiPhase) {
+    rumble_only();
+    settings.anti_phase = true;
+    EXPECT_FALSE(make()->capabilities().reverse);
+}
+
 TEST_F(EvdevActuatorTest, RumbleOnlyDevice) {
     rumble_only();
     auto actuator = make();

@@ -72,6 +72,44 @@ TEST(ExternalDriver, AnOnOffModuleReportsNoAmplitudeControl) {
     EXPECT_FALSE(actuator->capabilities().amplitude_control);
 }
 
+TEST(ExternalDriver, AModuleThatReportsReverseDriveGetsNegativeAmplitudes) {
+    TempDir dir;
+    const auto trace = dir.path() / "t.log";
+    {
+        auto actuator = make_actuator("trace", {{"path", trace.string()}, {"reverse", "true"}},
+                                      example_drivers());
+        EXPECT_TRUE(actuator->capabilities().reverse);
+        actuator->apply({-1.0, 175.0});
+    }
+    EXPECT_THAT(commands(trace), ElementsAre("open", "apply -1.000000 175.000", "close"));
+}
+
+TEST(ExternalDriver, AModuleWithoutReverseDriveNeverSeesANegativeAmplitude) {
+    TempDir dir;
+    const auto trace = dir.path() / "t.log";
+    {
+        auto actuator = make_actuator("trace", {{"path", trace.string()}}, example_drivers());
+        EXPECT_FALSE(actuator->capabilities().reverse);
+        actuator->apply({-0.5, 175.0});
+    }
+    EXPECT_THAT(commands(trace), ElementsAre("open", "apply 0.000000 175.000", "close"));
+}
+
+TEST(ExternalDriver, AModuleBuiltForAbiVersion1StillLoadsAndIsNeverDrivenBackwards) {
+    TempDir dir;
+    const std::filesystem::path old_modules = testing::required_env("VIBSCORE_OLD_ABI_DRIVERS");
+    const auto trace = dir.path() / "old.log";
+    {
+        auto actuator = make_actuator("oldabi", {{"path", trace.string()}}, old_modules);
+        // It sets bit 5, which meant nothing in version 1.
+        EXPECT_FALSE(actuator->capabilities().reverse);
+        EXPECT_TRUE(actuator->capabilities().amplitude_control);
+        actuator->apply({-0.5, 0.0});
+        actuator->apply({0.25, 0.0});
+    }
+    EXPECT_EQ(testing::read_file(trace), "apply 0.000\napply 0.250\n");
+}
+
 TEST(ExternalDriver, TheModulesOwnMessageExplainsAFailedOpen) {
     EXPECT_THAT(
         [] {

@@ -4,13 +4,17 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <cmath>
 #include <map>
 #include <memory>
+#include <numbers>
 #include <stdexcept>
 #include <string>
 #include <thread>
 #include <vector>
 
+#include "daemon/drivers/drive_levels.hpp"
+#include "daemon/drivers/driver_settings.hpp"
 #include "tests/fakes/fake_gpio_lines.hpp"
 
 namespace vibscore::drivers {
@@ -50,12 +54,17 @@ TEST(ErmWaveform, ZeroIsOffAndFullIsSteadyHigh) {
     EXPECT_THAT(full.edges, ElementsAre(PwmEdge{0, {1, 1}}));
 }
 
-TEST(LraWaveform, AntiphaseHalvesWithDutyOfEachHalf) {
+TEST(LraWaveform, AntiphaseHalvesEachAPulseWhoseFundamentalIsTheAmplitude) {
+    // sin(pi d / 2) = 0.5: d = 1/3 of each 5 ms half.
     const auto waveform = lra_waveform(0.5, 100.0, false);
     EXPECT_EQ(waveform.period_ns, 10'000'000);
     EXPECT_THAT(waveform.edges,
-                ElementsAre(PwmEdge{0, {1, 0}}, PwmEdge{2'500'000, {0, 0}},
-                            PwmEdge{5'000'000, {0, 1}}, PwmEdge{7'500'000, {0, 0}}));
+                ElementsAre(PwmEdge{0, {1, 0}}, PwmEdge{1'666'667, {0, 0}},
+                            PwmEdge{5'000'000, {0, 1}}, PwmEdge{6'666'667, {0, 0}}));
+    EXPECT_DOUBLE_EQ(lra_pulse_share(0.5), 1.0 / 3.0);
+    EXPECT_DOUBLE_EQ(lra_pulse_share(-1.0), 1.0);
+    EXPECT_DOUBLE_EQ(lra_pulse_share(0.0), 0.0);
+    EXPECT_NEAR(std::sin(std::numbers::pi * lra_pulse_share(0.3) / 2.0), 0.3, 1e-12);
 }
 
 TEST(LraWaveform, FullDutyAlternatesWithoutAGap) {
@@ -71,6 +80,33 @@ TEST(LraWaveform, NeverBothHighAtAnyDuty) {
             EXPECT_EQ(edge.values[2], 1);
         }
         EXPECT_TRUE(step == 0 ? waveform == PwmWaveform{} : waveform.edges.size() >= 2);
+    }
+}
+
+TEST(ErmWaveform, BackwardsRaisesTheDirectionLineThroughout) {
+    const auto waveform = erm_waveform(-0.25, 1000.0, true, true);
+    EXPECT_THAT(waveform.edges, ElementsAre(PwmEdge{0, {1, 1, 1}}, PwmEdge{250'000, {0, 1, 1}}));
+    EXPECT_THAT(erm_waveform(0.25, 1000.0, false, true).edges,
+                ElementsAre(PwmEdge{0, {1, 0}}, PwmEdge{250'000, {0, 0}}));
+    EXPECT_THAT(erm_waveform(-1.0, 1000.0, false, true).edges, ElementsAre(PwmEdge{0, {1, 1}}));
+}
+
+TEST(ErmWaveform, WithoutADirectionLineBackwardsIsOff) {
+    EXPECT_EQ(erm_waveform(-0.5, 1000.0, true), PwmWaveform{});
+    EXPECT_EQ(erm_waveform(-1e-12, 1000.0, true, true), PwmWaveform{});
+}
+
+TEST(LraWaveform, AntiPhaseIsTheSameDriveHalfAPeriodOn) {
+    const auto waveform = lra_waveform(-0.5, 100.0, false);
+    EXPECT_THAT(waveform.edges,
+                ElementsAre(PwmEdge{0, {0, 1}}, PwmEdge{1'666'667, {0, 0}},
+                            PwmEdge{5'000'000, {1, 0}}, PwmEdge{6'666'667, {0, 0}}));
+    EXPECT_THAT(lra_waveform(-1.0, 200.0, true).edges,
+                ElementsAre(PwmEdge{0, {0, 1, 1}}, PwmEdge{2'500'000, {1, 0, 1}}));
+    for (int step = 1; step <= 100; ++step) {
+        for (const auto& edge : lra_waveform(-step / 100.0, 175.0, false).edges) {
+            EXPECT_FALSE(edge.values[0] == 1 && edge.values[1] == 1) << "duty " << step;
+        }
     }
 }
 
@@ -121,6 +157,25 @@ TEST_F(GpioSettingsTest, LraControlsAmplitudeAndFrequency) {
     EXPECT_EQ(lra->driver_name(), "gpio-lra");
     EXPECT_TRUE(lra->capabilities().amplitude_control);
     EXPECT_TRUE(lra->capabilities().frequency_control);
+    EXPECT_TRUE(lra->capabilities().reverse);  // its H-bridge drives in anti-phase
+}
+
+TEST_F(GpioSettingsTest, AnErmDrivesBackwardsOnlyWithADirectionLineAfterItsMotorLine) {
+    EXPECT_FALSE(make_gpio_erm_actuator({{"line", "4"}}, opener())->capabilities().reverse);
+    const auto erm = make_gpio_erm_actuator(
+        {{"line", "4"}, {"direction-line", "5"}, {"enable-line", "9"}}, opener());
+    EXPECT_TRUE(erm->capabilities().reverse);
+    EXPECT_THAT(opened.back().offsets, ElementsAre(4u, 5u, 9u));
+    try {
+        make_gpio_erm_actuator({{"line", "4"}, {"direction-line", "4"}}, opener());
+        ADD_FAILURE() << "one line twice";
+    } catch (const SettingError& error) {
+        EXPECT_EQ(error.key(), "direction-line");
+    }
+    // gpio-lra's lines already are an H-bridge: no direction line there.
+    EXPECT_THROW(make_gpio_lra_actuator({{"line-a", "1"}, {"line-b", "2"}, {"direction-line", "3"}},
+                                        opener()),
+                 SettingError);
 }
 
 TEST_F(GpioSettingsTest, BadSettingsNameTheKey) {
@@ -295,9 +350,34 @@ TEST(GpioLra, AntiphaseNeverBothHighAndEachLineHalfTheDuty) {
             EXPECT_EQ(values[2], 1) << "enable while driving, record " << i;
         }
     }
+    // Each line high for (2/pi) asin(0.6) = 0.41 of its half period: 0.2 of the period.
     const auto measured = records_since(*gpio, from);
-    EXPECT_NEAR(median_duty(measured, 0), 0.3, kDutyTolerance);
-    EXPECT_NEAR(median_duty(measured, 1), 0.3, kDutyTolerance);
+    const double share = lra_pulse_share(0.6) / 2.0;
+    EXPECT_NEAR(median_duty(measured, 0), share, kDutyTolerance);
+    EXPECT_NEAR(median_duty(measured, 1), share, kDutyTolerance);
+}
+
+TEST(GpioErm, DrivenBackwardsTheDirectionLineIsHighWhileTheMotorLinePulses) {
+    auto gpio = std::make_shared<FakeGpio>();
+    GpioPwmSettings settings = erm_settings(200.0, false);
+    settings.direction_line = true;
+    GpioPwmActuator erm(settings, gpio->lines({17, 18}));
+    erm.apply({-0.5});
+    ASSERT_TRUE(wait_for_rises(*gpio, 0, 3));
+    erm.off();
+    ASSERT_TRUE(gpio->wait_until(ends_low));
+    const auto records = gpio->records();
+    for (std::size_t i = 0; i + 1 < records.size(); ++i) {
+        EXPECT_EQ(records[i].values[1], 1) << "record " << i;
+    }
+}
+
+TEST(GpioLra, AntiPhaseStartsWithLineB) {
+    auto gpio = std::make_shared<FakeGpio>();
+    GpioPwmActuator lra(lra_settings(50.0, false), gpio->lines({1, 2}));
+    lra.apply({-1.0});
+    ASSERT_TRUE(gpio->wait_for_records(1));
+    EXPECT_EQ(gpio->records().front().values, (std::vector<int>{0, 1}));
 }
 
 TEST(GpioLra, FrequencyComesFromTheDriveOrTheResonance) {

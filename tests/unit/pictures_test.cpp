@@ -1,7 +1,8 @@
 // The staff and signal pictures: SVG that parses with one note head per note (as cairo 1.16 and
 // 1.18 each write it), PNG of the expected size with ink where the notes are, no two kinds of
 // ink in one place that should be apart, and thesis Fig. 2.3a's first measure and the README's
-// pictures against committed golden images, compared by what they show on any cairo version.
+// pictures against committed golden images, compared by what they show on any cairo version;
+// the picture of what a declared actuator makes of a score (render --actuator) likewise.
 #include <gtest/gtest.h>
 #include <pugixml.hpp>
 
@@ -16,8 +17,11 @@
 
 #include "client/formats/rtttl.hpp"
 #include "client/pictures/clef_picture.hpp"
+#include "client/pictures/response_picture.hpp"
 #include "client/pictures/signal_picture.hpp"
 #include "client/pictures/staff_picture.hpp"
+#include "daemon/config.hpp"
+#include "daemon/render/actuator_response.hpp"
 #include "daemon/render/waveform.hpp"
 #include "score/bundle.hpp"
 #include "tests/support/run_command.hpp"
@@ -28,6 +32,7 @@ namespace vibscore {
 namespace {
 
 using pictures::Layers;
+using pictures::ResponsePicture;
 using pictures::SignalPicture;
 using pictures::StaffPicture;
 using testing::Image;
@@ -322,6 +327,7 @@ struct PictureCommand {
     std::string line;
     std::vector<std::string> words;  // after "vibscore"
     std::string document, picture;   // the document drawn, and the picture written
+    std::string actuator;            // render --actuator FILE: the file declaring it
 };
 
 std::vector<PictureCommand> documented_picture_commands(const std::filesystem::path& root) {
@@ -333,7 +339,7 @@ std::vector<PictureCommand> documented_picture_commands(const std::filesystem::p
             if (at == std::string::npos || line.find("--png docs/pictures/") == std::string::npos) {
                 continue;
             }
-            PictureCommand command{line, {}, {}, {}};
+            PictureCommand command{line, {}, {}, {}, {}};
             std::istringstream words(
                 line.substr(at + std::string("build/client/vibscore ").size()));
             for (std::string word; words >> word && word != "#";) {
@@ -342,6 +348,8 @@ std::vector<PictureCommand> documented_picture_commands(const std::filesystem::p
             for (std::size_t w = 1; w < command.words.size(); ++w) {
                 if (command.words[w] == "--png" && w + 1 < command.words.size()) {
                     command.picture = command.words[++w];
+                } else if (command.words[w] == "--actuator" && w + 1 < command.words.size()) {
+                    command.actuator = command.words[++w];
                 } else if (command.words[w].starts_with("--")) {
                     ++w;  // an option's value
                 } else if (command.document.empty()) {
@@ -363,11 +371,33 @@ struct InProcess {
     std::unique_ptr<pictures::Drawing> picture;
 };
 
+// What `render --actuator` draws, as its client does: the declaration's brake says whether the
+// board can drive backwards, and the response is sampled at 1 kHz.
+std::unique_ptr<ResponsePicture> response_picture(const render::Performance& performance,
+                                                  const actuator::Declaration& declared,
+                                                  const std::string& title) {
+    render::ResponseOptions options;
+    options.rate_hz = 1000.0;
+    options.reverse = declared.brake == actuator::Brake::reverse;
+    return std::make_unique<ResponsePicture>(
+        performance, render::actuator_response(performance, declared, options), title,
+        "on the actuator: " + actuator::describe(declared));
+}
+
 std::unique_ptr<InProcess> draw_in_process(const std::string& verb,
-                                           const std::filesystem::path& document) {
+                                           const std::filesystem::path& document,
+                                           const std::filesystem::path& actuator_file = {}) {
     auto drawn = std::make_unique<InProcess>();
     const auto text = read_document_file(document);
-    if (verb == "render") {
+    if (verb == "render" && !actuator_file.empty()) {
+        drawn->bundle = load_score_file(document);
+        drawn->performance.emplace(*drawn->bundle);
+        const auto declared = daemon::load_config(actuator_file).actuator;
+        EXPECT_TRUE(declared) << actuator_file << " declares no actuator";
+        drawn->picture =
+            response_picture(*drawn->performance, declared.value_or(actuator::Declaration{}),
+                             drawn->bundle->score.title);
+    } else if (verb == "render") {
         drawn->bundle = load_score_file(document);
         drawn->performance.emplace(*drawn->bundle);
         drawn->picture =
@@ -388,7 +418,8 @@ TEST(Pictures, EveryPictureInTheDocsIsWhatItsCommandDraws) {
     TempDir dir;
     const auto root = shipped("..");
     const auto commands = documented_picture_commands(root);
-    ASSERT_GE(commands.size(), 3u);  // the README's staff and signal, the docs' clef
+    // The README's staff and signal, the docs' clef and a tacton on the feel issue's ERM.
+    ASSERT_GE(commands.size(), 4u);
     for (const auto& command : commands) {
         SCOPED_TRACE(command.line);
         std::vector<std::string> argv{testing::required_env("VIBSCORE")};
@@ -400,7 +431,9 @@ TEST(Pictures, EveryPictureInTheDocsIsWhatItsCommandDraws) {
         }
         const auto result = testing::run_command(argv);
         ASSERT_EQ(result.exit_code, 0) << result.err;
-        const auto in_process = draw_in_process(command.words.at(0), root / command.document);
+        const auto in_process = draw_in_process(
+            command.words.at(0), root / command.document,
+            command.actuator.empty() ? std::filesystem::path() : root / command.actuator);
         EXPECT_EQ(differences(root / command.picture, Image::read_png(dir.path() / "drawn.png"),
                               testing::GoldenCheck(*in_process->picture)),
                   "");
@@ -754,6 +787,202 @@ TEST(SignalPicture, NumbersEachBarWithinItsOwnWidth) {
     for (std::size_t bar = 14; bar < 74; ++bar) {
         EXPECT_FALSE(labelled(bar)) << "bar " << bar + 1;  // 4 pixels wide
     }
+}
+
+// --- Actuator response ---------------------------------------------------------------------
+
+// The feel issue's ERM (issue 22): spin-up 40 ms, spin-down 80 ms, rated-drive 0.7, braked by
+// reverse drive.
+actuator::Declaration issue_erm() {
+    actuator::Declaration erm;
+    erm.kind = actuator::Kind::erm;
+    erm.spin_up_s = 0.040;
+    erm.spin_down_s = 0.080;
+    erm.rated_drive = 0.7;
+    erm.brake = actuator::Brake::reverse;
+    return erm;
+}
+
+render::ActuatorResponse response_of(const render::Performance& performance,
+                                     const actuator::Declaration& declared) {
+    render::ResponseOptions options;
+    options.reverse = declared.brake == actuator::Brake::reverse;
+    return render::actuator_response(performance, declared, options);
+}
+
+// The docs' picture of a tacton on that ERM (docs/drivers.md).
+constexpr const char* kResponseDocScore = "notification-message.score.xml";
+constexpr const char* kResponseDocPicture = "notification-message-on-erm.png";
+
+// One score and the picture of what an actuator makes of it, kept together.
+struct Felt {
+    ScoreBundle bundle;
+    render::Performance performance{bundle};
+    render::ActuatorResponse response;
+    ResponsePicture picture;
+    Felt(ScoreBundle b, const actuator::Declaration& declared, const std::string& title)
+        : bundle(std::move(b)),
+          response(response_of(performance, declared)),
+          picture(performance, response, title,
+                  "on the actuator: " + actuator::describe(declared)) {}
+};
+
+const std::vector<NamedLayer> kResponseLayers{
+    {ResponsePicture::title, "the title"},
+    {ResponsePicture::caption, "the caption"},
+    {ResponsePicture::legend, "the legend's lines"},
+    {ResponsePicture::legend_text, "the legend's text"},
+    {ResponsePicture::frame, "the frame and ticks"},
+    {ResponsePicture::axis_labels, "the axis labels"},
+    {ResponsePicture::bar_boundaries, "the bar boundaries"},
+    {ResponsePicture::written, "the written strength"},
+    {ResponsePicture::uncompensated, "the uncompensated strength"},
+    {ResponsePicture::compensated, "the compensated strength"},
+};
+
+// The traces run together where the actuator follows the score, and across the bar lines; all
+// of them start and end on the frame.
+const std::set<std::pair<Layers, Layers>> kResponseMayMeet{
+    {ResponsePicture::frame, ResponsePicture::bar_boundaries},
+    {ResponsePicture::frame, ResponsePicture::written},
+    {ResponsePicture::frame, ResponsePicture::uncompensated},
+    {ResponsePicture::frame, ResponsePicture::compensated},
+    {ResponsePicture::written, ResponsePicture::uncompensated},
+    {ResponsePicture::written, ResponsePicture::compensated},
+    {ResponsePicture::uncompensated, ResponsePicture::compensated},
+    {ResponsePicture::bar_boundaries, ResponsePicture::written},
+    {ResponsePicture::bar_boundaries, ResponsePicture::uncompensated},
+    {ResponsePicture::bar_boundaries, ResponsePicture::compensated},
+};
+
+// How much ink of `layer` lies within `radius` pixels of where strength s is drawn at time t.
+int ink_near(const Image& ink, const ResponsePicture& picture, double t, double s, int radius = 1) {
+    int total = 0;
+    const int x = static_cast<int>(std::lround(picture.x_of(t)));
+    const int y = static_cast<int>(std::lround(picture.y_of(s)));
+    for (int dx = -radius; dx <= radius; ++dx) {
+        for (int dy = -radius; dy <= radius; ++dy) {
+            total += ink.at(x + dx, y + dy).a;
+        }
+    }
+    return total;
+}
+
+TEST(ResponsePicture, DrawsEachStrengthWhereItIsInItsOwnLayer) {
+    const Felt felt(load_score_file(shipped("alarm.score.xml")), issue_erm(), "alarm");
+    const auto& picture = felt.picture;
+    EXPECT_EQ(Image::of(picture).width(), 960);
+    EXPECT_EQ(Image::of(picture).height(), 340);
+    const struct {
+        ResponsePicture::Layer layer;
+        const std::vector<double>& values;
+    } traces[] = {{ResponsePicture::written, felt.response.written},
+                  {ResponsePicture::uncompensated, felt.response.uncompensated},
+                  {ResponsePicture::compensated, felt.response.compensated}};
+    for (const auto& trace : traces) {
+        const auto ink = Image::ink_of(picture, trace.layer);
+        // Every 50 ms, the trace passes where its strength is.
+        for (std::size_t k = 0; k < trace.values.size(); k += 50) {
+            const double t = static_cast<double>(k) / felt.response.rate_hz;
+            EXPECT_GT(ink_near(ink, picture, t, trace.values[k], 2), 0)
+                << "layer " << trace.layer << " at " << t << " s";
+        }
+    }
+    // The picture shows the ringing after the score, and strength 1 (the rated drive) fits.
+    EXPECT_GT(picture.span(), felt.performance.duration() + 0.25);
+    EXPECT_GT(picture.top(), 1.0);
+}
+
+TEST(ResponsePicture, ShowsTheUncompensatedErmRingingOnWhereTheCompensatedOneStops) {
+    const Felt felt(load_score_file(shipped(kResponseDocScore)), issue_erm(), "message");
+    const double at = felt.performance.duration() + 0.04;
+    const auto off = Image::ink_of(felt.picture, ResponsePicture::uncompensated);
+    const auto on = Image::ink_of(felt.picture, ResponsePicture::compensated);
+    // 40 ms after the end the coasting motor is still felt; the braked one is at rest.
+    const auto k = static_cast<std::size_t>(std::lround(at * felt.response.rate_hz));
+    ASSERT_GT(felt.response.uncompensated.at(k), 0.08);
+    ASSERT_LT(felt.response.compensated.at(k), 0.01);
+    EXPECT_GT(ink_near(off, felt.picture, at, felt.response.uncompensated[k]), 0);
+    EXPECT_EQ(ink_near(on, felt.picture, at, felt.response.uncompensated[k]), 0);
+    EXPECT_GT(ink_near(on, felt.picture, at, 0.0), 0);
+}
+
+// Pixels of `image` within a few levels of `ink`.
+int pixels_of(const Image& image, const double* ink) {
+    int count = 0;
+    for (int x = 0; x < image.width(); ++x) {
+        for (int y = 0; y < image.height(); ++y) {
+            const auto pixel = image.at(x, y);
+            const auto near = [](int level, double share) {
+                return std::abs(level - static_cast<int>(std::lround(share * 255))) <= 8;
+            };
+            count += near(pixel.r, ink[0]) && near(pixel.g, ink[1]) && near(pixel.b, ink[2]);
+        }
+    }
+    return count;
+}
+
+TEST(ResponsePicture, TellsTheThreeTracesApartByColourAndTheLegendShowsEach) {
+    const Felt felt(load_score_file(shipped("alarm.score.xml")), issue_erm(), "alarm");
+    const double* inks[] = {ResponsePicture::written_ink, ResponsePicture::uncompensated_ink,
+                            ResponsePicture::compensated_ink};
+    const ResponsePicture::Layer traces[] = {
+        ResponsePicture::written, ResponsePicture::uncompensated, ResponsePicture::compensated};
+    const auto legend = Image::of(felt.picture, ResponsePicture::legend);
+    for (std::size_t i = 0; i < 3; ++i) {
+        const double* ink = inks[i];
+        // Its line in the legend, and its trace in the plot, in its colour and no other's.
+        EXPECT_GE(pixels_of(legend, ink), 10) << "trace " << i;
+        EXPECT_GE(pixels_of(Image::of(felt.picture, traces[i]), ink), 100) << "trace " << i;
+        for (std::size_t j = 0; j < 3; ++j) {
+            if (j != i) {
+                EXPECT_EQ(pixels_of(Image::of(felt.picture, traces[i]), inks[j]), 0)
+                    << "trace " << i << " in the colour of " << j;
+            }
+        }
+    }
+}
+
+TEST(ResponsePicture, KeepsEveryMarkApart) {
+    actuator::Declaration lra;
+    lra.kind = actuator::Kind::lra;
+    lra.resonance_hz = 175;
+    lra.q = 15;
+    lra.rated_drive = 0.7;
+    lra.brake = actuator::Brake::reverse;
+    Layers inked = 0;
+    {
+        const Felt felt(load_score_file(shipped("alarm.score.xml")), issue_erm(), "alarm");
+        inked |= expect_apart(felt.picture, kResponseLayers, kResponseMayMeet);
+    }
+    {
+        const Felt felt(load_score_file(shipped("ode-to-joy.score.xml")), lra,
+                        "A title so long that it would run into the legend at the top right of "
+                        "the picture unless it were cut short");
+        inked |= expect_apart(felt.picture, kResponseLayers, kResponseMayMeet);
+    }
+    expect_every_layer_checked(inked, kResponseLayers);
+}
+
+TEST(GoldenComparison, FailsWhenTheCompensatedStrengthMovesOrVanishes) {
+    const auto golden_png = shipped("..") / "docs" / "pictures" / kResponseDocPicture;
+    const Felt felt(load_score_file(shipped(kResponseDocScore)), issue_erm(),
+                    load_score_file(shipped(kResponseDocScore)).score.title);
+    const auto drawn = Image::of(felt.picture);
+    const testing::GoldenCheck check(felt.picture);
+    ASSERT_EQ(differences(golden_png, drawn, check), "");
+    const Window plot{static_cast<int>(felt.picture.x_of(0.0)) + 2,
+                      static_cast<int>(felt.picture.y_of(felt.picture.top())) + 2,
+                      static_cast<int>(felt.picture.x_of(felt.picture.span())) - 2,
+                      static_cast<int>(felt.picture.y_of(0.0)) - 2};
+    EXPECT_NE(differences(golden_png, moved(drawn, plot, 1, 0), check), "");
+    EXPECT_NE(differences(golden_png,
+                          patched(drawn,
+                                  Image::of(felt.picture,
+                                            pictures::all_layers & ~ResponsePicture::compensated),
+                                  plot),
+                          check),
+              "");
 }
 
 // --- Clef ----------------------------------------------------------------------------------

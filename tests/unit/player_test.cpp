@@ -1,3 +1,4 @@
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <gmock/gmock.h>
@@ -449,6 +450,65 @@ TEST_F(PlayerTest, AnOnOffActuatorFeelsStrengthAsPulseWidth) {
         }
     }
     EXPECT_EQ(on_starts.size(), 5u);
+}
+
+// [actuator]: an ERM rated at 0.7 of full scale that may be braked backwards.
+actuator::Declaration rated_erm(bool compensation) {
+    actuator::Declaration declared;
+    declared.kind = actuator::Kind::erm;
+    declared.rated_drive = 0.7;
+    declared.brake = actuator::Brake::reverse;
+    declared.compensation = compensation;
+    return declared;
+}
+
+PlaybackRequest one_note() {
+    auto note = request();
+    note.cues = cue_list({drive(0, 1.0), drive(0.1, 0)});
+    note.duration_s = 0.1;
+    return note;
+}
+
+std::vector<double> amplitudes(const std::vector<Applied>& applied) {
+    std::vector<double> values;
+    for (const auto& a : applied) {
+        values.push_back(a.drive.amplitude);
+    }
+    return values;
+}
+
+TEST_F(PlayerTest, ADeclaredActuatorIsOverdrivenHeldAndBrakedWhereItCan) {
+    actuator.capabilities_ = {.reverse = true};
+    player.set_actuator(rated_erm(true));
+    actuator.applied.clear();
+    player.play(one_note());
+    loop.run();
+    // Full scale, the rated drive, full scale backwards, off (and off again at the end).
+    EXPECT_THAT(amplitudes(actuator.applied), ::testing::ElementsAre(1.0, 0.7, -1.0, 0.0, 0.0));
+}
+
+TEST_F(PlayerTest, ABackendThatCannotReverseIsNeverDrivenBackwards) {
+    player.set_actuator(rated_erm(true));
+    actuator.applied.clear();
+    player.play(one_note());
+    loop.run();
+    for (const double amplitude : amplitudes(actuator.applied)) {
+        EXPECT_GE(amplitude, 0.0);
+    }
+    EXPECT_EQ(actuator.applied.front().drive.amplitude, 1.0);
+}
+
+TEST_F(PlayerTest, WithADeclarationStrengthOneIsTheRatedDriveAndIntensityScalesIt) {
+    player.set_actuator(rated_erm(false));
+    actuator.applied.clear();
+    auto soft = one_note();
+    soft.intensity = 0.5;
+    player.play(soft);
+    EXPECT_DOUBLE_EQ(actuator.applied[0].drive.amplitude, 0.35);
+    player.stop(0, 1000, false);
+    player.set_actuator(std::nullopt);  // as written again
+    player.play(one_note());
+    EXPECT_DOUBLE_EQ(actuator.applied.back().drive.amplitude, 1.0);
 }
 
 TEST_F(PlayerTest, AGainCapableActuatorTakesTheMasterIntensityAsItsGain) {

@@ -3,6 +3,9 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
+
 #include "daemon/reload.hpp"
 #include "tests/support/finished_reasons.hpp"
 #include "tests/support/support.hpp"
@@ -58,6 +61,20 @@ TEST_F(ReloadTest, ANewClefMapIsTheRunningOneAtOnceAndPlaybackGoesOn) {
     EXPECT_EQ(describe(running.device_clefs), "lra-phone -> erm-phone, * -> soft-shapes");
     EXPECT_THAT(reasons.reasons, IsEmpty());
     EXPECT_TRUE(player->current_id().has_value());
+}
+
+TEST_F(ReloadTest, ANewActuatorWithFitAutoRefitsEveryClefItDoesNotMap) {
+    actuator::Declaration erm;
+    erm.kind = actuator::Kind::erm;
+    DaemonConfig fresh = running;
+    fresh.driver_settings["sim"] = {};  // the sim simulates the declared actuator
+    fresh.actuator = erm;
+    fresh.device_clefs.fit_to = erm;
+    fresh.device_clefs.by_written["lra-phone"] = "erm-phone";
+    reload_config(running, fresh, *host, callers);
+    EXPECT_EQ(running.device_clefs.for_written("lra-phone"), "erm-phone");
+    EXPECT_EQ(running.device_clefs.for_written("soft-shapes"), "soft-shapes (fitted)");
+    EXPECT_EQ(running.device_clefs.fit_to, erm);
 }
 
 TEST_F(ReloadTest, ANewRequestRateAppliesAtOnceWithoutTouchingTheBackend) {
@@ -133,6 +150,54 @@ TEST_F(ReloadTest, TheStoreAndShippedDirectoriesKeepTheirRunningValues) {
     EXPECT_EQ(running.store, "/var/lib/vibscore");
     EXPECT_EQ(running.shipped, "/usr/share/vibscore/clefs");
     EXPECT_EQ(running.separation_ms, 10.0);
+}
+
+// The first drive a one-note playback of strength 1 sends, as the sim's trace recorded it (the
+// trace is appended to: the lines after what it held before).
+double first_drive_sent(Player& player, const std::filesystem::path& trace) {
+    PlaybackRequest request;
+    request.cues = std::make_shared<render::CueList>(std::vector<render::Cue>{
+        render::drive_at(0.0, 1.0, 175.0), render::drive_at(0.5, 0.0, 0.0)});
+    request.duration_s = 1.0;
+    const auto before = static_cast<std::streamoff>(std::filesystem::file_size(trace));
+    player.play(request);
+    player.stop_all("test");
+    std::ifstream in(trace);
+    in.seekg(before);
+    std::string line;
+    while (std::getline(in, line)) {
+        if (line.starts_with("time_ns")) {
+            continue;  // the header
+        }
+        const double amplitude = std::stod(line.substr(line.find(',') + 1));
+        if (amplitude != 0.0) {
+            return amplitude;
+        }
+    }
+    return 0.0;
+}
+
+TEST_F(ReloadTest, TheDeclaredActuatorIsReloadedForTheSimAndTheNextPlay) {
+    vibscore::testing::TempDir dir;
+    const auto trace = dir.path() / "trace.csv";
+    DaemonConfig fresh = running;
+    fresh.driver_settings["sim"] = {{"trace", trace.string()}};
+    actuator::Declaration board;
+    board.kind = actuator::Kind::erm;
+    board.rated_drive = 0.5;
+    board.brake = actuator::Brake::reverse;
+    board.compensation = false;
+    fresh.actuator = board;
+    reload_config(running, fresh, *host, callers);
+    EXPECT_EQ(running.actuator, board);
+    EXPECT_TRUE(host->capabilities().reverse);
+    EXPECT_EQ(first_drive_sent(*player, trace), 0.5);  // strength 1 is the rated drive
+
+    DaemonConfig undeclared = running;
+    undeclared.actuator.reset();
+    reload_config(running, undeclared, *host, callers);
+    EXPECT_FALSE(host->capabilities().reverse);
+    EXPECT_EQ(first_drive_sent(*player, trace), 1.0);  // as written again
 }
 
 TEST_F(ReloadTest, AnUnknownDriverChangesNothingAndNamesTheLineThatNamesIt) {

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "daemon/drivers/driver_settings.hpp"
 #include "tests/support/support.hpp"
 
 namespace vibscore::drivers {
@@ -86,7 +87,7 @@ TEST(SimActuator, NameAndCapabilities) {
 TEST(SimActuator, FeedsTheModelAndCountsCommands) {
     FakeClock clock;
     SimSettings settings;
-    settings.model.kind = ActuatorKind::erm;
+    settings.actuator.kind = actuator::Kind::erm;
     SimActuator sim(settings, clock.function());
     sim.apply({0.5, 0.0});
     EXPECT_EQ(sim.command_count(), 1u);
@@ -102,10 +103,74 @@ TEST(SimActuator, ClampsAmplitude) {
     SimActuator sim({});
     sim.apply({1.7, 0.0});
     EXPECT_DOUBLE_EQ(sim.model().target(), 1.0);
-    sim.apply({-0.2, 0.0});
+    sim.apply({-0.2, 0.0});  // no reverse without a declared brake
     EXPECT_DOUBLE_EQ(sim.model().target(), 0.0);
     sim.apply({NAN, 0.0});
     EXPECT_DOUBLE_EQ(sim.model().target(), 0.0);
+}
+
+// The declared actuator: its rated drive, and reverse drive where the board brakes.
+SimSettings declared(actuator::Kind kind, actuator::Brake brake) {
+    SimSettings settings;
+    settings.actuator.kind = kind;
+    settings.actuator.rated_drive = 0.7;
+    settings.actuator.spin_up_s = 0.040;
+    settings.actuator.spin_down_s = 0.080;
+    settings.actuator.q = 15.0;
+    settings.actuator.brake = brake;
+    settings.declared = true;
+    return settings;
+}
+
+TEST(SimActuator, SimulatesTheDeclaredErmDrivenBackwards) {
+    FakeClock clock;
+    SimActuator sim(declared(actuator::Kind::erm, actuator::Brake::reverse), clock.function());
+    EXPECT_TRUE(sim.capabilities().reverse);
+    sim.apply({0.7, 0.0});
+    clock.now_ns += 1'000'000'000;  // spun up to strength 1
+    sim.apply({-1.0, 0.0});
+    const double t = 2.0 + 0.040 * std::log((1.0 + 1.0 / 0.7) / (1.0 / 0.7));
+    EXPECT_NEAR(sim.model().response_at(t), 0.0, 1e-6);  // stopped by the reverse drive
+    EXPECT_EQ(sim.model().drive().amplitude, -1.0);
+}
+
+TEST(SimActuator, SimulatesTheDeclaredLraPushedDownInAntiPhase) {
+    FakeClock clock;
+    SimActuator sim(declared(actuator::Kind::lra, actuator::Brake::reverse), clock.function());
+    const double tau = actuator::lra_time_constant_s(175.0, 15.0);
+    sim.apply({0.7, 175.0});
+    clock.now_ns += 2'000'000'000;
+    sim.apply({-0.7, 175.0});
+    EXPECT_NEAR(sim.model().response_at(3.0 + tau * std::log(2.0)), 0.0, 1e-9);
+}
+
+TEST(SimActuator, WithoutADeclaredBrakeItHasNoReverse) {
+    SimActuator sim(declared(actuator::Kind::erm, actuator::Brake::none));
+    EXPECT_FALSE(sim.capabilities().reverse);
+    sim.apply({-1.0, 0.0});
+    EXPECT_EQ(sim.model().drive().amplitude, 0.0);
+}
+
+TEST(SimActuator, TraceRecordsEveryDriveAsSentReverseIncluded) {
+    TempDir dir;
+    FakeClock clock;
+    SimSettings settings = declared(actuator::Kind::lra, actuator::Brake::reverse);
+    settings.trace = dir.path() / "trace.csv";
+    {
+        SimActuator sim(settings, clock.function());
+        sim.apply({1.0, 172.5});
+        clock.now_ns += 20'000'000;
+        sim.apply({-1.0, 172.5});
+        clock.now_ns += 5'000'000;
+        sim.off();
+    }
+    const auto lines = lines_of(*settings.trace);
+    ASSERT_EQ(lines.size(), 4u);
+    const TraceLine braking = parse(lines[2]);
+    EXPECT_EQ(braking.amplitude, -1.0);
+    EXPECT_EQ(braking.frequency_hz, 172.5);
+    EXPECT_GT(braking.response, 0.5);
+    EXPECT_EQ(parse(lines[3]).amplitude, 0.0);
 }
 
 TEST(SimActuator, TraceHasAHeaderAndOneLinePerCommand) {
@@ -139,7 +204,7 @@ TEST(SimActuator, TraceHasAHeaderAndOneLinePerCommand) {
     EXPECT_EQ(first.frequency_hz, 175.0);
     EXPECT_EQ(first.response, 0.0);  // nothing moved before the first command
 
-    const double tau = ActuatorModel::lra_time_constant_s(175.0, 8.0);
+    const double tau = actuator::lra_time_constant_s(175.0, 8.0);
     EXPECT_EQ(second.amplitude, 1.0);
     EXPECT_EQ(second.frequency_hz, 350.0);
     EXPECT_NEAR(second.response, 0.8 * (1.0 - std::exp(-0.020 / tau)), 1e-12);
@@ -284,9 +349,33 @@ TEST(SimActuator, MeterShowsWhereTheActuatorIsHeading) {
 TEST(MakeSimActuator, DefaultsToAnLraWithoutTraceOrMeter) {
     const auto actuator = make_sim_actuator({});
     const auto& sim = dynamic_cast<const SimActuator&>(*actuator);
-    EXPECT_EQ(sim.model().settings().kind, ActuatorKind::lra);
-    EXPECT_EQ(sim.model().settings().resonance_hz, 175.0);
-    EXPECT_EQ(sim.model().settings().q, 8.0);
+    const auto& model = sim.model().physics().declaration();
+    EXPECT_EQ(model.kind, actuator::Kind::lra);
+    EXPECT_EQ(model.resonance_hz, 175.0);
+    EXPECT_EQ(model.q, 8.0);
+    EXPECT_EQ(model.rated_drive, 1.0);
+    EXPECT_FALSE(sim.capabilities().reverse);
+}
+
+TEST(MakeSimActuator, SimulatesTheDeclaredActuatorAndRefusesASecondDeclaration) {
+    actuator::Declaration board;
+    board.kind = actuator::Kind::erm;
+    board.spin_up_s = 0.033;
+    board.brake = actuator::Brake::reverse;
+    const auto actuator = make_sim_actuator({{"meter", "false"}}, board);
+    const auto& sim = dynamic_cast<const SimActuator&>(*actuator);
+    EXPECT_EQ(sim.model().physics().declaration(), board);
+    EXPECT_TRUE(sim.capabilities().reverse);
+    for (const char* key : {"model", "resonance-hz", "q", "spin-up-ms", "spin-down-ms"}) {
+        try {
+            make_sim_actuator({{key, "40"}}, board);
+            ADD_FAILURE() << key << " accepted beside [actuator]";
+        } catch (const SettingError& error) {
+            EXPECT_EQ(error.key(), key);
+            EXPECT_THAT(error.what(), HasSubstr(std::string(key) + " = \"40\""));
+            EXPECT_THAT(error.what(), HasSubstr("declared in [actuator]"));
+        }
+    }
 }
 
 TEST(MakeSimActuator, ReadsEverySetting) {
@@ -299,8 +388,8 @@ TEST(MakeSimActuator, ReadsEverySetting) {
                                              {"spin-down-ms", "120"},
                                              {"trace", trace.string()},
                                              {"meter", "false"}});
-    const auto& model = dynamic_cast<const SimActuator&>(*actuator).model().settings();
-    EXPECT_EQ(model.kind, ActuatorKind::erm);
+    const auto& model = dynamic_cast<const SimActuator&>(*actuator).model().physics().declaration();
+    EXPECT_EQ(model.kind, actuator::Kind::erm);
     EXPECT_EQ(model.resonance_hz, 205.5);
     EXPECT_EQ(model.q, 12.0);
     EXPECT_DOUBLE_EQ(model.spin_up_s, 0.040);

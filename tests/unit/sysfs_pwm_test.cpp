@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "tests/fakes/fake_gpio_lines.hpp"
 #include "tests/fakes/fake_sysfs.hpp"
 #include "tests/support/support.hpp"
 
@@ -99,7 +100,7 @@ TEST_F(SysfsPwmTest, LraPeriodFollowsTheNoteInAnOrderTheKernelAccepts) {
                                              "class/pwm/pwmchip0/pwm0/duty_cycle=2000000",
                                              "class/pwm/pwmchip0/pwm0/period=4000000",
                                              "class/pwm/pwmchip0/pwm0/period=5000000",
-                                             "class/pwm/pwmchip0/pwm0/duty_cycle=1250000",
+                                             "class/pwm/pwmchip0/pwm0/duty_cycle=833333",
                                              "class/pwm/pwmchip0/pwm0/duty_cycle=0"));
     EXPECT_TRUE(pwm->capabilities().frequency_control);
 }
@@ -165,6 +166,62 @@ TEST_F(SysfsPwmTest, AWriteFailureIsADeviceErrorAndTheNextDriveStartsAfresh) {
     sysfs->heal();
     pwm->apply({0.5});
     EXPECT_EQ(sysfs->value("class/pwm/pwmchip0/pwm0/duty_cycle"), "500000");
+}
+
+// A direction line on an H-bridge: the fake GPIO records it, the fake sysfs the duty cycle; the
+// order of the two is what a bridge sees.
+class SysfsPwmDirectionTest : public SysfsPwmTest {
+  protected:
+    std::unique_ptr<Actuator> open_with_direction(std::map<std::string, std::string> settings) {
+        settings["sysfs-root"] = tree.path().string();
+        return make_sysfs_pwm_actuator(
+            settings, sysfs->attributes(),
+            [this](const std::string& chip, const std::vector<unsigned>& offsets) {
+                opened_chip = chip;
+                opened_offsets = offsets;
+                return gpio->lines(offsets, chip);
+            });
+    }
+    std::shared_ptr<vibscore::testing::FakeGpio> gpio =
+        std::make_shared<vibscore::testing::FakeGpio>();
+    std::string opened_chip;
+    std::vector<unsigned> opened_offsets;
+};
+
+TEST_F(SysfsPwmDirectionTest, ADirectionLineReversesTheDriveWithTheDutyCycleAtZero) {
+    EXPECT_FALSE(open_with_direction({{"carrier-hz", "1000"}})->capabilities().reverse);
+    const auto pwm = open_with_direction(
+        {{"carrier-hz", "1000"}, {"direction-chip", "gpiochip3"}, {"direction-line", "7"}});
+    EXPECT_EQ(opened_chip, "gpiochip3");
+    EXPECT_THAT(opened_offsets, ElementsAre(7u));
+    EXPECT_TRUE(pwm->capabilities().reverse);
+    sysfs->clear_writes();
+    pwm->apply({0.5});
+    pwm->apply({-1.0});  // braking: duty 0, direction high, then full duty
+    EXPECT_THAT(sysfs->writes(), ElementsAre("class/pwm/pwmchip0/pwm0/duty_cycle=500000",
+                                             "class/pwm/pwmchip0/pwm0/duty_cycle=0",
+                                             "class/pwm/pwmchip0/pwm0/duty_cycle=1000000"));
+    ASSERT_EQ(gpio->records().size(), 1u);
+    EXPECT_EQ(gpio->records()[0].values, std::vector<int>{1});
+    pwm->off();  // duty 0, then the direction line low again
+    EXPECT_EQ(sysfs->value("class/pwm/pwmchip0/pwm0/duty_cycle"), "0");
+    ASSERT_EQ(gpio->records().size(), 2u);
+    EXPECT_EQ(gpio->records()[1].values, std::vector<int>{0});
+    pwm->apply({0.25});  // forwards: the line stays low
+    EXPECT_EQ(gpio->records().size(), 2u);
+}
+
+TEST_F(SysfsPwmDirectionTest, WithoutADirectionLineBackwardsIsOff) {
+    const auto pwm = open_with_direction({{"carrier-hz", "1000"}});
+    pwm->apply({-0.5});
+    EXPECT_EQ(sysfs->value("class/pwm/pwmchip0/pwm0/duty_cycle"), "0");
+}
+
+TEST_F(SysfsPwmDirectionTest, ADirectionChipWithoutALineIsAnError) {
+    EXPECT_THAT(error_of([&] {
+                    open_with_direction({{"direction-chip", "gpiochip1"}});
+                }),
+                HasSubstr("direction-chip = \"gpiochip1\" needs direction-line"));
 }
 
 TEST_F(SysfsPwmTest, SettingsAreChecked) {

@@ -5,6 +5,7 @@
  *   CRASH_AT_LOAD   a constructor that segfaults
  *   EXIT_AT_LOAD    a constructor that calls exit()
  *   CRASH_IN_APPLY  an apply() that segfaults (open and off work)
+ *   HANG_IN_APPLY   an apply() that never returns (a driver stuck in a kernel call)
  *   COUNT_LOADS     well behaved; each load appends the loading process's id to the file
  *                   $VIBSCORE_TEST_LOAD_LOG, so a test can count the loads and tell where
  * DRIVER_NAME is the driver's name.
@@ -71,6 +72,10 @@ static int misbehaving_apply(void* handle, const struct vibscore_drive* drive, c
     (void)error_size;
 #if defined(CRASH_IN_APPLY)
     *nowhere = 1;
+#elif defined(HANG_IN_APPLY)
+    for (;;) {
+        pause();
+    }
 #endif
     return 0;
 }

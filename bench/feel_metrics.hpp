@@ -1,0 +1,48 @@
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "daemon/render/performance.hpp"
+
+// What bench/feel measures of a produced strength against the written one (docs/performance.md,
+// "What people feel"). Strengths are sampled alike, at `rate_hz` from time 0.
+namespace vibscore::bench {
+
+struct NoteSpan {
+    double onset = 0.0, end = 0.0;  // written sounding time
+    double peak = 0.0;              // the written strength at its strongest
+    bool tied_to_next = false;      // legato or portamento: no silence before the next note
+};
+
+// The notes of a performance, strength x scale.
+std::vector<NoteSpan> note_spans(const render::Performance& performance, double scale);
+
+struct ScoreFeel {
+    std::string name;
+    int notes = 0;
+    // Notes whose produced strength reaches 90 % of their written peak while they sound.
+    int reached = 0;
+    // Per note: note start -> 90 % of its written peak, ms (INFINITY: never while it sounds).
+    std::vector<double> onsets_ms;
+    // Per note followed by silence: written end -> below 10 % of its written peak, ms, as if the
+    // silence lasted (the drives up to the next note's start only).
+    std::vector<double> stops_ms;
+    // Silences between notes, and those felt: the produced strength dips between the two notes'
+    // peaks to at most half the weaker peak.
+    int silences = 0, felt = 0;
+    // The integral of |produced - written| over that of written, the ringing after the end too.
+    double envelope_error = 0.0;
+};
+
+// `produced` is what the actuator makes of the score; `produced_until(t)` what it makes of the
+// drives sent before t only (for the stops).
+ScoreFeel measure(const std::string& name, const std::vector<NoteSpan>& notes,
+                  const std::vector<double>& written, const std::vector<double>& produced,
+                  const std::function<std::vector<double>(double)>& produced_until, double rate_hz);
+
+// The median, INFINITY counting as the largest value; NaN for none.
+double median(std::vector<double> values);
+
+}  // namespace vibscore::bench

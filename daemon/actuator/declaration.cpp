@@ -1,0 +1,229 @@
+#include "daemon/actuator/declaration.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <map>
+#include <numbers>
+#include <sstream>
+
+#include "common/closest_name.hpp"
+#include "common/number_text.hpp"
+
+namespace vibscore::actuator {
+
+namespace {
+
+std::string at(const std::string& where) {
+    return where.empty() ? std::string() : where + ": ";
+}
+
+std::string range_text(const Limit& limit) {
+    return limit.min_allowed
+               ? "a number from " + number_text(limit.min) + " to " + number_text(limit.max)
+               : "a number above " + number_text(limit.min) + " and at most " +
+                     number_text(limit.max);
+}
+
+double number(const Setting& setting, const Limit& limit) {
+    double value = 0.0;
+    const char* const end = setting.value.data() + setting.value.size();
+    const auto [ptr, error] = std::from_chars(setting.value.data(), end, value);
+    const bool above_min = limit.min_allowed ? value >= limit.min : value > limit.min;
+    if (error != std::errc{} || ptr != end || !std::isfinite(value) || !above_min ||
+        value > limit.max) {
+        throw DeclarationError(setting.key, at(setting.where) + "[actuator] " + setting.key +
+                                                " = \"" + setting.value + "\": expected " +
+                                                range_text(limit));
+    }
+    return value;
+}
+
+std::string choice(const Setting& setting, std::initializer_list<const char*> allowed) {
+    std::string names;
+    for (const char* option : allowed) {
+        if (setting.value == option) {
+            return setting.value;
+        }
+        names += (names.empty() ? "" : " or ") + std::string(option);
+    }
+    throw DeclarationError(setting.key, at(setting.where) + "[actuator] " + setting.key + " = \"" +
+                                            setting.value + "\": expected " + names);
+}
+
+bool is_key(const std::string& key) {
+    return std::any_of(std::begin(kKeys), std::end(kKeys),
+                       [&](const char* known) { return key == known; });
+}
+
+// The keys that describe one kind's physics only.
+bool erm_only(const std::string& key) {
+    return key == kSpinUpMs.key || key == kSpinDownMs.key;
+}
+bool lra_only(const std::string& key) {
+    return key == kResonanceHz.key || key == kQ.key;
+}
+
+std::string trim(const std::string& text) {
+    const auto begin = text.find_first_not_of(" \t\r");
+    if (begin == std::string::npos) {
+        return {};
+    }
+    return text.substr(begin, text.find_last_not_of(" \t\r") - begin + 1);
+}
+
+}  // namespace
+
+double lra_time_constant_s(double resonance_hz, double q) {
+    return q / (std::numbers::pi * resonance_hz);
+}
+
+Declaration parse_declaration(const std::vector<Setting>& settings,
+                              const std::string& section_where) {
+    std::map<std::string, const Setting*> by_key;
+    for (const Setting& setting : settings) {
+        if (!is_key(setting.key)) {
+            std::vector<std::string> known(std::begin(kKeys), std::end(kKeys));
+            std::string list;
+            for (const auto& key : known) {
+                list += (list.empty() ? "" : ", ") + key;
+            }
+            const auto meant = closest_name(setting.key, known);
+            throw DeclarationError(
+                setting.key,
+                at(setting.where) + "unknown key \"" + setting.key + "\" in [actuator]" +
+                    (meant ? " (did you mean " + *meant + "?)" : "") + "; known: " + list);
+        }
+        if (setting.value.empty()) {
+            throw DeclarationError(
+                setting.key, at(setting.where) + "[actuator] " + setting.key + " has no value");
+        }
+        const auto [previous, added] = by_key.emplace(setting.key, &setting);
+        if (!added) {
+            throw DeclarationError(setting.key, at(setting.where) + "[actuator] " + setting.key +
+                                                    " is set twice (first at " +
+                                                    previous->second->where + ")");
+        }
+    }
+    const auto find = [&](const char* key) -> const Setting* {
+        const auto found = by_key.find(key);
+        return found == by_key.end() ? nullptr : found->second;
+    };
+
+    Declaration declaration;
+    const Setting* kind = find("kind");
+    if (kind == nullptr) {
+        throw DeclarationError("kind", at(section_where) + "[actuator] needs kind = erm or lra");
+    }
+    declaration.kind = choice(*kind, {"erm", "lra"}) == "erm" ? Kind::erm : Kind::lra;
+    for (const auto& [key, setting] : by_key) {
+        const bool wrong_kind = declaration.kind == Kind::erm ? lra_only(key) : erm_only(key);
+        if (wrong_kind) {
+            throw DeclarationError(
+                key, at(setting->where) + "[actuator] " + key + " = \"" + setting->value +
+                         "\" is for kind = " + (declaration.kind == Kind::erm ? "lra" : "erm") +
+                         "; this actuator is kind = " + kind->value);
+        }
+    }
+    if (const Setting* s = find(kRatedDrive.key)) {
+        declaration.rated_drive = number(*s, kRatedDrive);
+    }
+    if (const Setting* s = find(kSpinUpMs.key)) {
+        declaration.spin_up_s = number(*s, kSpinUpMs) / 1000.0;
+    }
+    if (const Setting* s = find(kSpinDownMs.key)) {
+        declaration.spin_down_s = number(*s, kSpinDownMs) / 1000.0;
+    }
+    if (const Setting* s = find(kResonanceHz.key)) {
+        declaration.resonance_hz = number(*s, kResonanceHz);
+    }
+    if (const Setting* s = find(kQ.key)) {
+        declaration.q = number(*s, kQ);
+    }
+    if (const Setting* s = find("brake")) {
+        declaration.brake =
+            choice(*s, {"none", "reverse"}) == "none" ? Brake::none : Brake::reverse;
+    }
+    if (const Setting* s = find("compensation")) {
+        declaration.compensation = choice(*s, {"on", "off"}) == "on";
+    }
+    return declaration;
+}
+
+std::optional<Section> find_section(const std::string& text, const std::string& file) {
+    std::istringstream lines(text);
+    std::string line;
+    int number = 0;
+    bool inside = false;
+    std::optional<Section> section;
+    while (std::getline(lines, line)) {
+        ++number;
+        const std::string where = file + ":" + std::to_string(number);
+        const auto content = trim(line.substr(0, line.find_first_of("#;")));
+        if (content.empty()) {
+            continue;
+        }
+        if (content.front() == '[') {
+            inside =
+                content.back() == ']' && trim(content.substr(1, content.size() - 2)) == "actuator";
+            if (inside && !section) {
+                section = Section{{}, where};
+            }
+            continue;
+        }
+        if (!inside) {
+            continue;
+        }
+        const auto equals = content.find('=');
+        if (equals == std::string::npos) {
+            throw DeclarationError({},
+                                   where + ": expected \"key = value\", found \"" + content + "\"");
+        }
+        section->settings.push_back(
+            {trim(content.substr(0, equals)), trim(content.substr(equals + 1)), where});
+    }
+    return section;
+}
+
+std::optional<Declaration> read_declaration(const std::string& text, const std::string& file) {
+    const auto section = find_section(text, file);
+    if (!section) {
+        return std::nullopt;
+    }
+    return parse_declaration(section->settings, section->where);
+}
+
+std::vector<std::pair<std::string, std::string>> to_settings(const Declaration& declaration) {
+    std::vector<std::pair<std::string, std::string>> settings;
+    const bool erm = declaration.kind == Kind::erm;
+    settings.emplace_back("kind", erm ? "erm" : "lra");
+    settings.emplace_back(kRatedDrive.key, number_text(declaration.rated_drive));
+    if (erm) {
+        settings.emplace_back(kSpinUpMs.key, number_text(declaration.spin_up_s * 1000.0));
+        settings.emplace_back(kSpinDownMs.key, number_text(declaration.spin_down_s * 1000.0));
+    } else {
+        settings.emplace_back(kResonanceHz.key, number_text(declaration.resonance_hz));
+        settings.emplace_back(kQ.key, number_text(declaration.q));
+    }
+    settings.emplace_back("brake", declaration.brake == Brake::reverse ? "reverse" : "none");
+    settings.emplace_back("compensation", declaration.compensation ? "on" : "off");
+    return settings;
+}
+
+std::string describe(const Declaration& declaration) {
+    std::string text;
+    if (declaration.kind == Kind::erm) {
+        text = "erm: spin-up " + number_text(declaration.spin_up_s * 1000.0) + " ms, spin-down " +
+               number_text(declaration.spin_down_s * 1000.0) + " ms";
+    } else {
+        const double tau_ms = lra_time_constant_s(declaration.resonance_hz, declaration.q) * 1000.0;
+        text = "lra: resonance " + number_text(declaration.resonance_hz) + " Hz, q " +
+               number_text(declaration.q) + " (envelope " +
+               number_text(std::round(tau_ms * 10.0) / 10.0) + " ms)";
+    }
+    return text + ", rated-drive " + number_text(declaration.rated_drive) + ", brake " +
+           (declaration.brake == Brake::reverse ? "reverse" : "none") + ", compensation " +
+           (declaration.compensation ? "on" : "off");
+}
+
+}  // namespace vibscore::actuator

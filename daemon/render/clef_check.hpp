@@ -1,0 +1,22 @@
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "daemon/actuator/declaration.hpp"
+#include "score/clef.hpp"
+
+namespace vibscore::render {
+
+// What a clef asks that a declared actuator cannot give (`vibscore check CLEF --actuator`, and
+// vibscored's log when it stores or fits a clef): warnings, not errors, one line each, naming the
+// string or number and the figures.
+//  - a sine string where full drive gives less than the clef's strongest number;
+//  - neighbouring sine strings closer than kDistinctPitchRatio (an LRA), or any sine strings on
+//    an ERM, which has no pitch;
+//  - a number full drive cannot reach on some string;
+//  - a shape string with a rise or fall faster than the actuator follows, or on/off pulses too
+//    short for it to reach the strongest number.
+std::vector<std::string> clef_warnings(const Clef& clef, const actuator::Declaration& declaration);
+
+}  // namespace vibscore::render
