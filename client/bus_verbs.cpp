@@ -320,8 +320,17 @@ int stop_all(std::ostream& out, std::ostream& err) {
 
 int list(const std::string& kind, std::ostream& out, std::ostream& err) {
     return with_daemon(err, [&](Haptics& haptics) {
-        for (const auto& entry : haptics.List(kind)) {
+        const auto entries = haptics.List(kind);
+        for (const auto& entry : entries) {
             out << entry.get<0>() << "\t" << entry.get<1>() << "\n";
+        }
+        if (entries.empty()) {
+            // Not an error, but an empty output alone looks like one: say where it looked.
+            const std::string plural = kind.ends_with('s') ? kind : kind + "s";
+            auto folders = haptics.RegistryFolders();
+            err << "vibscore: vibscored has no " << plural << ": none shipped in "
+                << folders["shipped"] << " (shipped = in vibscored.conf) and none composed in "
+                << folders["store"] << " (store =)\n";
         }
         return exit_ok;
     });
@@ -422,14 +431,17 @@ int list_drivers(std::ostream& out, std::ostream& err) {
 
 int driver(const std::string& name, std::ostream& out, std::ostream& err) {
     return with_daemon(err, [&](Haptics& haptics) {
-        if (!name.empty()) {
+        if (!name.empty() && haptics.Driver() == name) {
+            // Switching would only end what plays and reopen the same backend.
+            out << "driver " << name << " is already in use; nothing changed\n";
+        } else if (!name.empty()) {
             haptics.SwitchDriver(name);
         }
         out << "driver " << haptics.Driver() << ":";
         for (const auto& capability : haptics.Capabilities()) {
             out << " " << capability;
         }
-        out << "\n";
+        out << "\n" << haptics.DriverReason() << "\n";
         out << "actuator: " << actuator_line(haptics.Actuator()) << "\n";
         return exit_ok;
     });

@@ -112,7 +112,8 @@ std::string usage_error_message(const CLI::App& app, const CLI::ParseError& erro
 int main(int argc, char** argv) {
     CLI::App app{
         "vibscore - compose, check and play vibrotactile scores.\n"
-        "Exit status: 0 success, 1 invalid document or failed operation, 2 usage error.",
+        "Exit status: 0 success, 1 invalid document or failed operation, 2 usage error.\n"
+        "The docs/NAME.md below are in " VIBSCORE_CLIENT_DOCDIR " once installed; man vibscore.",
         "vibscore"};
     app.set_version_flag("--version", std::string("vibscore ") + VIBSCORE_VERSION);
     app.require_subcommand(1);
@@ -204,7 +205,9 @@ int main(int argc, char** argv) {
         "info",
         "Show a score's title, duration, bars and clefs, or a clef's mapping; for a registry "
         "score, also the clef each bar plays through on this device (asks vibscored).");
-    info->add_option("FILE", info_file, "VibScore or VibClef document, or a registry score name")
+    info->add_option("SCORE", info_file,
+                     "registry score name, or a VibScore or VibClef file (a name with a / or "
+                     "ending in .xml, or a file that exists)")
         ->required();
     add_clefs_option(info, clef_search);
 
@@ -254,11 +257,14 @@ int main(int argc, char** argv) {
                        "a clef as this device plays it: the clef [clefs] maps it to, or fitted to "
                        "the declared actuator (fit = auto)");
     auto* compose_verb = app.add_subcommand(
-        "compose", "Store a score or clef file in the registry (root or group vibscore).");
+        "compose",
+        "Store a score or clef file in the registry (polkit: org.vibscore.compose; without "
+        "polkit, root and group vibscore).");
     compose_verb->add_option("NAME", name, "registry name")->required();
     compose_verb->add_option("FILE", file, "VibScore or VibClef file")->required();
     add_clefs_option(compose_verb, clef_search);
-    auto* delete_verb = app.add_subcommand("delete", "Delete a stored score or clef.");
+    auto* delete_verb = app.add_subcommand(
+        "delete", "Delete a stored score or clef (polkit: org.vibscore.compose).");
     delete_verb->add_option("KIND", kind, kKindHelp)->required()->check(kind_validator());
     delete_verb->add_option("NAME", name, "registry name")->required();
 
@@ -266,8 +272,10 @@ int main(int argc, char** argv) {
     std::string driver_name;
     auto* driver_verb =
         app.add_subcommand("driver",
-                           "Show the actuator backend in use, or switch to another (root or group "
-                           "vibscore; its settings come from vibscored.conf).");
+                           "Show the actuator backend in use and why (driver = auto: what it "
+                           "found), or switch to another (polkit: org.vibscore.manage; without "
+                           "polkit, root and group vibscore; its settings come from "
+                           "vibscored.conf).");
     driver_verb->add_option("NAME", driver_name, "backend to switch to (see 'vibscore drivers')");
 
     vibscore::editor::ShowRequest show_request;

@@ -41,8 +41,13 @@ std::string count(std::size_t n, const char* noun) {
     return std::to_string(n) + " " + noun + (n == 1 ? "" : "s");
 }
 
+// Seconds per quarter note at six digits (a tempo copy made for 140 bpm holds 3/7 s).
+std::string tempo_text(double seconds) {
+    return rounded_text(seconds) + " s";
+}
+
 std::string clef_summary(const Clef& clef) {
-    return std::string(to_string(clef.type)) + ", tempo " + number(clef.tempo) + " s, " +
+    return std::string(to_string(clef.type)) + ", tempo " + tempo_text(clef.tempo) + ", " +
            count(clef.strings.size(), "string") + ", " + count(clef.numbers.size(), "number");
 }
 
@@ -55,7 +60,8 @@ void report(const DocumentError& error, std::ostream& err) {
 void describe_clef(const std::string& file, const Clef& clef, std::ostream& out) {
     out << "clef:     " << file << "\n"
         << "type:     " << to_string(clef.type) << "\n"
-        << "tempo:    " << number(clef.tempo) << " s per quarter note\n"
+        << "tempo:    " << tempo_text(clef.tempo) << " per quarter note ("
+        << rounded_text(60.0 / clef.tempo, 4) << " bpm)\n"
         << "numbers: ";
     for (std::size_t n = 0; n < clef.numbers.size(); ++n) {
         out << " " << n + 1 << "=" << number(clef.numbers[n]);
@@ -116,7 +122,7 @@ void describe_score(const LoadedScore& loaded, std::ostream& out) {
             << (beats < 4   ? " (short)"
                 : beats > 4 ? " (long)"
                             : "")
-            << "  at " << fixed(start) << " s, " << fixed(seconds) << " s\n";
+            << "  at " << fixed(start) << " s, " << fixed(seconds) << " s long\n";
         start += seconds;
     }
 }

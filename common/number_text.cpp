@@ -1,7 +1,10 @@
 #include "common/number_text.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
+#include <string>
 
 namespace vibscore {
 
@@ -14,6 +17,26 @@ std::string number_text(double value) {
                             : std::chars_format::general;
     const auto [end, error] = std::to_chars(buffer, buffer + sizeof buffer, value, format);
     return error == std::errc() ? std::string(buffer, end) : std::string("?");
+}
+
+std::string rounded_text(double value, int significant) {
+    if (value == 0.0 || !std::isfinite(value)) {
+        return number_text(value);
+    }
+    // Fixed notation with as many decimals as the significant digits leave (never %g's
+    // exponents: nobody writes 3.6e+06 seconds or 1.2e-05 seconds), trailing zeros dropped.
+    const int exponent = static_cast<int>(std::floor(std::log10(std::abs(value))));
+    const int decimals = std::max(0, significant - 1 - exponent);
+    char buffer[400];
+    std::snprintf(buffer, sizeof buffer, "%.*f", decimals, value);
+    std::string text = buffer;
+    if (text.find('.') != std::string::npos) {
+        text.erase(text.find_last_not_of('0') + 1);
+        if (text.back() == '.') {
+            text.pop_back();
+        }
+    }
+    return text;
 }
 
 }  // namespace vibscore

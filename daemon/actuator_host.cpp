@@ -21,9 +21,9 @@ std::shared_ptr<const drivers::ModuleCatalog> modules_of(const DaemonConfig& con
 ActuatorHost::ActuatorHost(const DaemonConfig& config)
     : config_(config),
       driver_(config.driver),
-      settings_(config.settings_of(config.driver)),
       running_modules_(modules_of(config)),
       declared_(config.actuator),
+      configured_(config.driver),
       modules_(running_modules_) {
     const auto crashed = read_module_record(config.module_record);
     remove_module_record(config.module_record);  // about the run that ended; this one starts afresh
@@ -31,15 +31,23 @@ ActuatorHost::ActuatorHost(const DaemonConfig& config)
         log::warning("vibscored last ended while driver module " + crashed->name + " (" +
                      crashed->path.string() + ") was in use, without closing it");
     }
-    if (const std::string reason = reason_to_run_sim_instead(crashed); !reason.empty()) {
-        log::error(reason +
+    std::string reason = configured_reason();
+    if (const std::string refused = reason_to_run_sim_instead(crashed); !refused.empty()) {
+        log::error(refused +
                    "; running driver sim instead, so the daemon serves. `vibscore driver " +
                    driver_ + "` or a reload tries it again");
+        reason = refused + "; driver sim runs instead until a reload or `vibscore driver " +
+                 driver_ + "`";
         driver_ = "sim";
-        settings_ = config.settings_of("sim");
+        follows_config_ = false;  // a reload tries the configured module again
     }
     try {
-        actuator_ = open(driver_, settings_, *running_modules_, declared_);
+        auto opened = open_naming(driver_, reason, *running_modules_, declared_);
+        driver_ = opened.driver;
+        settings_ = config.settings_of(opened.driver);
+        auto_fell_back_ = opened.fell_back;
+        reason_ = std::move(opened.reason);
+        actuator_ = std::move(opened.actuator);
     } catch (const drivers::SettingError&) {
         throw;  // names its file:line already
     } catch (const std::invalid_argument& error) {
@@ -62,9 +70,15 @@ ActuatorHost::~ActuatorHost() {
     record_.reset();
 }
 
+std::string ActuatorHost::configured_reason() const {
+    const std::string where = config_.where("daemon", "driver");  // "file:line: " or ""
+    return (where.empty() ? "configured: " : "configured at " + where) +
+           "driver = " + config_.driver;
+}
+
 std::string ActuatorHost::reason_to_run_sim_instead(
     const std::optional<ModuleInUse>& crashed) const {
-    if (drivers::is_built_in_driver(driver_)) {
+    if (driver_ == drivers::kAutoDriver || drivers::is_built_in_driver(driver_)) {
         return {};
     }
     if (crashed && crashed->name == driver_) {
@@ -79,6 +93,34 @@ std::string ActuatorHost::reason_to_run_sim_instead(
         }
     }
     return {};
+}
+
+drivers::AutoChoice ActuatorHost::open_naming(
+    const std::string& driver, const std::string& reason, const drivers::ModuleCatalog& modules,
+    const std::optional<actuator::Declaration>& declared) {
+    const auto open_configured = [this, &modules, &declared](const std::string& name) {
+        return open(name, config_.settings_of(name), modules, declared);
+    };
+    if (driver != drivers::kAutoDriver) {
+        return {driver, reason, false, open_configured(driver)};
+    }
+    // "file:line: " as "file:line" (or "" when the settings came from no file).
+    const auto at = [this](const std::string& section, const std::string& key) {
+        const std::string where = config_.where(section, key);
+        return where.substr(0, where.rfind(": "));
+    };
+    std::map<std::string, std::string> sections;
+    for (const auto& [name, settings] : config_.driver_settings) {
+        sections[name] = at(name, "");
+    }
+    auto choice = drivers::choose_driver(drivers::auto_search(
+        at("daemon", "driver"), sections, config_.settings_of("evdev"), open_configured));
+    if (choice.fell_back) {
+        log::warning(choice.reason);
+    } else {
+        log::info(choice.reason);
+    }
+    return choice;
 }
 
 std::unique_ptr<drivers::Actuator> ActuatorHost::open(
@@ -105,8 +147,17 @@ std::vector<drivers::DriverInfo> ActuatorHost::drivers() const {
 }
 
 void ActuatorHost::switch_to(const std::string& driver) {
+    switch_running(
+        driver,
+        "switched at run time (SwitchDriver, vibscore driver " + driver +
+            "); a reload or a restart returns to the configuration's driver = " + config_.driver,
+        false);
+}
+
+void ActuatorHost::switch_running(const std::string& driver, const std::string& reason,
+                                  bool follows_config) {
     try {
-        open_in_place_of_running(driver);
+        open_in_place_of_running(driver, reason, follows_config);
     } catch (...) {
         if (changed_) {
             changed_();
@@ -118,8 +169,8 @@ void ActuatorHost::switch_to(const std::string& driver) {
     }
 }
 
-void ActuatorHost::open_in_place_of_running(const std::string& driver) {
-    const DriverSettingsMap settings = config_.settings_of(driver);
+void ActuatorHost::open_in_place_of_running(const std::string& driver, const std::string& reason,
+                                            bool follows_config) {
     const std::optional<actuator::Declaration> declared = config_.actuator;
     std::shared_ptr<const drivers::ModuleCatalog> modules;
     {
@@ -134,11 +185,13 @@ void ActuatorHost::open_in_place_of_running(const std::string& driver) {
     }
     actuator_.reset();
     record_.reset();
+    drivers::AutoChoice opened;
     try {
-        actuator_ = open(driver, settings, *modules, declared);
+        opened = open_naming(driver, reason, *modules, declared);
     } catch (const std::exception& error) {
         log::error("driver " + driver + " failed to open (" + error.what() + "); reopening " +
                    driver_);
+        follows_config_ = false;  // a reload tries the configuration's driver again
         try {
             actuator_ = open(driver_, settings_, *running_modules_, declared_);
         } catch (const std::exception& reopen_error) {
@@ -147,6 +200,8 @@ void ActuatorHost::open_in_place_of_running(const std::string& driver) {
                 " would not reopen (" + reopen_error.what() + ")");
             driver_ = "none";
             settings_.clear();
+            reason_ = "driver " + driver + " failed to open (" + error.what() +
+                      ") and the one before would not reopen (" + reopen_error.what() + ")";
             log::error(std::string("no actuator until the next switch or reload: ") +
                        reopen_error.what());
         }
@@ -155,14 +210,21 @@ void ActuatorHost::open_in_place_of_running(const std::string& driver) {
         }
         throw;
     }
+    actuator_ = std::move(opened.actuator);
     if (player_) {
         player_->replace_actuator(*actuator_);
     }
-    driver_ = driver;
-    settings_ = settings;
+    driver_ = opened.driver;
+    settings_ = config_.settings_of(opened.driver);
     running_modules_ = std::move(modules);
     declared_ = declared;
-    log::info("driver is now " + driver);
+    reason_ = std::move(opened.reason);
+    auto_fell_back_ = opened.fell_back;
+    follows_config_ = follows_config;
+    if (follows_config) {
+        configured_ = config_.driver;
+    }
+    log::info("driver is now " + driver_);
 }
 
 bool ActuatorHost::follow_config() {
@@ -184,11 +246,12 @@ bool ActuatorHost::follow_config() {
     const bool module_changed = !drivers::is_built_in_driver(driver_) && driver_ != "none" &&
                                 !fresh->same_module(*running_modules_, driver_);
     // Only the sim is made of the declaration; a real backend drives whatever is on the board.
-    const bool differs = config_.driver != driver_ ||
-                         config_.settings_of(config_.driver) != settings_ || module_changed ||
-                         (declaration_changed && config_.driver == "sim");
+    const bool differs = config_.driver != configured_ || !follows_config_ ||
+                         (config_.driver == drivers::kAutoDriver && auto_fell_back_) ||
+                         config_.settings_of(driver_) != settings_ || module_changed ||
+                         (declaration_changed && driver_ == "sim");
     if (differs) {
-        switch_to(config_.driver);
+        switch_running(config_.driver, configured_reason(), true);
     } else {
         running_modules_ = fresh;
         declared_ = config_.actuator;

@@ -11,6 +11,7 @@
 
 #include "daemon/config.hpp"
 #include "daemon/drivers/actuator.hpp"
+#include "daemon/drivers/auto_driver.hpp"
 #include "daemon/drivers/available.hpp"
 #include "daemon/module_record.hpp"
 #include "daemon/player.hpp"
@@ -25,10 +26,10 @@ using DriverSettingsMap = std::map<std::string, std::string>;
 // be requested twice).
 class ActuatorHost {
   public:
-    // Opens config.driver with its settings, from the built-in backends or config.modules.
-    // `config` is the daemon's running configuration: every later switch reads the settings and
-    // the modules there, so it must outlive the host (a reload replaces its contents, then calls
-    // follow_config()).
+    // Opens config.driver with its settings, from the built-in backends or config.modules
+    // ("auto": the backend drivers::choose_driver finds). `config` is the daemon's running
+    // configuration: every later switch reads the settings and the modules there, so it must
+    // outlive the host (a reload replaces its contents, then calls follow_config()).
     //
     // The daemon comes up whatever a driver module did: when the configured driver is a module
     // that was refused at the scan (it hung, crashed or failed its checks while loading, or is
@@ -43,6 +44,9 @@ class ActuatorHost {
 
     drivers::Actuator& actuator() { return *actuator_; }
     const std::string& driver() const { return driver_; }
+    // Why driver() runs, for people (the DriverReason property): the configuration, what auto
+    // found or searched, or a run-time switch.
+    const std::string& reason() const { return reason_; }
     drivers::Capabilities capabilities() const { return actuator_->capabilities(); }
     // The built-in backends, then the driver modules found by the last scan. Loads nothing, and
     // may be called from another thread than the one that switches.
@@ -65,16 +69,27 @@ class ActuatorHost {
 
     // After the running configuration changed: takes its driver modules, and switches to its
     // driver when the driver, its settings or the running module's file differ from what runs,
-    // or when the sim runs and the declared actuator it simulates changed. Hands the player the
-    // declaration. Returns whether it switched.
+    // or what runs came from a run-time switch (or ran sim in place of a refused module). With
+    // driver = auto it chooses again when the last choice fell back to sim (a device may have
+    // appeared since); and when the sim runs and the declared actuator it simulates changed.
+    // Hands the player the declaration. Returns whether it switched.
     bool follow_config();
 
   private:
+    // What runs and why: `driver` opened (or, for "auto", what it chose) in place of the
+    // running backend. Changes nothing when it throws.
+    void switch_running(const std::string& driver, const std::string& reason, bool follows_config);
+    void open_in_place_of_running(const std::string& driver, const std::string& reason,
+                                  bool follows_config);
+    drivers::AutoChoice open_naming(const std::string& driver, const std::string& reason,
+                                    const drivers::ModuleCatalog& modules,
+                                    const std::optional<actuator::Declaration>& declared);
+    // The reason of a driver the configuration names.
+    std::string configured_reason() const;
     std::unique_ptr<drivers::Actuator> open(const std::string& driver,
                                             const DriverSettingsMap& settings,
                                             const drivers::ModuleCatalog& modules,
                                             const std::optional<actuator::Declaration>& declared);
-    void open_in_place_of_running(const std::string& driver);
     // Why the configured driver must not be opened at start ("" when it may be).
     std::string reason_to_run_sim_instead(const std::optional<ModuleInUse>& crashed) const;
 
@@ -89,6 +104,10 @@ class ActuatorHost {
     std::shared_ptr<const drivers::ModuleCatalog> running_modules_;
     std::optional<actuator::Declaration> declared_;
     std::optional<ModuleRecord> record_;
+    std::string configured_;       // the configuration's driver when it was last followed
+    bool follows_config_ = true;   // false after a run-time switch
+    bool auto_fell_back_ = false;  // auto found nothing and runs sim
+    std::string reason_;
     std::unique_ptr<drivers::Actuator> actuator_;
     // The modules of the running configuration, which drivers() lists.
     mutable std::mutex modules_mutex_;

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <iostream>
 
+#include "common/json/build_tree.hpp"
 #include "config.h"
 #include "daemon/drivers/available.hpp"
 #include "daemon/log.hpp"
@@ -26,7 +27,9 @@ std::variant<CommandLine, int> parse_command_line(int argc, const char* const* a
     app.add_option("--driver", command_line.driver,
                    "actuator backend, overriding the configuration");
     app.add_option("--store", command_line.store, "directory of composed documents");
-    app.add_option("--shipped", command_line.shipped, "directory of shipped clefs and scores");
+    app.add_option("--shipped", command_line.shipped,
+                   std::string("directory of shipped clefs and scores (default ") +
+                       VIBSCORE_CLEFDIR + "; run from a build tree, its checkout's clefs/)");
     app.add_flag("--verbose", command_line.verbose, "log every playback");
     app.add_flag("--list-drivers", command_line.list_drivers,
                  "list the actuator backends and exit");
@@ -50,7 +53,8 @@ std::variant<CommandLine, int> parse_command_line(int argc, const char* const* a
 
 DaemonConfig read_config(const CommandLine& command_line) {
     DaemonConfig defaults;
-    defaults.shipped = VIBSCORE_CLEFDIR;
+    // From a build tree, its checkout's clefs/ (build_tree.hpp); else the installed folder.
+    defaults.shipped = shipped_clefs_folder();
     DaemonConfig config = defaults;
     if (command_line.config_given || std::filesystem::exists(command_line.config)) {
         config = load_config(command_line.config, defaults);

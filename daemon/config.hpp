@@ -30,7 +30,7 @@ namespace vibscore::daemon {
 struct DaemonConfig {
     std::string driver = "sim";
     std::filesystem::path store = "/var/lib/vibscore";
-    std::filesystem::path shipped;  // default: the installed clefs directory
+    std::filesystem::path shipped;  // default: shipped_clefs_folder() (common/json/build_tree.hpp)
     std::filesystem::path drivers_dir = VIBSCORE_DRIVERDIR;  // driver modules (*.so)
     double separation_ms = 30.0;
     double requests_per_second = 50.0;

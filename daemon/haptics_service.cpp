@@ -39,6 +39,7 @@ HapticsService::HapticsService(sdbus::IConnection& connection, const DaemonConfi
       host_(host),
       authorizer_(authorizer),
       announced_driver_(Driver()),
+      announced_reason_(DriverReason()),
       announced_capabilities_(Capabilities()),
       announced_actuator_(Actuator()) {
     vanish_watch_ = dbus::watch_connections_leaving(connection, [this](const std::string& name) {
@@ -66,6 +67,16 @@ std::string HapticsService::Driver() {
     return guarded("Driver", [&] {
         return playback_.call([&host = host_](Player&) { return host.driver(); });
     });
+}
+
+std::string HapticsService::DriverReason() {
+    return guarded("DriverReason", [&] {
+        return playback_.call([&host = host_](Player&) { return host.reason(); });
+    });
+}
+
+std::map<std::string, std::string> HapticsService::RegistryFolders() {
+    return {{"shipped", config_.shipped.string()}, {"store", config_.store.string()}};
 }
 
 std::vector<std::string> HapticsService::Capabilities() {
@@ -96,26 +107,28 @@ double HapticsService::Intensity() {
 }
 
 void HapticsService::driver_switched() {
-    std::string driver;
+    std::string driver, reason;
     std::vector<std::string> capabilities;
     std::map<std::string, std::string> actuator;
     try {
         driver = Driver();
+        reason = DriverReason();
         capabilities = Capabilities();
         actuator = Actuator();
     } catch (const sdbus::Error& error) {
         log::error("after a driver switch: " + error.getMessage());
         return;
     }
-    if (driver == announced_driver_ && capabilities == announced_capabilities_ &&
-        actuator == announced_actuator_) {
+    if (driver == announced_driver_ && reason == announced_reason_ &&
+        capabilities == announced_capabilities_ && actuator == announced_actuator_) {
         return;
     }
     announced_driver_ = std::move(driver);
+    announced_reason_ = std::move(reason);
     announced_capabilities_ = std::move(capabilities);
     announced_actuator_ = std::move(actuator);
     dbus::emit_properties_changed(getObject(), INTERFACE_NAME,
-                                  {"Driver", "Capabilities", "Actuator"});
+                                  {"Driver", "DriverReason", "Capabilities", "Actuator"});
 }
 
 Caller HapticsService::admit_caller() {

@@ -57,6 +57,8 @@ class HapticsService final : public sdbus::AdaptorInterfaces<org::vibscore::Hapt
     void SwitchDriver(sdbus::Result<>&& result, std::string driver) override;
     void SetIntensity(sdbus::Result<>&& result, double value) override;
     std::string Driver() override;
+    std::string DriverReason() override;
+    std::map<std::string, std::string> RegistryFolders() override;
     std::vector<std::string> Capabilities() override;
     std::map<std::string, std::string> Actuator() override;
     double Intensity() override;
@@ -75,8 +77,8 @@ class HapticsService final : public sdbus::AdaptorInterfaces<org::vibscore::Hapt
     std::uint64_t play(const Caller& caller, const std::string& score, const PlayOptions& options);
     Player::StopResult stop(const Caller& caller, std::uint64_t playback_id, bool privileged);
     void set_intensity(const Caller& caller, double value);
-    // Driver, Capabilities or Actuator changed with a switch or reload: announced with
-    // PropertiesChanged.
+    // Driver, DriverReason, Capabilities or Actuator changed with a switch or reload: announced
+    // with PropertiesChanged.
     void driver_switched();
 
     const DaemonConfig& config_;
@@ -86,6 +88,7 @@ class HapticsService final : public sdbus::AdaptorInterfaces<org::vibscore::Hapt
     ActuatorHost& host_;
     Authorizer& authorizer_;
     std::string announced_driver_;
+    std::string announced_reason_;
     std::vector<std::string> announced_capabilities_;
     std::map<std::string, std::string> announced_actuator_;
     sdbus::Slot vanish_watch_;  // NameOwnerChanged: a caller left the bus

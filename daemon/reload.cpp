@@ -3,6 +3,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "daemon/drivers/auto_driver.hpp"
 #include "daemon/drivers/available.hpp"
 #include "daemon/drivers/configured_actuator.hpp"
 #include "daemon/drivers/driver_settings.hpp"
@@ -15,7 +16,8 @@ void reload_config(DaemonConfig& running, DaemonConfig fresh, ActuatorHost& host
     // A driver that does not exist is known now, before playback is stopped for it.
     const drivers::ModuleCatalog none;
     const auto& modules = fresh.modules ? *fresh.modules : none;
-    if (!drivers::is_built_in_driver(fresh.driver) && modules.find(fresh.driver) == nullptr) {
+    if (fresh.driver != drivers::kAutoDriver && !drivers::is_built_in_driver(fresh.driver) &&
+        modules.find(fresh.driver) == nullptr) {
         std::string why;
         if (const auto* refused = modules.refused_as(fresh.driver)) {
             why = ": module " + refused->path.string() + " is not loaded: " + refused->reason;

@@ -8,6 +8,7 @@
 #include <type_traits>
 #include <utility>
 
+#include "common/number_text.hpp"
 #include "common/quoted_text.hpp"
 #include "daemon/log.hpp"
 #include "daemon/registry/atomic_file.hpp"
@@ -40,8 +41,8 @@ void check_name(std::string_view name) {
 
 std::string clef_title(const Clef& clef) {
     const auto strings = clef.strings.size();
-    return std::string(to_string(clef.type)) + ", tempo " + xml::format_number(clef.tempo) +
-           " s, " + std::to_string(strings) + (strings == 1 ? " string" : " strings");
+    return std::string(to_string(clef.type)) + ", tempo " + rounded_text(clef.tempo) + " s, " +
+           std::to_string(strings) + (strings == 1 ? " string" : " strings");
 }
 
 // One log line per diagnostic, so each gets the journald priority prefix.

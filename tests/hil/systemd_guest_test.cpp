@@ -104,10 +104,56 @@ TEST(SystemdGuest, DbusActivationStartsItAsUserVibscoreOnTheFirstCall) {
     EXPECT_EQ(uid, "vibscore\n");
 }
 
+// "FILE:LINE" of the installed configuration's driver = auto, as the daemon's reasons name it.
+std::string auto_line() {
+    auto line = out_of("grep -n '^driver = auto$' " + kConfig + " | cut -d: -f1");
+    if (!line.empty() && line.back() == '\n') {
+        line.pop_back();
+    }
+    return kConfig + ":" + line;
+}
+
 TEST(SystemdGuest, TheJournalHasItsMessages) {
     const auto journal = out_of("journalctl -u vibscored -b -o cat --no-pager");
     EXPECT_NE(journal.find("ready on org.vibscore.Haptics1"), std::string::npos) << journal;
     EXPECT_NE(journal.find("registry: "), std::string::npos) << journal;
+    // Installed with no actuator in the guest, driver = auto runs sim, and warns saying so.
+    const auto warnings = out_of("journalctl -u vibscored -b -p warning -o cat --no-pager");
+    // The reason names the line of the file that says auto.
+    EXPECT_NE(warnings.find("driver = auto (" + auto_line() +
+                            ") found no actuator, so driver sim plays (nothing "
+                            "vibrates). Searched: evdev: no force-feedback device in /dev/input"),
+              std::string::npos)
+        << warnings;
+}
+
+// The package's driver = auto on a phone: the vibra is there before the packages are, the
+// shipped udev rules tag it, and a fresh install plays on it with nothing configured.
+TEST(SystemdGuest, AFreshInstallPlaysOnTheUdevTaggedVibraWithNoConfiguration) {
+    auto options = UinputVibratorOptions::phone_vibrator();
+    options.mark_as_vibra = false;  // the shipped rules must tag it
+    UinputVibrator vibra(options);
+    ASSERT_EQ(sh("udevadm settle").exit_code, 0);
+    const auto node = vibra.event_node().string();
+    const auto purged = sh("apt-get purge -y -q vibscored");
+    ASSERT_EQ(purged.exit_code, 0) << purged.out << purged.err;
+    ASSERT_NE(sh("test -e " + kConfig).exit_code, 0);
+    const auto installed = sh("apt-get install -y -q /tmp/vibscored_*.deb");
+    ASSERT_EQ(installed.exit_code, 0) << installed.out << installed.err;
+    EXPECT_EQ(out_of("grep -c '^driver = auto$' " + kConfig), "1\n");
+
+    const auto driver = as_alice("vibscore driver");
+    EXPECT_EQ(driver.exit_code, 0) << driver.err;
+    EXPECT_EQ(driver.out.rfind("driver evdev: ", 0), 0u) << driver.out;
+    EXPECT_NE(driver.out.find("driver = auto (" + auto_line() + "): evdev on " + node +
+                              ", the force-feedback device udev tags FEEDBACKD_TYPE=vibra"),
+              std::string::npos)
+        << driver.out;
+    const auto played = as_alice("vibscore play touch-click --wait");
+    EXPECT_EQ(played.exit_code, 0) << played.err;
+    EXPECT_TRUE(vibra.wait_for([](const FfEvent& event) {
+        return event.kind == FfEvent::Kind::Play && event.value > 0;
+    })) << out_of("journalctl -u vibscored -b -o cat --no-pager | tail -20");
 }
 
 TEST(SystemdGuest, UdevTagsAUinputVibraThatTheDaemonDrivesAndStopLeavesOff) {

@@ -111,7 +111,9 @@ TEST_F(DriverSwitch, TheClientListsAndSwitchesDrivers) {
     const auto switched = testing::run_command({vibscore, "driver", "trace"});
     EXPECT_EQ(switched.exit_code, 0) << switched.err;
     EXPECT_EQ(switched.out,
-              "driver trace: amplitude-control frequency-control\n"
+              "driver trace: amplitude-control frequency-control\nswitched at run time "
+              "(SwitchDriver, vibscore driver trace); a reload or a restart returns to the "
+              "configuration's driver = sim\n"
               "actuator: none declared: strengths play as written ([actuator] in vibscored.conf, "
               "docs/drivers.md)\n");
     const auto unknown = testing::run_command({vibscore, "driver", "piezo"});
@@ -119,6 +121,52 @@ TEST_F(DriverSwitch, TheClientListsAndSwitchesDrivers) {
     EXPECT_EQ(unknown.err,
               "vibscore: not found: no driver \"piezo\" (available: sim, evdev, gpio-erm, "
               "gpio-lra, sysfs-pwm, led-vibrator, timed-output, trace)\n");
+}
+
+TEST_F(DriverSwitch, TheClientSaysWhyTheDriverRunsAndWhenItIsAlreadyInUse) {
+    const auto vibscore = testing::required_env("VIBSCORE");
+    const auto shown = testing::run_command({vibscore, "driver"});
+    EXPECT_EQ(shown.exit_code, 0) << shown.err;
+    // The reason names the line of the file that says so.
+    const std::string configured = "configured at " + daemon.config().string() + ":2: driver = sim";
+    const std::string undeclared =
+        "actuator: none declared: strengths play as written ([actuator] in vibscored.conf, "
+        "docs/drivers.md)\n";
+    EXPECT_EQ(shown.out,
+              "driver sim: amplitude-control frequency-control\n" + configured + "\n" + undeclared);
+    EXPECT_EQ(property("DriverReason"), "s \"" + configured + "\"\n");
+    // Switching to the driver in use would only end what plays and reopen it: it says so.
+    auto client = daemon.client();
+    const auto ringing = client->Play(
+        "ringtone", std::map<std::string, sdbus::Variant>{{"repeat", sdbus::Variant(-1)}});
+    const auto same = testing::run_command({vibscore, "driver", "sim"});
+    EXPECT_EQ(same.exit_code, 0) << same.err;
+    EXPECT_EQ(same.out,
+              "driver sim is already in use; nothing changed\ndriver sim: amplitude-control "
+              "frequency-control\n" +
+                  configured + "\n" + undeclared);
+    std::string reason;
+    EXPECT_FALSE(client->wait_finished(ringing, &reason, std::chrono::milliseconds(300))) << reason;
+    EXPECT_THAT(daemon.daemon_log(), ::testing::Not(HasSubstr("driver is now")));
+}
+
+TEST_F(DriverSwitch, DriverAutoWithNoDeviceRunsSimAndWarnsWhatItSearched) {
+    testing::TempDir input;
+    daemon.write_config("driver = auto\n[evdev]\ninput-dir = " + input.path().string(),
+                        "trace = " + daemon.trace().string());
+    daemon.signal_daemon(SIGHUP);
+    for (int i = 0;
+         i < 200 && daemon.daemon_log().find("configuration reloaded") == std::string::npos; ++i) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    EXPECT_EQ(property("Driver"), "s \"sim\"\n");
+    EXPECT_THAT(property("DriverReason"),
+                HasSubstr("vibscored.conf:4) found no actuator, so driver sim plays (nothing "
+                          "vibrates). Searched: evdev: no force-feedback device in " +
+                          input.path().string()));
+    // A warning in the log (journald files <4> as priority warning).
+    EXPECT_THAT(daemon.daemon_log(), HasSubstr("<4>driver = auto (" + daemon.config().string() +
+                                               ":4) found no actuator"));
 }
 
 }  // namespace

@@ -245,14 +245,18 @@ int DaemonFixture::stop_daemon() {
 }
 
 void DaemonFixture::write_config(const std::string& daemon_lines, const std::string& sim_lines) {
-    // A key set twice is an error in vibscored.conf: sim only when the lines name no driver.
-    const bool names_driver = daemon_lines.rfind("driver =", 0) == 0 ||
-                              daemon_lines.find("\ndriver =") != std::string::npos;
-    config_ = dir_.write("vibscored.conf", "[daemon]\n" +
-                                               std::string(names_driver ? "" : "driver = sim\n") +
-                                               "shipped = " + required_env("VIBSCORE_CLEFS") +
-                                               "\nstore = " + store_.string() + "\n" +
-                                               daemon_lines + "\n[sim]\n" + sim_lines + "\n");
+    // The fixture's driver and the checkout's shipped documents, unless the lines set their own
+    // (a key set twice is an error).
+    const auto sets = [&](const std::string& key) {
+        return daemon_lines.starts_with(key + " =") ||
+               daemon_lines.find("\n" + key + " =") != std::string::npos;
+    };
+    const std::string driver = sets("driver") ? "" : "driver = sim\n";
+    const std::string shipped =
+        sets("shipped") ? "" : "shipped = " + required_env("VIBSCORE_CLEFS") + "\n";
+    config_ = dir_.write("vibscored.conf", "[daemon]\n" + driver + shipped +
+                                               "store = " + store_.string() + "\n" + daemon_lines +
+                                               "\n[sim]\n" + sim_lines + "\n");
 }
 
 void DaemonFixture::signal_daemon(int signo) const {

@@ -95,8 +95,8 @@ class DaemonFixture {
     // Waits for the daemon to end by itself (a crash): its exit code, or 128 + the signal.
     int wait_daemon();
     void signal_daemon(int signo) const;
-    // Rewrites the configuration: extra [daemon] lines (with "driver = NAME" among them, it
-    // replaces driver = sim), and the [sim] section's lines.
+    // Rewrites the configuration: extra [daemon] lines (a "driver =" or "shipped =" among them
+    // replaces the fixture's sim or the checkout's clefs/), and the [sim] section's lines.
     void write_config(const std::string& daemon_lines, const std::string& sim_lines);
 
     const std::string& bus_address() const { return bus_address_; }

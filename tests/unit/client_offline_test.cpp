@@ -207,7 +207,32 @@ TEST(ClientOffline, InfoShowsTitleDurationBarsAndClefs) {
         << result.out;
     EXPECT_NE(result.out.find("c  c.xml  sine, tempo 1 s, 3 strings, 2 numbers"),
               std::string::npos);
-    EXPECT_NE(result.out.find("1  clef c  4 beats  at 0.000 s, 4.000 s"), std::string::npos);
+    // The second time is the bar's length, and says so.
+    EXPECT_NE(result.out.find("1  clef c  4 beats  at 0.000 s, 4.000 s long\n"), std::string::npos)
+        << result.out;
+}
+
+// A tempo copy made for 140 bpm holds 3/7 s, whose shortest exact decimal has 17 digits.
+TEST(ClientOffline, InfoAndCheckPrintTempoAtSixDigitsAndAClefsBeatsPerMinute) {
+    TempDir dir;
+    const double three_sevenths = 3.0 / 7.0;
+    dir.write("slow.clef.xml", testing::sine_clef(three_sevenths, {100, 150, 200}, {1, 2}));
+    const auto score =
+        dir.write("slow.score.xml",
+                  "<VibScore><Clef id=\"c\" href=\"slow.clef.xml\"/><Bar clef=\"c\">"
+                  "<Note length=\"whole\" number=\"1\" string=\"2\"/></Bar></VibScore>");
+    const auto clef = run_command({vibscore(), "info", (dir.path() / "slow.clef.xml").string()});
+    EXPECT_NE(clef.out.find("tempo:    0.428571 s per quarter note (140 bpm)\n"), std::string::npos)
+        << clef.out;
+    const auto info = run_command({vibscore(), "info", score.string()});
+    EXPECT_NE(info.out.find("sine, tempo 0.428571 s, 3 strings"), std::string::npos) << info.out;
+    EXPECT_NE(info.out.find("at 0.000 s, 1.714 s long\n"), std::string::npos) << info.out;
+    const auto checked =
+        run_command({vibscore(), "check", (dir.path() / "slow.clef.xml").string()});
+    EXPECT_NE(checked.out.find("(clef: sine, tempo 0.428571 s, 3 strings, 2 numbers)"),
+              std::string::npos)
+        << checked.out;
+    EXPECT_EQ(info.out.find("0.42857142857142855"), std::string::npos) << info.out;
 }
 
 TEST(ClientOffline, InfoShowsAClefsMapping) {

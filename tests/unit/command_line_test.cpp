@@ -2,6 +2,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "common/json/build_tree.hpp"
 #include "config.h"
 #include "daemon/command_line.hpp"
 #include "tests/support/support.hpp"
@@ -54,12 +55,13 @@ TEST(CommandLine, AnUnknownOptionOrAnExtraArgumentIsAUsageErrorNamingIt) {
     EXPECT_THAT(err, ::testing::HasSubstr("extra"));
 }
 
-TEST(ReadConfig, AMissingDefaultFileMeansTheBuiltInDefaultsAndTheInstalledClefs) {
+TEST(ReadConfig, AMissingDefaultFileMeansTheBuiltInDefaultsAndTheShippedClefs) {
     CommandLine command_line;
     command_line.config = "/nonexistent/vibscored.conf";
     const DaemonConfig config = read_config(command_line);
     EXPECT_EQ(config.driver, "sim");
-    EXPECT_EQ(config.shipped, VIBSCORE_CLEFDIR);
+    // The installed folder; this test, in a build tree, gets its checkout's (build_tree_test).
+    EXPECT_EQ(config.shipped, shipped_clefs_folder());
 }
 
 TEST(ReadConfig, AMissingFileNamedOnTheCommandLineIsAnError) {

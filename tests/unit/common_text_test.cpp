@@ -18,6 +18,19 @@ TEST(NumberText, PrintsTheShortestDecimalThatReadsBackTheSame) {
     EXPECT_EQ(number_text(0.0), "0");
 }
 
+TEST(RoundedText, PrintsAtMostSixDigitsWithoutTrailingZerosOrExponents) {
+    EXPECT_EQ(rounded_text(3.0 / 7.0), "0.428571");
+    EXPECT_EQ(rounded_text(0.2), "0.2");
+    EXPECT_EQ(rounded_text(60.0 / (3.0 / 7.0), 4), "140");
+    EXPECT_EQ(rounded_text(999999.0), "999999");  // the last value %g would keep fixed
+    EXPECT_EQ(rounded_text(1000000.4), "1000000");
+    EXPECT_EQ(rounded_text(0.0001234567), "0.000123457");
+    EXPECT_EQ(rounded_text(0.00001234567), "0.0000123457");  // %g: 1.23457e-05
+    EXPECT_EQ(rounded_text(-2.5), "-2.5");
+    EXPECT_EQ(rounded_text(9.9999996), "10");
+    EXPECT_EQ(rounded_text(0.0), "0");
+}
+
 TEST(QuotedText, ShowsControlCharactersAsEscapesSoNoneForgesALogLine) {
     EXPECT_EQ(quoted_text("org.gnome.Clocks"), "\"org.gnome.Clocks\"");
     EXPECT_EQ(quoted_text("a\n<3>forged\r"), "\"a\\x0a<3>forged\\x0d\"");
