@@ -50,14 +50,15 @@ TEST(WrongUsage, EachEndsWithTheReadmesStatusAndAMessageNamingWhatIsWrong) {
          {"frobnicate"},
          2,
          "vibscore: unknown command \"frobnicate\"; the commands are: check render convert clef "
-         "info play stop "
+         "info "
+         "play stop "
          "list get compose delete drivers driver show assign edit"},
         {"VIBSCORE",
          {"lsit"},
          2,
          "vibscore: unknown command \"lsit\" (did you mean list?); the commands are: check render "
-         "convert clef "
-         "info play stop list get compose delete drivers driver show assign edit"},
+         "convert "
+         "clef info play stop list get compose delete drivers driver show assign edit"},
         {"VIBSCORE",
          {"play", "x", "--usage", "bogus"},
          2,
@@ -284,44 +285,75 @@ std::vector<std::string> readme_commands(const std::filesystem::path& readme) {
     return commands;
 }
 
-TEST(Readme, EveryCommandItShowsWorksVerbatim) {
+// A folder where the README's commands run as in a checkout: its clefs/ and examples/, ./dev,
+// a fresh docs/pictures/ (the picture commands must not rewrite the committed pictures), and a
+// build/ whose entries are the build tree's but for run/, so that `./dev daemon` keeps its
+// private service here, not in the build tree where a developer's may run.
+class ReadmeCheckout {
+  public:
+    ReadmeCheckout() {
+        for (const char* entry : {"clefs", "examples", "dev"}) {
+            std::filesystem::create_symlink(source / entry, dir.path() / entry);
+        }
+        std::filesystem::create_directories(dir.path() / "docs" / "pictures");
+        std::filesystem::create_directories(dir.path() / "build");
+        for (const auto& entry : std::filesystem::directory_iterator(built)) {
+            if (entry.path().filename() != "run") {
+                std::filesystem::create_symlink(entry.path(),
+                                                dir.path() / "build" / entry.path().filename());
+            }
+        }
+    }
+    // Whatever happened, the private daemon of `./dev daemon --background` ends with the test.
+    ~ReadmeCheckout() { testing::run_command({"/bin/bash", "-c", shell("./dev daemon --stop")}); }
+
+    // `line` as a user types it in the checkout, after the README's `export` lines so far. No
+    // build folder on PATH: the commands must work as written. VIBSCORE_BUILD_DIR makes ./dev
+    // use the build tree as it is (the test run built it; nothing is installed).
+    std::string shell(const std::string& line) const {
+        return "cd " + path().string() + " && export PATH=/usr/bin:/bin HOME=" + path().string() +
+               " COLUMNS=80 VIBSCORE_BUILD_DIR=" + (path() / "build").string() +
+               " DBUS_SYSTEM_BUS_ADDRESS=unix:path=/nonexistent/bus && " + exports + line;
+    }
+    const std::filesystem::path& path() const { return dir.path(); }
+
     const std::filesystem::path source = testing::required_env("VIBSCORE_SOURCE_ROOT");
-    const std::filesystem::path build = testing::required_env("VIBSCORE_BUILD_ROOT");
+    const std::filesystem::path built = testing::required_env("VIBSCORE_BUILD_ROOT");
+    testing::TempDir dir;
+    std::string exports;  // the README's export lines so far, each followed by " && "
+};
+
+TEST(Readme, EveryCommandItShowsWorksVerbatim) {
+    ReadmeCheckout checkout;
     // Not run here, each for its reason: the test run is `./dev test` (or the by-hand build)
     // itself; `./dev run` is the interactive demo; the editor is driven in tmux by editor_e2e;
     // the packages are built by suite package (tests/package/build-debs, as `./dev package`) and
     // installed with apt under systemd by suite hil-systemd, in a Debian 12 guest, not here.
     const std::vector<std::string> run_elsewhere = {
         "./dev run", "./dev test", "meson setup build && ninja -C build && meson test -C build",
-        "./dev package                                   # build/debs: vibscored, vibscore, "
-        "vibscore-dev",
+        "./dev package          # build/debs: vibscored, vibscore, vibscore-feedback, vibscore-dev",
         "sudo apt install ./build/debs/vibscored_*.deb ./build/debs/vibscore_*.deb"};
-    // A daemon with the example driver module too, as installed.
-    DaemonFixture daemon{"drivers-dir = " + testing::required_env("VIBSCORE_EXAMPLE_DRIVERS")};
-    testing::TempDir work;
-    // The checkout's folders the commands read; docs/pictures/ fresh, so the README's picture
-    // commands do not rewrite the committed pictures.
-    for (const char* folder : {"clefs", "examples"}) {
-        std::filesystem::create_directory_symlink(source / folder, work.path() / folder);
-    }
-    std::filesystem::create_directories(work.path() / "docs" / "pictures");
-    std::filesystem::create_directory_symlink(build, work.path() / "build");
-    const std::string environment =
-        "cd " + work.path().string() + " && export PATH=" + (build / "client").string() + ":" +
-        (build / "daemon").string() + ":/usr/bin:/bin DBUS_SYSTEM_BUS_ADDRESS='" +
-        daemon.bus_address() + "' COLUMNS=80 && ";
+    const auto bus = checkout.path() / "build" / "run" / "bus";
 
     int ran = 0;
-    for (const auto& line : readme_commands(source / "README.md")) {
+    bool daemon_started = false, daemon_stopped = false;
+    for (const auto& line : readme_commands(checkout.source / "README.md")) {
         if (std::find(run_elsewhere.begin(), run_elsewhere.end(), line) != run_elsewhere.end() ||
-            line.starts_with("vibscore edit ")) {
+            line.starts_with("build/client/vibscore edit ")) {
             continue;
         }
         ++ran;
+        if (line.starts_with("export ")) {
+            checkout.exports += line + " && ";
+            const auto exported = testing::run_command(
+                {"/bin/bash", "-c", checkout.shell("echo $DBUS_SYSTEM_BUS_ADDRESS")});
+            EXPECT_EQ(exported.out, "unix:path=" + bus.string() + "\n") << line;
+            continue;
+        }
         if (line.find("--repeat -1 --wait") != std::string::npos) {
             // "Ctrl-C stops it": it plays until interrupted, then says so and succeeds.
-            const auto output = work.path() / "interrupted.out";
-            testing::Process playing({"/bin/bash", "-c", environment + "exec " + line}, output);
+            const auto output = checkout.path() / "interrupted.out";
+            testing::Process playing({"/bin/bash", "-c", checkout.shell("exec " + line)}, output);
             for (int i = 0;
                  i < 500 && testing::read_file(output).find("bar 1") == std::string::npos; ++i) {
                 std::this_thread::sleep_for(std::chrono::milliseconds(20));
@@ -331,10 +363,51 @@ TEST(Readme, EveryCommandItShowsWorksVerbatim) {
             EXPECT_THAT(testing::read_file(output), HasSubstr(" stopped\n")) << line;
             continue;
         }
-        const auto result = testing::run_command({"/bin/bash", "-c", environment + line});
+        const auto result = testing::run_command({"/bin/bash", "-c", checkout.shell(line)});
         EXPECT_EQ(result.exit_code, 0) << line << "\n" << result.out << result.err;
+        if (line.starts_with("./dev daemon --background")) {
+            // It prints the one line to paste, and the README's next line is that line.
+            daemon_started = true;
+            EXPECT_EQ(result.out,
+                      "export DBUS_SYSTEM_BUS_ADDRESS=unix:path=" + bus.string() + "\n");
+            EXPECT_TRUE(std::filesystem::exists(bus)) << result.err;
+        }
+        if (line.starts_with("build/client/vibscore list scores")) {
+            // The daemon from the build tree found the checkout's shipped scores by itself.
+            EXPECT_THAT(result.out, HasSubstr("ringtone\t")) << result.err;
+        }
+        if (line == "./dev daemon --stop") {
+            daemon_stopped = true;
+            EXPECT_FALSE(
+                std::filesystem::exists(checkout.path() / "build" / "run" / "vibscored.pid"));
+            const auto after = testing::run_command(
+                {"/bin/bash", "-c", checkout.shell("build/client/vibscore list scores")});
+            EXPECT_EQ(after.exit_code, 1) << after.out;
+        }
     }
-    EXPECT_GE(ran, 15);
+    EXPECT_TRUE(daemon_started);
+    EXPECT_TRUE(daemon_stopped);
+    EXPECT_GE(ran, 30);
+}
+
+// `vibscore list` with nothing to list says so, and where the daemon looked.
+TEST(Readme, AnEmptyListSaysWhereTheDaemonLooked) {
+    testing::TempDir dir;
+    std::filesystem::create_directories(dir.path() / "shipped");
+    std::filesystem::copy_file(
+        std::filesystem::path(testing::required_env("VIBSCORE_CLEFS")) / "lra-phone.clef.xml",
+        dir.path() / "shipped" / "lra-phone.clef.xml");
+    DaemonFixture daemon{"shipped = " + (dir.path() / "shipped").string()};
+    const auto scores = testing::run_command(command("VIBSCORE", {"list", "scores"}));
+    EXPECT_EQ(scores.exit_code, 0) << scores.err;
+    EXPECT_EQ(scores.out, "");
+    EXPECT_EQ(scores.err, "vibscore: vibscored has no scores: none shipped in " +
+                              (dir.path() / "shipped").string() +
+                              " (shipped = in vibscored.conf) and none composed in " +
+                              daemon.store().string() + " (store =)\n");
+    const auto clefs = testing::run_command(command("VIBSCORE", {"list", "clef"}));
+    EXPECT_EQ(clefs.out, "lra-phone\tsine, tempo 0.2 s, 6 strings\n");
+    EXPECT_EQ(clefs.err, "");
 }
 
 }  // namespace
