@@ -16,6 +16,7 @@ constexpr int kNarrowest = 40;
 
 const char* kQuitChoices[] = {"save and quit", "quit without saving", "cancel"};
 constexpr int kReplaceChoices = 3;  // another name, replace it, cancel
+constexpr const char* kOnlyNameCharacters = "names take a-z 0-9 . _ -; Enter saves";
 
 // Saving over a shipped score loses nothing (it stays, shadowed); over a stored score or a file
 // the old one is gone. The question says which.
@@ -648,6 +649,11 @@ Request ButtonScheme::command(const Command& command, EditorModel& model) {
     if (mode_ == Mode::playing) {
         return {Request::Kind::stop};
     }
+    if (typing_a_name()) {
+        // A letter's action would leave the name half typed (at 80x24 every letter is one).
+        model.say(kOnlyNameCharacters);
+        return {};
+    }
     if (mode_ == Mode::clef_list || clef_editor() != nullptr) {
         // A letter key at 80x24 would otherwise drop the clef being edited without a word.
         model.say("a clef is open: Back, Back closes it");
@@ -655,6 +661,13 @@ Request ButtonScheme::command(const Command& command, EditorModel& model) {
     }
     leave_layers(model);
     return perform(command, model);
+}
+
+Request ButtonScheme::type_key(char c, EditorModel& model) {
+    if (!name_.type_key(c)) {
+        model.say(kOnlyNameCharacters);
+    }
+    return {};
 }
 
 ButtonScheme::MenuView ButtonScheme::menu_view(const EditorModel& model) const {

@@ -109,6 +109,9 @@ class ButtonScheme {
     // A button let go (buttons that say so: evdev keys). Only tapping listens.
     void release(Button button, Time at);
     Request command(const Command& command, EditorModel& model);
+    // While a name is asked for (save as, a clef's new name), a keyboard's printable keys type it.
+    bool typing_a_name() const { return mode_ == Mode::name_entry || mode_ == Mode::clef_name; }
+    Request type_key(char c, EditorModel& model);
 
     Mode mode() const { return mode_; }
     // While entering: which step of the symbol.

@@ -21,6 +21,9 @@ struct Editor {
     bool operator==(const Editor&) const = default;
     // An ncurses key code; keys that mean nothing are ignored.
     Request key(int code, std::optional<ButtonScheme::Time> at = std::nullopt) {
+        if (scheme.typing_a_name() && code > ' ' && code < 127) {
+            return scheme.type_key(static_cast<char>(code), model);
+        }
         const auto input = key_input(code);
         if (!input) {
             return {};

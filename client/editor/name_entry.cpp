@@ -114,6 +114,19 @@ void NameEntry::type(char c) {
     name_ += c;
 }
 
+bool NameEntry::type_key(char c) {
+    const char lower = c >= 'A' && c <= 'Z' ? static_cast<char>(c - 'A' + 'a') : c;
+    const bool of_names = (lower >= 'a' && lower <= 'z') || (lower >= '0' && lower <= '9') ||
+                          lower == '.' || lower == '_' || lower == '-';
+    if (!of_names) {
+        return false;
+    }
+    refused_.clear();
+    level_ = Level::letters;
+    type(lower);
+    return true;
+}
+
 NameEntry::Outcome NameEntry::back_from_more() {
     if (proposals_.size() > 1) {
         level_ = Level::proposals;

@@ -34,6 +34,10 @@ class NameEntry {
     // `proposals`, best first; at least one (an empty list proposes "tacton-2").
     void start(std::vector<std::string> proposals);
     Outcome press(Button button);
+    // A character typed on a keyboard, as if chosen with the buttons: the characters of
+    // registry names (a-z, 0-9, '.', '_', '-'; A-Z as lower case). False for any other, which is
+    // not taken.
+    bool type_key(char c);
     // The name chosen cannot be taken (the caller knows why): typing goes on, the box says it.
     void refuse(std::string why) { refused_ = std::move(why); }
 

@@ -4,6 +4,7 @@
 
 #include "client/editor/name_entry.hpp"
 #include "client/editor/planner/press_planner.hpp"
+#include "score/score_xml.hpp"
 #include "tests/support/editor_support.hpp"
 
 namespace vibscore {
@@ -218,6 +219,33 @@ TEST(EditorSaveAs, ATypedNameIsSavedUnder) {
     press(editor, {L});  // ringtone-4
     EXPECT_EQ(editor.scheme.menu_view(editor.model).lines, std::vector<std::string>{"ringtone-4|"});
     EXPECT_EQ(editor.press(S), (Request{Request::Kind::save_as, "ringtone-4"}));
+}
+
+TEST(EditorSaveAs, AKeyboardTypesTheNameInsteadOfRunningTheLettersActions) {
+    auto editor = opened_ringtone();
+    to_menu_entry(editor, "save as...");
+    press(editor, {S});
+    ASSERT_EQ(editor.scheme.mode(), ButtonScheme::Mode::name_entry);
+    const std::string before = write_score(editor.model.score());
+    for (const char c : std::string("My-Ring.2")) {
+        EXPECT_EQ(editor.key(c), Request{});
+        ASSERT_EQ(editor.scheme.mode(), ButtonScheme::Mode::name_entry) << c;
+    }
+    EXPECT_EQ(editor.scheme.menu_view(editor.model).lines, std::vector<std::string>{"my-ring.2|"});
+    // The last character a name takes and the first it does not: neither runs an action.
+    EXPECT_EQ(editor.key(' '), Request{});
+    EXPECT_EQ(editor.key('!'), Request{});
+    EXPECT_EQ(editor.model.message(), "names take a-z 0-9 . _ -; Enter saves");
+    EXPECT_EQ(editor.key('_'), Request{});
+    EXPECT_EQ(write_score(editor.model.score()), before);
+    EXPECT_EQ(editor.key('\n'), (Request{Request::Kind::save_as, "my-ring.2_"}));
+    EXPECT_EQ(editor.scheme.mode(), ButtonScheme::Mode::browse);
+}
+
+TEST(EditorSaveAs, OutsideANameTheSameKeyRunsItsAction) {
+    auto editor = opened_ringtone();
+    editor.key('t');
+    EXPECT_EQ(editor.scheme.mode(), ButtonScheme::Mode::tapping);
 }
 
 TEST(EditorSaveAs, SavingOverTheOpenedShippedScoreAsksFirst) {
