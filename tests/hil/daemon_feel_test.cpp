@@ -80,6 +80,21 @@ void play_to_the_end(DaemonFixture& daemon, const std::string& score) {
     EXPECT_EQ(reason, "completed") << daemon.daemon_log();
 }
 
+// The sampler has seen every line low again: it polls on a thread of its own, which under TCG can
+// lag the lines themselves (reading them directly is not enough before taking its changes).
+bool sampler_ends_low(const GpioLinesSampler& sampler) {
+    const auto seen = sampler.changes();
+    if (seen.empty()) {
+        return false;
+    }
+    for (const int value : seen.back().values) {
+        if (value != 0) {
+            return false;
+        }
+    }
+    return true;
+}
+
 // The first state at or after `from` in which line `index` has `value`.
 std::optional<Clock::time_point> first_seen(const std::vector<LinesState>& states,
                                             std::size_t index, int value,
@@ -111,6 +126,8 @@ TEST(DaemonFeel, GpioErmOverdrivesTheNotesStartAndDrivesItsEndBackwards) {
 
     play_to_the_end(daemon, score);
     ASSERT_TRUE(eventually([&] { return sim.value(0) == 0 && sim.value(1) == 0; }, 1s));
+    ASSERT_TRUE(eventually([&] { return sampler_ends_low(sampler); }, 1s))
+        << listing(sampler.changes(), 400);
     const auto states = sampler.changes();
     const auto start = first_seen(states, 0, 1);
     ASSERT_TRUE(start) << listing(states);
@@ -128,7 +145,7 @@ TEST(DaemonFeel, GpioErmOverdrivesTheNotesStartAndDrivesItsEndBackwards) {
                 kOnsetTolerance_s + 0.01)
         << listing(states, 400);
     const auto stopped = first_seen(states, 1, 0, *reversed);
-    ASSERT_TRUE(stopped);
+    ASSERT_TRUE(stopped) << listing(states, 400);
     EXPECT_NEAR(seconds_between(*reversed, *stopped), drives[3].at - drives[2].at,
                 kOnsetTolerance_s + 0.01)
         << listing(states, 400);
@@ -169,6 +186,8 @@ TEST(DaemonFeel, GpioLraBrakesInAntiPhaseWithItsBridgeSwapped) {
 
     play_to_the_end(daemon, score);
     ASSERT_TRUE(eventually([&] { return sim.value(0) == 0 && sim.value(1) == 0; }, 1s));
+    ASSERT_TRUE(eventually([&] { return sampler_ends_low(sampler); }, 1s))
+        << listing(sampler.changes(), 400);
     const auto states = sampler.changes();
     // At full strength the bridge alternates A and B without a gap, each high for half a period.
     // The anti-phase drive is the same half a period on, so at the switch (a period start) the
@@ -232,6 +251,7 @@ TEST(DaemonFeel, SysfsPwmOverdrivesThenReversesWithItsDirectionLine) {
     ASSERT_EQ(drives.size(), 4u);
     play_to_the_end(daemon, score);
     ASSERT_TRUE(eventually([&] { return sim.value(0) == 0; }, 1s));
+    ASSERT_TRUE(eventually([&] { return sampler_ends_low(direction); }, 1s));
 
     // The channel: full duty (overdrive), half (rated), 0 while the direction turns, full again
     // (backwards), then 0.
