@@ -71,4 +71,9 @@ const ActionRecord& record_of(Action action);
 // The command a keyboard key names, if any (the six buttons' keys are not commands).
 std::optional<Command> command_for_key(int code);
 
+// Each action is carried out by the model or by the session, never both or neither. Checked by
+// the tests, not by a static_assert: comparing function pointers with nullptr is no constant
+// expression in GCC's sanitizer builds.
+bool each_action_done_by_one();
+
 }  // namespace vibscore::editor

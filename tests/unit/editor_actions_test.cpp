@@ -118,5 +118,9 @@ TEST(EditorActions, TheModelRefusesTheSessionsActionsAndSaysWhy) {
     EXPECT_FALSE(editor.model.apply({Action::set_length, -1}));
 }
 
+TEST(EditorActions, EachIsDoneByTheModelOrByTheSession) {
+    EXPECT_TRUE(editor::each_action_done_by_one());
+}
+
 }  // namespace
 }  // namespace vibscore
