@@ -2,6 +2,8 @@
 // root, the group rule where polkit is not running, and the shipped polkit actions.
 #include <gtest/gtest.h>
 
+#include <memory>
+
 #include <pugixml.hpp>
 
 #include <optional>
@@ -28,9 +30,11 @@ class AuthorityTest : public ::testing::Test {
 
     // The decision, when it came before this returns; nullopt while polkit has not answered.
     std::optional<Decision> decide(const Caller& caller, Action action) {
-        std::optional<Decision> decided;
-        authorizer.decide(caller, action, [&](const Decision& decision) { decided = decision; });
-        return decided;
+        // Shared: a held question is answered after this returns.
+        auto decided = std::make_shared<std::optional<Decision>>();
+        authorizer.decide(caller, action,
+                          [decided](const Decision& decision) { *decided = decision; });
+        return *decided;
     }
     bool allowed(const Caller& caller, Action action) {
         const auto decision = decide(caller, action);
