@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <iterator>
+#include <tuple>
 
 #include "client/editor/score_edits.hpp"
 
@@ -73,16 +75,27 @@ class Painter {
     StaffLayout& layout_;
 };
 
+// Spans are in score order, each bar's line before its symbols and end
+// position: ordered by (bar, symbol, not a bar line). So a position's span is
+// found by halving, not by a walk from the start that made laying out (and
+// drawing) a long score quadratic.
 const Span* span_at(const StaffLayout& layout, Position at) {
-    for (const auto& span : layout.spans) {
-        if (span.kind != Span::Kind::bar_line && span.bar == at.bar && span.symbol == at.symbol) {
-            return &span;
-        }
+    const auto key = [](const Span& span) {
+        return std::tuple(span.bar, span.symbol, span.kind != Span::Kind::bar_line);
+    };
+    const auto wanted = std::tuple(at.bar, at.symbol, true);
+    const auto found =
+        std::lower_bound(layout.spans.begin(), layout.spans.end(), wanted,
+                         [&](const Span& span, const auto& value) { return key(span) < value; });
+    if (found != layout.spans.end() && found->kind != Span::Kind::bar_line &&
+        found->bar == at.bar && found->symbol == at.symbol) {
+        return &*found;
     }
     return nullptr;
 }
 
-// The columns a note's sound covers on the staff: from its head to before its trailing gap.
+// The columns a note's sound covers on the staff: from its head to before its
+// trailing gap.
 int sound_end(const Span& span) {
     return span.x + std::max(span.width - 2, 1);
 }
@@ -251,7 +264,8 @@ StaffLayout layout_staff(const Score& score, const LayoutOptions& options) {
     const int staff_width = x + 1;
     layout.width = staff_width;
     if (options.cursor && !options.cursor_label.empty()) {
-        // Room for the cursor's label after the last bar line when the cursor is near it.
+        // Room for the cursor's label after the last bar line when the cursor is
+        // near it.
         if (const Span* span = span_at(layout, *options.cursor)) {
             layout.width =
                 std::max(layout.width, span->x + 2 + static_cast<int>(options.cursor_label.size()));
@@ -366,11 +380,12 @@ std::vector<std::pair<int, int>> systems(const StaffLayout& layout, int width) {
     int begin = 0;
     while (begin < layout.width - 1) {
         // The furthest bar line that still fits; a bar wider than the page is cut.
+        // Bar lines are in column order: found by halving, so a long score's
+        // systems take n log n.
         int end = begin;
-        for (const int line : bar_lines) {
-            if (line > begin && line + 1 - begin <= width) {
-                end = line + 1;
-            }
+        const auto after = std::upper_bound(bar_lines.begin(), bar_lines.end(), begin + width - 1);
+        if (after != bar_lines.begin() && *std::prev(after) > begin) {
+            end = *std::prev(after) + 1;
         }
         const bool at_bar_line = end != begin;
         if (!at_bar_line) {

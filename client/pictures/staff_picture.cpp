@@ -4,6 +4,7 @@
 #include <cmath>
 #include <optional>
 #include <string>
+#include <tuple>
 
 #include "client/editor/score_edits.hpp"
 #include "client/pictures/picture_text.hpp"
@@ -67,13 +68,21 @@ int flags(Length length) {
 }
 
 const Span* symbol_span(const editor::StaffLayout& layout, std::size_t bar, std::size_t symbol) {
-    for (const auto& span : layout.spans) {
-        if (span.kind == Span::Kind::symbol && span.bar == bar && span.symbol == symbol) {
-            return &span;
-        }
-    }
-    return nullptr;
+    // Spans are in score order, each bar's line before its symbols.
+    const auto found = std::lower_bound(
+        layout.spans.begin(), layout.spans.end(), std::tuple(bar, symbol, true),
+        [](const Span& span, const auto& wanted) {
+            return std::tuple(span.bar, span.symbol, span.kind != Span::Kind::bar_line) < wanted;
+        });
+    return found != layout.spans.end() && found->kind == Span::Kind::symbol && found->bar == bar &&
+                   found->symbol == symbol
+               ? &*found
+               : nullptr;
 }
+
+// Marks that may reach into a system's columns from outside them (a hairpin's tip, a tie's arc):
+// the columns either side that are drawn too, and clipped.
+constexpr int kReach = 2;
 
 }  // namespace
 
@@ -81,11 +90,19 @@ StaffPicture::StaffPicture(const Score& score, const Options& options)
     : score_(score), layout_(editor::layout_staff(score)) {
     double top = kTitle;
     int widest = 0;
+    const auto first_at = [&](int column) {
+        return static_cast<std::size_t>(
+            std::lower_bound(layout_.spans.begin(), layout_.spans.end(), column,
+                             [](const Span& span, int x) { return span.x < x; }) -
+            layout_.spans.begin());
+    };
     for (const auto& [begin, end] : editor::systems(layout_, options.columns_per_system)) {
-        systems_.push_back({begin, end, top});
+        systems_.push_back({begin, end, top, first_at(begin), first_at(end)});
         top += kSystemHeight;
         widest = std::max(widest, end - begin);
     }
+    find_hairpins();
+    find_ties();
     // Wide enough for the title too.
     const SurfacePtr scratch(cairo_image_surface_create(CAIRO_FORMAT_ARGB32, 1, 1),
                              &cairo_surface_destroy);
@@ -118,7 +135,7 @@ double StaffPicture::string_y(const System& system, int string) const {
 void StaffPicture::place_clef_boxes(cairo_t* cairo) {
     select_font(cairo, 10, false);
     for (const auto& system : systems_) {
-        for (std::size_t i = 0; i < layout_.spans.size(); ++i) {
+        for (std::size_t i = system.first_span; i < system.end_span; ++i) {
             const auto& span = layout_.spans[i];
             // The bar line closing a system opens the next bar, whose clef box heads the next
             // system.
@@ -149,7 +166,8 @@ void StaffPicture::place_clef_boxes(cairo_t* cairo) {
 std::vector<StaffPicture::Point> StaffPicture::head_centres() const {
     std::vector<Point> centres;
     for (const auto& system : systems_) {
-        for (const auto& span : layout_.spans) {
+        for (std::size_t i = system.first_span; i < system.end_span; ++i) {
+            const auto& span = layout_.spans[i];
             if (span.kind != Span::Kind::symbol || span.x < system.begin || span.x >= system.end) {
                 continue;
             }
@@ -187,7 +205,8 @@ void StaffPicture::draw_system(cairo_t* cairo, const System& system, Layers laye
         }
         cairo_stroke(cairo);
     }
-    for (const auto& span : layout_.spans) {
+    for (std::size_t i = system.first_span; i < system.end_span; ++i) {
+        const auto& span = layout_.spans[i];
         if (span.x < system.begin || span.x >= system.end) {
             continue;
         }
@@ -344,31 +363,16 @@ void StaffPicture::draw_clef_box(cairo_t* cairo, const ClefBox& box, Layers laye
     }
 }
 
-void StaffPicture::draw_hairpins(cairo_t* cairo, const System& system) const {
-    const double y = system.top + kClefRow + kDynamicsRow / 2;
-    const auto wedge = [&](std::size_t first_bar, std::size_t first, std::size_t last_bar,
-                           std::size_t last, Dynamics dynamics) {
-        const Span* from = symbol_span(layout_, first_bar, first);
-        const Span* to = symbol_span(layout_, last_bar, last);
-        const double x0 = column_x(system, from->x + 0.2);
-        const double x1 = column_x(system, to->x + std::max(to->width - 1, 1));
-        const double open = kHairpinOpen;
-        cairo_set_source_rgb(cairo, 0.55, 0.35, 0.0);
-        cairo_set_line_width(cairo, 1.2);
-        if (dynamics == Dynamics::crescendo) {
-            cairo_move_to(cairo, x1, y - open);
-            cairo_line_to(cairo, x0, y);
-            cairo_line_to(cairo, x1, y + open);
-        } else {
-            cairo_move_to(cairo, x0, y - open);
-            cairo_line_to(cairo, x1, y);
-            cairo_line_to(cairo, x0, y + open);
-        }
-        cairo_stroke(cairo);
-    };
+void StaffPicture::find_hairpins() {
     // A run of notes with the same dynamics is one hairpin; rests end it, blanks do not.
     Dynamics run = Dynamics::none;
     std::size_t first_bar = 0, first = 0, last_bar = 0, last = 0;
+    const auto finish = [&] {
+        if (run != Dynamics::none) {
+            hairpins_.push_back({symbol_span(layout_, first_bar, first),
+                                 symbol_span(layout_, last_bar, last), run});
+        }
+    };
     for (std::size_t b = 0; b < score_.bars.size(); ++b) {
         for (std::size_t s = 0; s < score_.bars[b].symbols.size(); ++s) {
             const Symbol& symbol = score_.bars[b].symbols[s];
@@ -378,9 +382,7 @@ void StaffPicture::draw_hairpins(cairo_t* cairo, const System& system) const {
             const auto* note = std::get_if<Note>(&symbol);
             const Dynamics here = note != nullptr ? note->dynamics : Dynamics::none;
             if (here != run) {
-                if (run != Dynamics::none) {
-                    wedge(first_bar, first, last_bar, last, run);
-                }
+                finish();
                 run = here;
                 first_bar = b;
                 first = s;
@@ -389,13 +391,10 @@ void StaffPicture::draw_hairpins(cairo_t* cairo, const System& system) const {
             last = s;
         }
     }
-    if (run != Dynamics::none) {
-        wedge(first_bar, first, last_bar, last, run);
-    }
+    finish();
 }
 
-void StaffPicture::draw_ties(cairo_t* cairo, const System& system) const {
-    const double below = string_y(system, 1) + 8;
+void StaffPicture::find_ties() {
     for (std::size_t b = 0; b < score_.bars.size(); ++b) {
         for (std::size_t s = 0; s < score_.bars[b].symbols.size(); ++s) {
             const editor::Position at{b, s};
@@ -405,24 +404,67 @@ void StaffPicture::draw_ties(cairo_t* cairo, const System& system) const {
             if (note == nullptr || next == nullptr) {
                 continue;
             }
-            const double x0 = head_x(system, layout_.x_of(at));
-            const double x1 = head_x(system, layout_.x_of(*next_at));
-            if (note->legato != 0 && note->legato == next->legato) {
-                // A slur under the staff.
-                cairo_set_source_rgb(cairo, 0.0, 0.45, 0.15);
-                cairo_set_line_width(cairo, 1.4);
-                cairo_move_to(cairo, x0, below);
-                cairo_curve_to(cairo, x0 + 4, below + 10, x1 - 4, below + 10, x1, below);
-                cairo_stroke(cairo);
+            const bool slur = note->legato != 0 && note->legato == next->legato;
+            const bool glide = note->portamento != 0 && note->portamento == next->portamento;
+            if (slur || glide) {
+                ties_.push_back({layout_.x_of(at), layout_.x_of(*next_at), note, next});
             }
-            if (note->portamento != 0 && note->portamento == next->portamento) {
-                // A glide: a straight line from head to head.
-                cairo_set_source_rgb(cairo, 0.0, 0.35, 0.7);
-                cairo_set_line_width(cairo, 1.6);
-                cairo_move_to(cairo, x0 + kHeadRx + 1, string_y(system, note->string));
-                cairo_line_to(cairo, x1 - kHeadRx - 1, string_y(system, next->string));
-                cairo_stroke(cairo);
-            }
+        }
+    }
+}
+
+void StaffPicture::draw_hairpins(cairo_t* cairo, const System& system) const {
+    const double y = system.top + kClefRow + kDynamicsRow / 2;
+    // The hairpins that reach this system's columns, in order: they end in column order too.
+    auto hairpin = std::lower_bound(
+        hairpins_.begin(), hairpins_.end(), system.begin - kReach,
+        [](const Hairpin& h, int column) { return h.to->x + h.to->width < column; });
+    for (; hairpin != hairpins_.end() && hairpin->from->x <= system.end + kReach; ++hairpin) {
+        const Span* from = hairpin->from;
+        const Span* to = hairpin->to;
+        const double x0 = column_x(system, from->x + 0.2);
+        const double x1 = column_x(system, to->x + std::max(to->width - 1, 1));
+        const double open = kHairpinOpen;
+        cairo_set_source_rgb(cairo, 0.55, 0.35, 0.0);
+        cairo_set_line_width(cairo, 1.2);
+        if (hairpin->dynamics == Dynamics::crescendo) {
+            cairo_move_to(cairo, x1, y - open);
+            cairo_line_to(cairo, x0, y);
+            cairo_line_to(cairo, x1, y + open);
+        } else {
+            cairo_move_to(cairo, x0, y - open);
+            cairo_line_to(cairo, x1, y);
+            cairo_line_to(cairo, x0, y + open);
+        }
+        cairo_stroke(cairo);
+    }
+}
+
+void StaffPicture::draw_ties(cairo_t* cairo, const System& system) const {
+    const double below = string_y(system, 1) + 8;
+    // The ties that reach this system's columns, in order: they end in column order too.
+    auto tie = std::lower_bound(ties_.begin(), ties_.end(), system.begin - kReach,
+                                [](const Tie& t, int column) { return t.to + 1 < column; });
+    for (; tie != ties_.end() && tie->from <= system.end + kReach; ++tie) {
+        const Note* note = tie->note;
+        const Note* next = tie->next;
+        const double x0 = head_x(system, tie->from);
+        const double x1 = head_x(system, tie->to);
+        if (note->legato != 0 && note->legato == next->legato) {
+            // A slur under the staff.
+            cairo_set_source_rgb(cairo, 0.0, 0.45, 0.15);
+            cairo_set_line_width(cairo, 1.4);
+            cairo_move_to(cairo, x0, below);
+            cairo_curve_to(cairo, x0 + 4, below + 10, x1 - 4, below + 10, x1, below);
+            cairo_stroke(cairo);
+        }
+        if (note->portamento != 0 && note->portamento == next->portamento) {
+            // A glide: a straight line from head to head.
+            cairo_set_source_rgb(cairo, 0.0, 0.35, 0.7);
+            cairo_set_line_width(cairo, 1.6);
+            cairo_move_to(cairo, x0 + kHeadRx + 1, string_y(system, note->string));
+            cairo_line_to(cairo, x1 - kHeadRx - 1, string_y(system, next->string));
+            cairo_stroke(cairo);
         }
     }
 }

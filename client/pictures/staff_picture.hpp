@@ -68,6 +68,21 @@ class StaffPicture : public Drawing {
     struct System {
         int begin = 0, end = 0;  // layout columns
         double top = 0.0;        // y of its clef-box row
+        // The layout's spans in its columns: [first_span, end_span), spans being in column order.
+        std::size_t first_span = 0, end_span = 0;
+    };
+    // A hairpin: a run of notes with the same dynamics; a legato arc or a portamento line from one
+    // note to the next. Found once, in score order (so in column order), and drawn by each system
+    // they reach: a long score is drawn in n log n, not systems x notes.
+    struct Hairpin {
+        const editor::Span* from = nullptr;
+        const editor::Span* to = nullptr;
+        Dynamics dynamics = Dynamics::none;
+    };
+    struct Tie {
+        int from = 0, to = 0;  // the two heads' columns
+        const Note* note = nullptr;
+        const Note* next = nullptr;
     };
 
     std::string title_text() const;
@@ -75,6 +90,8 @@ class StaffPicture : public Drawing {
     double head_x(const System& system, int column) const;
     double string_y(const System& system, int string) const;
     void place_clef_boxes(cairo_t* cairo);
+    void find_hairpins();
+    void find_ties();
     void draw_system(cairo_t* cairo, const System& system, Layers layers) const;
     void draw_note(cairo_t* cairo, const System& system, const editor::Span& span, const Note& note,
                    Layers layers) const;
@@ -87,6 +104,8 @@ class StaffPicture : public Drawing {
     const Score& score_;
     editor::StaffLayout layout_;
     std::vector<System> systems_;
+    std::vector<Hairpin> hairpins_;
+    std::vector<Tie> ties_;
     std::vector<ClefBox> clef_boxes_;
     double width_ = 0.0, height_ = 0.0;
 };
