@@ -1,0 +1,398 @@
+// estimate(): what a recording of a probe says about the actuator, and whether to trust it;
+// apply() and declaration_lines(): what a trusted estimate changes; the pictures' traces.
+#include "daemon/actuator/calibration.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "common/number_text.hpp"
+#include "daemon/actuator/calibration_fit.hpp"
+#include "daemon/actuator/physics.hpp"
+
+namespace vibscore::actuator::calibration {
+
+namespace {
+
+using fit::Vec3;
+
+// Fewer readings than this cannot hold a probe: a recorder that stopped, or the wrong file.
+constexpr std::size_t kMinSamples = 200;
+// The vibration must stand this far above the readings' noise: below, the phone is not feeling
+// the actuator (no contact, a soft surface, the wrong sensor).
+constexpr double kMinSnrDb = 12.0;
+// What the model may leave of the vibration: more, and it is not describing this actuator.
+constexpr double kMaxLraResidual = 0.35;
+constexpr double kMaxErmResidual = 0.6;
+// LRA: the search reaches this far beyond the probe's tones; an answer at its edge is refused.
+constexpr double kLraSearchMargin = 1.12;
+constexpr double kMinQ = 2.0, kMaxQ = 150.0;
+// ERM: what the probe's steps can time (0.4 s on, 0.6 s off).
+constexpr double kMinSpinS = 0.006, kMaxSpinUpS = 0.2, kMaxSpinDownS = 0.4;
+// Clipping: this share of one axis's readings (and at least 5) at exactly its extreme value,
+// far from its median. A vibration's own peaks put a few readings on the top quantisation
+// step; a clipped one piles a good share of them there.
+constexpr double kClippedShare = 0.01;
+
+double axis_of(const Sample& s, int axis) {
+    return axis == 0 ? s.x : axis == 1 ? s.y : s.z;
+}
+
+std::string text(double value, int digits = 3) {
+    return rounded_text(value, digits);
+}
+
+double first_drive_s(const Plan& plan) {
+    for (const PlanRow& row : plan.rows) {
+        if (row.amplitude != 0.0) {
+            return row.t_s;
+        }
+    }
+    return plan.duration_s();
+}
+
+bool clipped(const std::vector<Sample>& samples, std::string& which) {
+    for (int axis = 0; axis < 3; ++axis) {
+        std::vector<double> v;
+        v.reserve(samples.size());
+        for (const Sample& s : samples) {
+            v.push_back(axis_of(s, axis));
+        }
+        const double high = *std::max_element(v.begin(), v.end());
+        const double low = *std::min_element(v.begin(), v.end());
+        std::vector<double> sorted = v;
+        std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
+        const double median = sorted[sorted.size() / 2];
+        for (const double extreme : {high, low}) {
+            const auto at = std::count(v.begin(), v.end(), extreme);
+            if (at >= 5 && static_cast<double>(at) >= kClippedShare * v.size() &&
+                std::abs(extreme - median) > 1.0) {
+                which = std::string(1, static_cast<char>('x' + axis)) + " at " + text(extreme, 4) +
+                        " m/s² (" + std::to_string(at) + " readings)";
+                return true;
+            }
+        }
+    }
+    return false;
+}
+
+void set_unmeasured(Estimate& e, const std::string& why) {
+    if (e.kind == Kind::erm) {
+        e.unmeasured.push_back(std::string(kSpinUpMs.key) + ": " + why);
+        e.unmeasured.push_back(std::string(kSpinDownMs.key) + ": " + why);
+    } else {
+        e.unmeasured.push_back(std::string(kResonanceHz.key) + ": " + why);
+        e.unmeasured.push_back(std::string(kQ.key) + ": " + why);
+    }
+}
+
+void check_limit(Estimate& e, const Limit& limit, double value) {
+    if (value < limit.min || value > limit.max || (!limit.min_allowed && value == limit.min)) {
+        e.problems.push_back(std::string("the measured ") + limit.key + " " + text(value, 4) +
+                             " is outside what a declaration allows (" + text(limit.min, 4) + ".." +
+                             text(limit.max, 4) + ")");
+    }
+}
+
+// The noise the vibration is compared with: what the readings do before the first drive.
+double quiet_power(const std::vector<double>& t, const std::vector<Vec3>& vibration,
+                   double before_s) {
+    double sum = 0.0;
+    int count = 0;
+    for (std::size_t k = 0; k < t.size(); ++k) {
+        if (t[k] < before_s) {
+            sum += vibration[k][0] * vibration[k][0] + vibration[k][1] * vibration[k][1] +
+                   vibration[k][2] * vibration[k][2];
+            ++count;
+        }
+    }
+    return count >= 10 ? sum / count : -1.0;
+}
+
+void estimate_lra(Estimate& e, const Plan& plan, const std::vector<Sample>& samples,
+                  const std::vector<Vec3>& vibration, const std::vector<double>& raw,
+                  const std::optional<Declaration>& nominal) {
+    const LraRange range = lra_range(nominal);
+    const double low = range.low_hz / kLraSearchMargin, high = range.high_hz * kLraSearchMargin;
+    // The vibration's axis from the driven part; the reading along it (gravity included: each
+    // block's slow line takes it).
+    const Vec3 axis = fit::principal_axis(vibration);
+    std::vector<double> y(samples.size());
+    for (std::size_t k = 0; k < samples.size(); ++k) {
+        y[k] = samples[k].x * axis[0] + samples[k].y * axis[1] + samples[k].z * axis[2];
+    }
+    // Reported times jitter either because the readings were taken at jittered instants (then
+    // the reported times are right) or because the report is late by a varying amount (then
+    // the sensor's uniform clock is): fit both ways and keep the one that explains more.
+    const std::vector<double> regular = fit::regular_times(raw);
+    fit::LraFit best;
+    bool first = true;
+    for (const std::vector<double>* times : {&regular, &raw}) {
+        const fit::LraFit f = fit::fit_lra(plan, *times, y, low, high, e.sample_rate_hz);
+        if (first || f.rss < best.rss) {
+            best = f;
+            first = false;
+        }
+    }
+    e.resonance_hz = best.resonance_hz;
+    e.q = std::numbers::pi * best.resonance_hz / best.decay_per_s;
+    e.full_scale_accel = best.full_scale;
+    e.residual = best.vibration_ss > 0.0 ? std::sqrt(best.rss / best.vibration_ss) : 1.0;
+    // Signal: what the vibration's terms explain, per reading; noise: what one axis does
+    // before the first drive (or, without a quiet stretch, what the fit leaves).
+    double noise = quiet_power(raw, vibration, first_drive_s(plan) + best.offset_s - 0.025) / 3.0;
+    if (noise < 0.0) {
+        noise = best.rss / std::max(1.0, best.samples);
+    }
+    const double signal = (best.vibration_ss - best.rss) / std::max(1.0, best.samples);
+    e.snr_db = 10.0 * std::log10(std::max(signal, 1e-30) / std::max(noise, 1e-30));
+    if (e.snr_db < kMinSnrDb) {
+        return;  // the caller refuses it for that; the numbers below would be noise
+    }
+    if (best.resonance_hz <= low * 1.01 || best.resonance_hz >= high / 1.01) {
+        e.problems.push_back("the resonance came out at the edge of what the probe covers (" +
+                             text(low, 4) + "-" + text(high, 4) +
+                             " Hz): declare a resonance-hz nearer the part's datasheet value and "
+                             "calibrate again");
+    }
+    if (*e.q <= kMinQ * 1.02 || *e.q >= kMaxQ / 1.02) {
+        e.problems.push_back("the quality factor came out at " + text(*e.q) +
+                             ", beyond what the probe can measure (" + text(kMinQ) + "-" +
+                             text(kMaxQ) + ")");
+    }
+    if (best.tone_misfit > kMaxLraResidual) {
+        e.problems.push_back("the tones' strengths do not follow one resonance (misfit " +
+                             text(best.tone_misfit, 2) +
+                             "): the actuator or its mounting is not behaving as a resonator; "
+                             "hold the phone still, or lay it on a hard surface, and try again");
+    }
+    check_limit(e, kResonanceHz, best.resonance_hz);
+    check_limit(e, kQ, *e.q);
+}
+
+void estimate_erm(Estimate& e, const Plan& plan, const std::vector<Vec3>& vibration,
+                  const std::vector<double>& raw) {
+    std::vector<double> energy(vibration.size());
+    for (std::size_t k = 0; k < vibration.size(); ++k) {
+        energy[k] = vibration[k][0] * vibration[k][0] + vibration[k][1] * vibration[k][1] +
+                    vibration[k][2] * vibration[k][2];
+    }
+    // A few milliseconds: several turns of the mass at speed, short against the time constants.
+    const int half = std::max(1, static_cast<int>(std::lround(0.004 * e.sample_rate_hz)));
+    energy = fit::box_smooth(energy, half);
+    const std::vector<double> regular = fit::regular_times(raw);
+    fit::ErmFit best;
+    bool first = true;
+    for (const std::vector<double>* times : {&regular, &raw}) {
+        const fit::ErmFit f = fit::fit_erm(plan, *times, energy, half);
+        if (first || f.rss < best.rss) {
+            best = f;
+            first = false;
+        }
+    }
+    e.spin_up_s = best.spin_up_s;
+    e.spin_down_s = best.spin_down_s;
+    // Peak of one axis's sinusoid with the same energy: what an LRA's figure means too.
+    e.full_scale_accel = std::sqrt(2.0 * std::max(0.0, best.scale));
+    e.residual = best.energy_ss > 0.0 ? std::sqrt(best.rss / best.energy_ss) : 1.0;
+    double noise = quiet_power(raw, vibration, first_drive_s(plan) + best.delay_s - 0.025);
+    if (noise < 0.0) {
+        noise = best.floor;
+    }
+    e.snr_db = 10.0 * std::log10(std::max(best.scale, 1e-30) / std::max(noise, 1e-30));
+    if (e.snr_db < kMinSnrDb) {
+        return;
+    }
+    if (best.spin_up_s <= kMinSpinS || best.spin_up_s >= kMaxSpinUpS) {
+        e.problems.push_back("the spin-up time came out at " + text(best.spin_up_s * 1000.0) +
+                             " ms, beyond what the probe can time (" + text(kMinSpinS * 1000.0) +
+                             "-" + text(kMaxSpinUpS * 1000.0) + " ms)");
+    }
+    if (best.spin_down_s <= kMinSpinS || best.spin_down_s >= kMaxSpinDownS) {
+        e.problems.push_back("the spin-down time came out at " + text(best.spin_down_s * 1000.0) +
+                             " ms, beyond what the probe can time (" + text(kMinSpinS * 1000.0) +
+                             "-" + text(kMaxSpinDownS * 1000.0) + " ms)");
+    }
+    check_limit(e, kSpinUpMs, best.spin_up_s * 1000.0);
+    check_limit(e, kSpinDownMs, best.spin_down_s * 1000.0);
+}
+
+}  // namespace
+
+Estimate estimate(const Plan& plan, const std::vector<Sample>& samples,
+                  const std::optional<Declaration>& nominal) {
+    Estimate e;
+    e.kind = plan.kind;
+    if (samples.size() < kMinSamples) {
+        e.problems.push_back("the recording has " + std::to_string(samples.size()) +
+                             " readings, too few for a probe of " + text(plan.duration_s()) +
+                             " s: check that the accelerometer was recording throughout");
+        set_unmeasured(e, "no usable recording");
+        return e;
+    }
+    std::vector<double> raw(samples.size());
+    for (std::size_t k = 0; k < samples.size(); ++k) {
+        raw[k] = samples[k].t_s;
+    }
+    e.sample_rate_hz = fit::median_rate(raw);
+    if (e.sample_rate_hz < kMinSampleRateHz) {
+        const std::string why = "the accelerometer read at " + text(e.sample_rate_hz) +
+                                " Hz; timing the actuator needs 400 Hz or more (below, its "
+                                "vibration aliases)";
+        e.problems.push_back(why +
+                             ": set the accelerometer's sampling frequency to 400 Hz or "
+                             "more and calibrate again");
+        set_unmeasured(e, why);
+        return e;
+    }
+    const double covered = raw.back() - raw.front();
+    if (raw.front() > first_drive_s(plan) || covered < 0.9 * (plan.duration_s() - raw.front())) {
+        e.problems.push_back("the recording covers " + text(raw.front()) + "-" + text(raw.back()) +
+                             " s but the probe plays 0-" + text(plan.duration_s()) +
+                             " s: start recording before the probe and stop after it");
+    }
+    std::string which;
+    if (clipped(samples, which)) {
+        e.problems.push_back("the accelerometer clipped (" + which +
+                             "): set its range wider (e.g. ±4 g), or hold the phone so the "
+                             "actuator shakes it less hard");
+    }
+    const int half = std::max(1, static_cast<int>(std::lround(0.010 * e.sample_rate_hz)));
+    const std::vector<Vec3> vibration = fit::high_pass(samples, half);
+    if (plan.kind == Kind::lra) {
+        estimate_lra(e, plan, samples, vibration, raw, nominal);
+    } else {
+        estimate_erm(e, plan, vibration, raw);
+    }
+    if (e.snr_db < kMinSnrDb) {
+        e.problems.push_back("no vibration felt: the actuator stands only " + text(e.snr_db, 2) +
+                             " dB above the accelerometer's noise (" + text(kMinSnrDb, 2) +
+                             " needed); lay the phone on a hard surface, or check that the "
+                             "actuator runs and the accelerometer is the phone's own");
+        e.spin_up_s.reset();
+        e.spin_down_s.reset();
+        e.resonance_hz.reset();
+        e.q.reset();
+        e.full_scale_accel.reset();
+        set_unmeasured(e, "no vibration stood out of the noise");
+    } else {
+        const double limit = plan.kind == Kind::lra ? kMaxLraResidual : kMaxErmResidual;
+        if (e.residual > limit) {
+            e.problems.push_back("the model fits the recording poorly (residual " +
+                                 text(e.residual, 2) + ", at most " + text(limit, 2) +
+                                 " trusted): hold the phone still on a hard surface, away from "
+                                 "other vibration, and calibrate again");
+        }
+    }
+    e.trusted = e.problems.empty();
+    return e;
+}
+
+Trace measured_magnitude(const std::vector<Sample>& samples) {
+    Trace trace;
+    if (samples.size() < 3) {
+        return trace;
+    }
+    std::vector<double> raw(samples.size());
+    for (std::size_t k = 0; k < samples.size(); ++k) {
+        raw[k] = samples[k].t_s;
+    }
+    const double rate = std::max(1.0, fit::median_rate(raw));
+    const std::vector<Vec3> vibration =
+        fit::high_pass(samples, std::max(1, static_cast<int>(std::lround(0.010 * rate))));
+    std::vector<double> energy(samples.size());
+    for (std::size_t k = 0; k < samples.size(); ++k) {
+        energy[k] = vibration[k][0] * vibration[k][0] + vibration[k][1] * vibration[k][1] +
+                    vibration[k][2] * vibration[k][2];
+    }
+    energy = fit::box_smooth(energy, std::max(1, static_cast<int>(std::lround(0.005 * rate))));
+    trace.t_s = raw;
+    for (const double value : energy) {
+        trace.magnitude.push_back(std::sqrt(2.0 * std::max(0.0, value)));
+    }
+    return trace;
+}
+
+Trace predicted_magnitude(const Plan& plan, const Declaration& constants, double full_scale_accel,
+                          const std::vector<double>& t_s) {
+    Declaration d = constants;
+    d.kind = plan.kind;
+    const Physics physics(d);
+    Trace trace;
+    trace.t_s = t_s;
+    for (const double t : t_s) {
+        State state;
+        for (std::size_t i = 0; i < plan.rows.size(); ++i) {
+            const double start = plan.rows[i].t_s;
+            if (t <= start) {
+                break;
+            }
+            const double end = i + 1 < plan.rows.size() ? plan.rows[i + 1].t_s : INFINITY;
+            state = physics.advance(state, {plan.rows[i].amplitude, plan.rows[i].frequency_hz},
+                                    std::min(t, end) - start);
+        }
+        // Strength 1 is what rated drive gives; full scale is 1 / rated of it (an ERM's speed),
+        // and an ERM shakes with its speed squared.
+        const double relative = Physics::strength(state) * d.rated_drive;
+        trace.magnitude.push_back(full_scale_accel *
+                                  (plan.kind == Kind::erm ? relative * relative : relative));
+    }
+    return trace;
+}
+
+Declaration apply(const Declaration& declared, const Estimate& estimate) {
+    if (estimate.kind != declared.kind) {
+        throw std::invalid_argument(std::string("calibration: the estimate is of an ") +
+                                    (estimate.kind == Kind::erm ? "erm" : "lra") +
+                                    " but the actuator is declared an " +
+                                    (declared.kind == Kind::erm ? "erm" : "lra"));
+    }
+    if (!estimate.trusted) {
+        std::string why = "calibration: the estimate is not trusted";
+        if (!estimate.problems.empty()) {
+            why += ": " + estimate.problems.front();
+        }
+        throw std::invalid_argument(why);
+    }
+    Declaration out = declared;
+    if (declared.kind == Kind::erm) {
+        out.spin_up_s = estimate.spin_up_s.value();
+        out.spin_down_s = estimate.spin_down_s.value();
+    } else {
+        out.resonance_hz = estimate.resonance_hz.value();
+        out.q = estimate.q.value();
+    }
+    return out;
+}
+
+std::string declaration_lines(const Estimate& estimate) {
+    std::string out;
+    if (estimate.spin_up_s) {
+        out += std::string(kSpinUpMs.key) + " = " + text(*estimate.spin_up_s * 1000.0) + "\n";
+    }
+    if (estimate.spin_down_s) {
+        out += std::string(kSpinDownMs.key) + " = " + text(*estimate.spin_down_s * 1000.0) + "\n";
+    }
+    if (estimate.resonance_hz) {
+        out += std::string(kResonanceHz.key) + " = " + text(*estimate.resonance_hz, 4) + "\n";
+    }
+    if (estimate.q) {
+        out += std::string(kQ.key) + " = " + text(*estimate.q) + "\n";
+    }
+    if (estimate.full_scale_accel) {
+        out += "# strength: full scale shakes the phone with " + text(*estimate.full_scale_accel) +
+               " m/s² peak" + (estimate.kind == Kind::lra ? " at resonance" : "") + "\n";
+    }
+    out += "# fit: residual " + text(estimate.residual, 2) + ", signal-to-noise " +
+           text(estimate.snr_db, 3) + " dB, sampled at " + text(estimate.sample_rate_hz, 4) +
+           " Hz" + (estimate.trusted ? "" : ", not trusted") + "\n";
+    for (const std::string& problem : estimate.problems) {
+        out += "# problem: " + problem + "\n";
+    }
+    for (const std::string& missing : estimate.unmeasured) {
+        out += "# not measured: " + missing + "\n";
+    }
+    return out;
+}
+
+}  // namespace vibscore::actuator::calibration

@@ -1,0 +1,73 @@
+#pragma once
+
+#include <array>
+#include <functional>
+#include <vector>
+
+#include "daemon/actuator/calibration.hpp"
+
+// The numerical parts of estimate() (internal to the actuator library): the recording's time
+// line, its vibration with gravity and the hand taken out, and the two model fits.
+namespace vibscore::actuator::calibration::fit {
+
+using Vec3 = std::array<double, 3>;
+
+// The median of the intervals between readings, as a rate (0 for fewer than two readings).
+double median_rate(const std::vector<double>& t_s);
+
+// The readings' times as the sensor's own clock most likely took them: a straight line through
+// the reported times against the readings' order. Reported times jitter; a sensor's clock does
+// not, so this removes the jitter when the readings were in fact uniform.
+std::vector<double> regular_times(const std::vector<double>& t_s);
+
+// A centred moving average over 2 `half` + 1 readings (fewer at the ends).
+std::vector<double> box_smooth(const std::vector<double>& values, int half);
+
+// Each axis minus its slowly varying part (a triangular moving average 4 `half` + 1 readings
+// wide): gravity and the hand's movement out, the vibration left.
+std::vector<Vec3> high_pass(const std::vector<Sample>& samples, int half);
+
+// The direction the vibration mostly takes (principal axis of the readings), unit length.
+Vec3 principal_axis(const std::vector<Vec3>& vibration);
+
+// Minimises `f` from `start` (Nelder-Mead) with initial steps `step`; returns the best point.
+std::vector<double> minimise(const std::function<double(const std::vector<double>&)>& f,
+                             std::vector<double> start, const std::vector<double>& step,
+                             int iterations);
+
+// An LRA's ring: resonance (undamped, Hz) and amplitude decay rate (1/s), the plan's time offset
+// in the recording, and what the fit leaves.
+struct LraFit {
+    double resonance_hz = 0.0;
+    double decay_per_s = 0.0;
+    double offset_s = 0.0;
+    double rss = 0.0;           // what the model leaves
+    double vibration_ss = 0.0;  // what a model without vibration leaves (the vibration's energy)
+    double samples = 0.0;
+    double tone_misfit = 1.0;  // tones' steady strengths against the resonance curve, relative
+    double full_scale = 0.0;   // steady peak acceleration at full-scale drive at resonance
+};
+// `t_s` and `signal` (the reading along the vibration's axis); the search spans `low_hz` ..
+// `high_hz`; `rate_hz` is the sampling rate (for the alias of each candidate).
+LraFit fit_lra(const Plan& plan, const std::vector<double>& t_s, const std::vector<double>& signal,
+               double low_hz, double high_hz, double rate_hz);
+
+// An ERM's speed: time constants, delay, and the energy fit.
+struct ErmFit {
+    double spin_up_s = 0.0;
+    double spin_down_s = 0.0;
+    double delay_s = 0.0;
+    double scale = 0.0;  // smoothed |vibration|^2 at full speed
+    double floor = 0.0;  // smoothed |vibration|^2 at rest (noise)
+    double rss = 0.0;
+    double energy_ss = 0.0;  // the energy's own spread about the floor
+};
+// `energy`: |vibration|^2 smoothed by box_smooth over `half`.
+ErmFit fit_erm(const Plan& plan, const std::vector<double>& t_s, const std::vector<double>& energy,
+               int half);
+
+// An ERM's normalised speed (1 = full scale's) at `t_s` under `plan`, shifted `delay_s`.
+double erm_speed(const Plan& plan, double spin_up_s, double spin_down_s, double delay_s,
+                 double t_s);
+
+}  // namespace vibscore::actuator::calibration::fit

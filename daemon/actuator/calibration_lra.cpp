@@ -1,0 +1,307 @@
+// An LRA's resonance and decay from a recording of its probe.
+//
+// The model, block by block of the plan (a tone, or a ring-down): the reading along the
+// vibration's axis is a slow line (gravity, the hand) + a sinusoid at the tone's frequency (the
+// steady response; any amplitude and phase) + a free ring at the resonator's damped frequency
+// decaying at gamma from the block's start (any amplitude and phase). For a linear resonator
+// this is exact whatever state a block starts in and whatever phase convention the drive has;
+// the amplitudes are linear least squares, and only the resonance, gamma and the plan's offset
+// in the recording are searched. Every basis is evaluated at the readings' own times, so a
+// resonance above half the sampling rate is fitted as itself, not as its alias; the tones'
+// steady strengths (which peak at resonance) then tell it from its mirror image.
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "daemon/actuator/calibration_fit.hpp"
+
+namespace vibscore::actuator::calibration::fit {
+
+namespace {
+
+constexpr double kTwoPi = 2.0 * std::numbers::pi;
+constexpr int kMaxBasis = 6;
+
+struct Block {
+    double start_s;
+    double amplitude;
+    double frequency_hz;
+    bool rings;  // some drive came before or is now: the resonator may be moving
+};
+
+std::vector<Block> blocks_of(const Plan& plan, double offset_s) {
+    std::vector<Block> blocks;
+    bool driven_before = false;
+    for (const PlanRow& row : plan.rows) {
+        const bool driven = row.amplitude != 0.0;
+        if (!driven && !blocks.empty() && blocks.back().amplitude == 0.0) {
+            continue;  // still undriven: the same free ring (or the same quiet)
+        }
+        driven_before = driven_before || driven;
+        blocks.push_back({row.t_s + offset_s, row.amplitude, row.frequency_hz, driven_before});
+    }
+    return blocks;
+}
+
+// Least squares of one block, accumulated reading by reading.
+struct Normal {
+    int n = 0;
+    double a[kMaxBasis][kMaxBasis]{};
+    double b[kMaxBasis]{};
+    double yy = 0.0;
+    long count = 0;
+
+    void add(const double* g, double y) {
+        for (int i = 0; i < n; ++i) {
+            for (int j = 0; j <= i; ++j) {
+                a[i][j] += g[i] * g[j];
+            }
+            b[i] += g[i] * y;
+        }
+        yy += y * y;
+        ++count;
+    }
+    // The residual sum of squares, and the coefficients.
+    double solve(double* coef) const {
+        if (count == 0) {
+            return 0.0;
+        }
+        double l[kMaxBasis][kMaxBasis]{};
+        double trace = 0.0;
+        for (int i = 0; i < n; ++i) {
+            trace += a[i][i];
+        }
+        const double ridge = 1e-10 * trace / n + 1e-300;
+        for (int i = 0; i < n; ++i) {
+            for (int j = 0; j <= i; ++j) {
+                double s = a[i][j] + (i == j ? ridge : 0.0);
+                for (int k = 0; k < j; ++k) {
+                    s -= l[i][k] * l[j][k];
+                }
+                l[i][j] = i == j ? std::sqrt(std::max(s, 1e-300)) : s / l[j][j];
+            }
+        }
+        double z[kMaxBasis];
+        for (int i = 0; i < n; ++i) {
+            double s = b[i];
+            for (int k = 0; k < i; ++k) {
+                s -= l[i][k] * z[k];
+            }
+            z[i] = s / l[i][i];
+        }
+        for (int i = n - 1; i >= 0; --i) {
+            double s = z[i];
+            for (int k = i + 1; k < n; ++k) {
+                s -= l[k][i] * coef[k];
+            }
+            coef[i] = s / l[i][i];
+        }
+        double explained = 0.0;
+        for (int i = 0; i < n; ++i) {
+            explained += coef[i] * b[i];
+        }
+        return std::max(0.0, yy - explained);
+    }
+};
+
+struct Tone {
+    double amplitude;     // drive, -1..1
+    double frequency_hz;  // drive
+    double response;      // fitted steady peak acceleration
+};
+
+class Model {
+  public:
+    Model(const Plan& plan, const std::vector<double>& t_s, const std::vector<double>& y)
+        : plan_(plan), t_(t_s), y_(y) {}
+
+    // The residual of the whole recording under (f0, gamma, offset); with `tones`, the steady
+    // responses; with `quiet`, the residual with no vibration at all.
+    double rss(double f0, double gamma, double offset, std::vector<Tone>* tones = nullptr,
+               double* quiet = nullptr) const {
+        const std::vector<Block> blocks = blocks_of(plan_, offset);
+        std::vector<Normal> normal(blocks.size()), slow(blocks.size());
+        const double wd =
+            kTwoPi * f0 * std::sqrt(std::max(0.0, 1.0 - std::pow(gamma / (kTwoPi * f0), 2.0)));
+        for (std::size_t k = 0; k < t_.size(); ++k) {
+            const double t = t_[k];
+            std::size_t b = 0;
+            // Blocks are few (15): a linear scan from the last is as fast as a search.
+            while (b + 1 < blocks.size() && t >= blocks[b + 1].start_s) {
+                ++b;
+            }
+            const Block& block = blocks[b];
+            double g[kMaxBasis];
+            int n = 0;
+            g[n++] = 1.0;
+            g[n++] = (t - block.start_s) * 10.0;  // per 100 ms: well scaled against the others
+            if (block.amplitude != 0.0) {
+                const double w = kTwoPi * block.frequency_hz;
+                g[n++] = std::cos(w * t);
+                g[n++] = std::sin(w * t);
+            }
+            if (block.rings) {
+                const double envelope = std::exp(-gamma * std::max(0.0, t - block.start_s));
+                g[n++] = envelope * std::cos(wd * t);
+                g[n++] = envelope * std::sin(wd * t);
+            }
+            normal[b].n = n;
+            normal[b].add(g, y_[k]);
+            if (quiet) {
+                slow[b].n = 2;
+                slow[b].add(g, y_[k]);
+            }
+        }
+        double total = 0.0;
+        for (std::size_t b = 0; b < blocks.size(); ++b) {
+            double coef[kMaxBasis]{};
+            total += normal[b].solve(coef);
+            if (tones && blocks[b].amplitude != 0.0 && normal[b].count > 0) {
+                tones->push_back(
+                    {blocks[b].amplitude, blocks[b].frequency_hz, std::hypot(coef[2], coef[3])});
+            }
+            if (quiet) {
+                double c2[kMaxBasis]{};
+                *quiet += slow[b].solve(c2);
+            }
+        }
+        return total;
+    }
+
+  private:
+    const Plan& plan_;
+    const std::vector<double>& t_;
+    const std::vector<double>& y_;
+};
+
+// Steady acceleration response at drive frequency f relative to the one at resonance.
+double response_at(double f, double f0, double gamma) {
+    const double w = kTwoPi * f, w0 = kTwoPi * f0;
+    const double q = w0 / (2.0 * gamma);
+    return w * w / std::sqrt(std::pow(w0 * w0 - w * w, 2.0) + std::pow(2.0 * gamma * w, 2.0)) / q;
+}
+
+// How far the tones' steady responses are from the resonance curve of (f0, gamma), relative;
+// and the full-scale strength that scales the curve to them.
+std::pair<double, double> tone_misfit(const std::vector<Tone>& tones, double f0, double gamma) {
+    double mp = 0.0, pp = 0.0, mm = 0.0;
+    for (const Tone& tone : tones) {
+        const double p = std::abs(tone.amplitude) * response_at(tone.frequency_hz, f0, gamma);
+        mp += tone.response * p;
+        pp += p * p;
+        mm += tone.response * tone.response;
+    }
+    if (!(pp > 0.0) || !(mm > 0.0)) {
+        return {1.0, 0.0};
+    }
+    const double scale = mp / pp;
+    double miss = 0.0;
+    for (const Tone& tone : tones) {
+        const double p = std::abs(tone.amplitude) * response_at(tone.frequency_hz, f0, gamma);
+        miss += std::pow(tone.response - scale * p, 2.0);
+    }
+    return {std::sqrt(miss / mm), scale};
+}
+
+struct Point {
+    double f0, gamma, offset, rss;
+};
+
+Point refine(const Model& model, Point start, double low_hz, double high_hz) {
+    // A local grid first (the residual has narrow valleys in frequency), then the simplex.
+    Point best = start;
+    const double qs[] = {2.5, 3.5, 5, 7, 10, 14, 20, 28, 40, 56, 80, 110};
+    for (int i = -12; i <= 12; ++i) {
+        const double f = start.f0 * (1.0 + 0.0025 * i);
+        if (f < low_hz || f > high_hz) {
+            continue;
+        }
+        for (const double q : qs) {
+            const double gamma = std::numbers::pi * f / q;
+            const double r = model.rss(f, gamma, start.offset);
+            if (r < best.rss) {
+                best = {f, gamma, start.offset, r};
+            }
+        }
+    }
+    const auto cost = [&](const std::vector<double>& p) {
+        const double f = p[0];
+        if (f < low_hz * 0.98 || f > high_hz * 1.02 || std::abs(p[2]) > 0.08) {
+            return 1e300;
+        }
+        return model.rss(f, std::exp(p[1]), p[2]);
+    };
+    const std::vector<double> found = minimise(cost, {best.f0, std::log(best.gamma), best.offset},
+                                               {0.002 * best.f0, 0.15, 0.002}, 120);
+    const double r = cost(found);
+    if (r < best.rss) {
+        best = {found[0], std::exp(found[1]), found[2], r};
+    }
+    return best;
+}
+
+}  // namespace
+
+LraFit fit_lra(const Plan& plan, const std::vector<double>& t_s, const std::vector<double>& signal,
+               double low_hz, double high_hz, double rate_hz) {
+    const Model model(plan, t_s, signal);
+    // Coarse: resonance in 0.5 % steps over the whole range, a few Q, no offset.
+    Point best{0.5 * (low_hz + high_hz), 0.0, 0.0, 1e300};
+    const double qs[] = {3, 4.5, 7, 10, 15, 22, 33, 50};
+    for (double f = low_hz; f <= high_hz; f *= 1.005) {
+        for (const double q : qs) {
+            const double gamma = std::numbers::pi * f / q;
+            const double r = model.rss(f, gamma, 0.0);
+            if (r < best.rss) {
+                best = {f, gamma, 0.0, r};
+            }
+        }
+    }
+    // The plan's offset in the recording (a recorder that started late, the drive's latency).
+    for (double offset = -0.05; offset <= 0.0501; offset += 0.002) {
+        const double r = model.rss(best.f0, best.gamma, offset);
+        if (r < best.rss) {
+            best.offset = offset;
+            best.rss = r;
+        }
+    }
+    best = refine(model, best, low_hz, high_hz);
+
+    std::vector<Point> candidates{best};
+    // Sampled slower than twice the resonance, f0 and rate - f0 fit the readings alike.
+    const double mirror = rate_hz - best.f0;
+    if (mirror >= low_hz && mirror <= high_hz && std::abs(mirror - best.f0) > 0.002 * best.f0) {
+        Point start{mirror, best.gamma, best.offset, model.rss(mirror, best.gamma, best.offset)};
+        candidates.push_back(refine(model, start, low_hz, high_hz));
+    }
+    double least = 1e300;
+    for (const Point& c : candidates) {
+        least = std::min(least, c.rss);
+    }
+    LraFit out;
+    double best_misfit = 1e300;
+    for (const Point& c : candidates) {
+        // Candidates the readings cannot tell apart are told apart by the tones.
+        if (c.rss > 1.5 * least) {
+            continue;
+        }
+        std::vector<Tone> tones;
+        double quiet = 0.0;
+        const double r = model.rss(c.f0, c.gamma, c.offset, &tones, &quiet);
+        const auto [misfit, scale] = tone_misfit(tones, c.f0, c.gamma);
+        if (misfit < best_misfit) {
+            best_misfit = misfit;
+            out.resonance_hz = c.f0;
+            out.decay_per_s = c.gamma;
+            out.offset_s = c.offset;
+            out.rss = r;
+            out.vibration_ss = quiet;
+            out.tone_misfit = misfit;
+            out.full_scale = scale;
+        }
+    }
+    out.samples = static_cast<double>(t_s.size());
+    return out;
+}
+
+}  // namespace vibscore::actuator::calibration::fit

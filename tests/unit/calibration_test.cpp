@@ -1,0 +1,357 @@
+// The actuator calibration (issue 32): the probe's plan and its CSV, recordings read back, and
+// estimates from recordings the accelerometer model makes of actuators whose true constants
+// differ from the declared ones; what is refused and why.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <stdexcept>
+#include <string>
+
+#include "daemon/actuator/calibration.hpp"
+#include "daemon/actuator/vibration_sensor.hpp"
+#include "tests/support/example_actuators.hpp"
+
+namespace vibscore::actuator::calibration {
+namespace {
+
+using testing::example_erm;
+using testing::example_lra;
+
+std::string error_of(const std::function<void()>& f) {
+    try {
+        f();
+    } catch (const std::invalid_argument& e) {
+        return e.what();
+    }
+    return "(no error)";
+}
+
+bool mentions(const std::vector<std::string>& lines, const std::string& part) {
+    return std::any_of(lines.begin(), lines.end(), [&](const std::string& line) {
+        return line.find(part) != std::string::npos;
+    });
+}
+
+Estimate measure(const Declaration& truth, const Declaration& declared, SensorOptions sensor,
+                 double delay_s = 0.004) {
+    const Plan plan = make_plan(declared.kind, declared);
+    return estimate(plan, record(plan, truth, sensor, delay_s, 0.05), declared);
+}
+
+SensorOptions at(double rate_hz, std::uint64_t seed = 1) {
+    SensorOptions sensor;
+    sensor.rate_hz = rate_hz;
+    sensor.seed = seed;
+    return sensor;
+}
+
+TEST(CalibrationPlan, EveryProbeIsShortAndWithinFullScale) {
+    std::vector<Plan> plans{make_plan(Kind::erm, std::nullopt), make_plan(Kind::lra, std::nullopt),
+                            make_plan(Kind::erm, example_erm()),
+                            make_plan(Kind::lra, example_lra())};
+    Declaration lowest = example_lra(kResonanceHz.min), highest = example_lra(kResonanceHz.max);
+    plans.push_back(make_plan(Kind::lra, lowest));
+    plans.push_back(make_plan(Kind::lra, highest));
+    for (const Plan& plan : plans) {
+        ASSERT_GE(plan.rows.size(), 3u);
+        EXPECT_EQ(plan.rows.front().t_s, 0.0);
+        EXPECT_EQ(plan.rows.front().amplitude, 0.0) << "a quiet lead-in to measure the noise";
+        EXPECT_EQ(plan.rows.back().amplitude, 0.0);
+        EXPECT_LE(plan.duration_s(), kMaxPlanSeconds);
+        EXPECT_GT(plan.duration_s(), 1.0);
+        for (std::size_t i = 0; i < plan.rows.size(); ++i) {
+            EXPECT_GE(plan.rows[i].amplitude, -1.0);
+            EXPECT_LE(plan.rows[i].amplitude, 1.0);
+            if (i > 0) {
+                EXPECT_GT(plan.rows[i].t_s, plan.rows[i - 1].t_s);
+            }
+        }
+    }
+}
+
+TEST(CalibrationPlan, AnLrasTonesSpanTheDeclaredResonanceByAFifthEachWay) {
+    const Plan plan = make_plan(Kind::lra, example_lra(200.0));
+    double low = 1e9, high = 0.0;
+    int tones = 0;
+    for (const PlanRow& row : plan.rows) {
+        if (row.amplitude != 0.0) {
+            low = std::min(low, row.frequency_hz);
+            high = std::max(high, row.frequency_hz);
+            ++tones;
+        }
+    }
+    EXPECT_GE(tones, 5);
+    EXPECT_LE(low, 160.0);
+    EXPECT_GE(high, 240.0);
+    const LraRange range = lra_range(std::nullopt);
+    EXPECT_LE(range.low_hz, 150.0 * 0.9) << "without a declaration: every phone LRA";
+    EXPECT_GE(range.high_hz, 235.0 * 1.1);
+}
+
+TEST(CalibrationPlan, ItsCsvReadsBackTheSame) {
+    const Plan plan = make_plan(Kind::lra, example_lra());
+    const std::string csv = plan_csv(plan);
+    EXPECT_EQ(csv.rfind("time_ns,amplitude,frequency_hz\n", 0), 0u);
+    const Plan back = parse_plan_csv(csv, "plan.csv", Kind::lra);
+    ASSERT_EQ(back.rows.size(), plan.rows.size());
+    for (std::size_t i = 0; i < plan.rows.size(); ++i) {
+        EXPECT_NEAR(back.rows[i].t_s, plan.rows[i].t_s, 1e-9);
+        EXPECT_EQ(back.rows[i].amplitude, plan.rows[i].amplitude);
+        EXPECT_EQ(back.rows[i].frequency_hz, plan.rows[i].frequency_hz);
+    }
+}
+
+TEST(CalibrationPlan, ASimTraceCountsFromItsFirstRow) {
+    const Plan plan = parse_plan_csv(
+        "time_ns,amplitude,frequency_hz,response\n5000000000,0,0,0\n5100000000,1,175,0.2\n"
+        "5300000000,0,0,0\n",
+        "trace.csv", Kind::lra);
+    ASSERT_EQ(plan.rows.size(), 3u);
+    EXPECT_EQ(plan.rows[0].t_s, 0.0);
+    EXPECT_NEAR(plan.rows[1].t_s, 0.1, 1e-12);
+    EXPECT_NEAR(plan.duration_s(), 0.3, 1e-12);
+}
+
+TEST(CalibrationPlan, AmplitudesHoldAtFullScaleAndNotBeyond) {
+    const auto with = [](const std::string& amplitude) {
+        return "0,0,0\n100000000," + amplitude + ",175\n200000000,0,0\n";
+    };
+    EXPECT_EQ(parse_plan_csv(with("1"), "p.csv", Kind::lra).rows[1].amplitude, 1.0);
+    EXPECT_EQ(parse_plan_csv(with("-1"), "p.csv", Kind::lra).rows[1].amplitude, -1.0);
+    EXPECT_EQ(error_of([&] { parse_plan_csv(with("1.001"), "p.csv", Kind::lra); }),
+              "p.csv:2: amplitude must be within -1..1, not 1.001");
+    EXPECT_EQ(error_of([&] { parse_plan_csv(with("-1.001"), "p.csv", Kind::lra); }),
+              "p.csv:2: amplitude must be within -1..1, not -1.001");
+}
+
+TEST(CalibrationPlan, MalformedLinesNameFileLineAndValue) {
+    EXPECT_EQ(
+        error_of([] { parse_plan_csv("0,0,0\n\n1e8,loud,175\n2e8,0,0\n", "p.csv", Kind::lra); }),
+        "p.csv:3: amplitude must be a number, not 'loud'");
+    EXPECT_EQ(error_of([] { parse_plan_csv("0,0,0\n1e8,1\n", "p.csv", Kind::lra); }),
+              "p.csv:2: a plan row is time_ns,amplitude,frequency_hz, not '1e8,1'");
+    EXPECT_EQ(error_of([] { parse_plan_csv("time,amp,f\n0,0,0\n", "p.csv", Kind::lra); }),
+              "p.csv:1: the header must be time_ns,amplitude,frequency_hz, not 'time,amp,f'");
+    EXPECT_EQ(error_of([] { parse_plan_csv("0,0,0\n1e8,1,-5\n2e8,0,0\n", "p.csv", Kind::lra); }),
+              "p.csv:2: frequency_hz must not be negative, not -5");
+    EXPECT_EQ(error_of([] { parse_plan_csv("2e8,0,0\n1e8,1,0\n3e8,0,0\n", "p.csv", Kind::erm); }),
+              "p.csv:2: time_ns goes backwards (1e8)");
+    EXPECT_EQ(error_of([] { parse_plan_csv("0,0,0\n1e8,1,0\n", "p.csv", Kind::erm); }),
+              "p.csv: the last row must end the plan with amplitude 0, not 1");
+    EXPECT_EQ(error_of([] { parse_plan_csv("0,0,0\n", "p.csv", Kind::erm); }),
+              "p.csv: a plan needs at least two rows (a drive and its end)");
+}
+
+TEST(CalibrationSamples, ReadWithOrWithoutAHeader) {
+    const std::vector<Sample> with =
+        parse_samples_csv("t,x,y,z\n0,1,2,9.8\n0.001,-1,2.5,9.7\n", "a.csv");
+    ASSERT_EQ(with.size(), 2u);
+    EXPECT_EQ(with[1].t_s, 0.001);
+    EXPECT_EQ(with[1].x, -1.0);
+    EXPECT_EQ(with[1].z, 9.7);
+    EXPECT_EQ(parse_samples_csv("0,1,2,3\n", "a.csv").size(), 1u);
+}
+
+TEST(CalibrationSamples, MalformedLinesNameFileLineAndValue) {
+    EXPECT_EQ(error_of([] { parse_samples_csv("t,x,y,z\n0,1,2,3\n0.1,1,abc,3\n", "a.csv"); }),
+              "a.csv:3: y must be a number, not 'abc'");
+    EXPECT_EQ(error_of([] { parse_samples_csv("0,1,2\n", "a.csv"); }),
+              "a.csv:1: a sample is t,x,y,z, not '0,1,2'");
+    EXPECT_EQ(error_of([] { parse_samples_csv("0,1,2,3\nt,x,y,z\n", "a.csv"); }),
+              "a.csv:2: t must be a number, not 't'");
+    EXPECT_EQ(error_of([] { parse_samples_csv("0,1,2,nan\n", "a.csv"); }),
+              "a.csv:1: z must be a number, not 'nan'");
+}
+
+TEST(VibrationSensor, ReadingsFedAsTheyComeAreTheRecordingsReadings) {
+    const Plan plan = make_plan(Kind::lra, example_lra());
+    const SensorOptions sensor = at(500.0, 7);
+    const std::vector<Sample> whole = record(plan, example_lra(180.0, 10.0), sensor);
+    VibrationSensor live(example_lra(180.0, 10.0), sensor);
+    std::vector<Sample> pieces;
+    for (const PlanRow& row : plan.rows) {
+        const auto due = live.sample_until(row.t_s - 1e-9);
+        pieces.insert(pieces.end(), due.begin(), due.end());
+        live.command(row.t_s, {row.amplitude, row.frequency_hz});
+    }
+    const auto rest = live.sample_until(plan.duration_s());
+    pieces.insert(pieces.end(), rest.begin(), rest.end());
+    ASSERT_EQ(pieces.size(), whole.size());
+    for (std::size_t i = 0; i < whole.size(); ++i) {
+        EXPECT_EQ(pieces[i].t_s, whole[i].t_s);
+        EXPECT_NEAR(pieces[i].x, whole[i].x, 1e-9);
+    }
+    // About 500 readings a second, and the vibration on top of gravity.
+    EXPECT_NEAR(static_cast<double>(whole.size()) / plan.duration_s(), 500.0, 5.0);
+}
+
+TEST(CalibrationEstimate, FindsAnLrasResonanceAndQAt1kHz) {
+    const Estimate e = measure(example_lra(168.0, 22.0), example_lra(), at(1000.0));
+    ASSERT_TRUE(e.trusted) << (e.problems.empty() ? "" : e.problems.front());
+    EXPECT_NEAR(*e.resonance_hz, 168.0, 168.0 * 0.01);
+    EXPECT_NEAR(*e.q, 22.0, 22.0 * 0.15);
+    EXPECT_NEAR(*e.full_scale_accel, 10.0, 1.5);
+    EXPECT_NEAR(e.sample_rate_hz, 1000.0, 5.0);
+    EXPECT_GT(e.snr_db, 30.0);
+    EXPECT_LT(e.residual, 0.1);
+}
+
+TEST(CalibrationEstimate, FindsAnLraAboveHalfTheSamplingRateAt400Hz) {
+    // 226 Hz sampled at 400 Hz looks like 174 Hz: the tones' strengths tell which it is.
+    const Estimate e = measure(example_lra(226.0, 7.0), example_lra(205.0, 10.0), at(400.0, 3));
+    ASSERT_TRUE(e.trusted) << (e.problems.empty() ? "" : e.problems.front());
+    EXPECT_NEAR(*e.resonance_hz, 226.0, 226.0 * 0.01);
+    EXPECT_NEAR(*e.q, 7.0, 7.0 * 0.15);
+}
+
+TEST(CalibrationEstimate, FindsAHighQLraAt400HzWithSamplesTakenAtJitteredTimes) {
+    SensorOptions sensor = at(400.0, 4);
+    sensor.jittered_sampling = true;
+    const Estimate e = measure(example_lra(152.0, 28.0), example_lra(165.0, 20.0), sensor);
+    ASSERT_TRUE(e.trusted) << (e.problems.empty() ? "" : e.problems.front());
+    EXPECT_NEAR(*e.resonance_hz, 152.0, 152.0 * 0.01);
+    EXPECT_NEAR(*e.q, 28.0, 28.0 * 0.15);
+}
+
+Declaration erm(double up_s, double down_s) {
+    Declaration d = example_erm();
+    d.spin_up_s = up_s;
+    d.spin_down_s = down_s;
+    return d;
+}
+
+TEST(CalibrationEstimate, FindsAnErmsTimeConstantsAt1kHz) {
+    const Estimate e = measure(erm(0.055, 0.150), example_erm(), at(1000.0, 5));
+    ASSERT_TRUE(e.trusted) << (e.problems.empty() ? "" : e.problems.front());
+    EXPECT_NEAR(*e.spin_up_s, 0.055, 0.055 * 0.15);
+    EXPECT_NEAR(*e.spin_down_s, 0.150, 0.150 * 0.15);
+    EXPECT_NEAR(*e.full_scale_accel, 10.0, 2.0);
+}
+
+TEST(CalibrationEstimate, FindsAnErmsTimeConstantsAt400HzWithARotatingForce) {
+    SensorOptions sensor = at(400.0, 6);
+    sensor.erm_rotating = true;
+    sensor.erm_full_speed_hz = 210.0;
+    const Estimate e = measure(erm(0.025, 0.060), example_erm(), sensor);
+    ASSERT_TRUE(e.trusted) << (e.problems.empty() ? "" : e.problems.front());
+    EXPECT_NEAR(*e.spin_up_s, 0.025, 0.025 * 0.15);
+    EXPECT_NEAR(*e.spin_down_s, 0.060, 0.060 * 0.15);
+}
+
+TEST(CalibrationEstimate, NoVibrationIsRefusedAndNothingIsMeasured) {
+    SensorOptions sensor = at(1000.0);
+    sensor.peak_accel = 0.0;  // the phone does not feel the actuator
+    const Estimate e = measure(example_lra(), example_lra(), sensor);
+    EXPECT_FALSE(e.trusted);
+    EXPECT_TRUE(mentions(e.problems, "no vibration felt")) << e.problems.front();
+    EXPECT_FALSE(e.resonance_hz);
+    EXPECT_TRUE(mentions(e.unmeasured, "resonance-hz"));
+}
+
+TEST(CalibrationEstimate, AVibrationLostInNoiseIsRefused) {
+    SensorOptions sensor = at(1000.0);
+    sensor.noise_rms = 4.0;
+    sensor.bits = 0;
+    const Estimate e = measure(erm(0.04, 0.08), example_erm(), sensor);
+    EXPECT_FALSE(e.trusted);
+    EXPECT_TRUE(mentions(e.problems, "no vibration felt")) << e.problems.front();
+}
+
+TEST(CalibrationEstimate, ClippingIsRefused) {
+    SensorOptions sensor = at(1000.0);
+    sensor.range = 9.81;  // ±1 g: gravity and the vibration together go beyond it
+    sensor.peak_accel = 12.0;
+    const Estimate e = measure(example_lra(), example_lra(), sensor);
+    EXPECT_FALSE(e.trusted);
+    EXPECT_TRUE(mentions(e.problems, "the accelerometer clipped")) << e.problems.front();
+}
+
+TEST(CalibrationEstimate, BelowTheLowestRateNothingIsGuessed) {
+    // kMinSampleRateHz itself is measured; just below it, nothing.
+    const Estimate at_edge =
+        measure(example_lra(180.0, 12.0), example_lra(), at(kMinSampleRateHz + 0.5));
+    EXPECT_TRUE(at_edge.unmeasured.empty());
+    EXPECT_TRUE(at_edge.resonance_hz);
+    for (const Kind kind : {Kind::lra, Kind::erm}) {
+        const Declaration declared = kind == Kind::lra ? example_lra() : example_erm();
+        const Estimate e = measure(declared, declared, at(kMinSampleRateHz - 4.0));
+        EXPECT_FALSE(e.trusted);
+        EXPECT_FALSE(e.resonance_hz || e.q || e.spin_up_s || e.spin_down_s);
+        ASSERT_EQ(e.unmeasured.size(), 2u);
+        EXPECT_NE(e.unmeasured[0].find("400 Hz or more"), std::string::npos) << e.unmeasured[0];
+        EXPECT_TRUE(mentions(e.unmeasured, kind == Kind::lra ? "resonance-hz" : "spin-up-ms"));
+    }
+}
+
+TEST(CalibrationEstimate, TooFewReadingsAreRefused) {
+    const Plan plan = make_plan(Kind::erm, std::nullopt);
+    std::vector<Sample> samples = record(plan, example_erm(), at(1000.0));
+    samples.resize(199);
+    const Estimate e = estimate(plan, samples, std::nullopt);
+    EXPECT_FALSE(e.trusted);
+    EXPECT_TRUE(mentions(e.problems, "199 readings"));
+}
+
+TEST(CalibrationApply, ATrustedEstimateReplacesOnlyItsOwnNumbers) {
+    Estimate e;
+    e.kind = Kind::lra;
+    e.resonance_hz = 181.5;
+    e.q = 12.25;
+    e.full_scale_accel = 9.0;
+    e.trusted = true;
+    const Declaration out = apply(example_lra(), e);
+    EXPECT_EQ(out.resonance_hz, 181.5);
+    EXPECT_EQ(out.q, 12.25);
+    EXPECT_EQ(out.rated_drive, example_lra().rated_drive);
+    EXPECT_EQ(out.brake, example_lra().brake);
+    const std::string lines = declaration_lines(e);
+    EXPECT_NE(lines.find("resonance-hz = 181.5\n"), std::string::npos) << lines;
+    EXPECT_NE(lines.find("q = 12.2"), std::string::npos) << lines;
+    EXPECT_NE(lines.find("# strength: full scale shakes the phone with 9 m/s²"), std::string::npos)
+        << lines;
+}
+
+TEST(CalibrationApply, AnUntrustedEstimateOrOneOfAnotherKindChangesNothing) {
+    Estimate e;
+    e.kind = Kind::erm;
+    e.spin_up_s = 0.05;
+    e.spin_down_s = 0.1;
+    e.problems = {"no vibration felt: ..."};
+    EXPECT_EQ(error_of([&] { apply(example_erm(), e); }),
+              "calibration: the estimate is not trusted: no vibration felt: ...");
+    e.trusted = true;
+    e.problems.clear();
+    EXPECT_EQ(error_of([&] { apply(example_lra(), e); }),
+              "calibration: the estimate is of an erm but the actuator is declared an lra");
+    const Declaration out = apply(example_erm(), e);
+    EXPECT_EQ(out.spin_up_s, 0.05);
+    EXPECT_EQ(out.spin_down_s, 0.1);
+    EXPECT_NE(declaration_lines(e).find("spin-up-ms = 50\nspin-down-ms = 100\n"),
+              std::string::npos);
+}
+
+TEST(CalibrationPictures, TheMeasuredMagnitudeFollowsThePrediction) {
+    const Declaration truth = erm(0.04, 0.1);
+    const Plan plan = make_plan(Kind::erm, truth);
+    SensorOptions sensor = at(1000.0);
+    sensor.erm_rotating = true;
+    const std::vector<Sample> samples = record(plan, truth, sensor);
+    const Trace measured = measured_magnitude(samples);
+    const Trace predicted = predicted_magnitude(plan, truth, 10.0, measured.t_s);
+    ASSERT_EQ(measured.magnitude.size(), predicted.magnitude.size());
+    // At full speed (the end of the first step) both near the full-scale strength; at rest
+    // before it both near nothing.
+    const auto index_at = [&](double t) {
+        return static_cast<std::size_t>(
+            std::lower_bound(measured.t_s.begin(), measured.t_s.end(), t) - measured.t_s.begin());
+    };
+    EXPECT_NEAR(predicted.magnitude[index_at(0.45)], 10.0, 0.5);
+    EXPECT_NEAR(measured.magnitude[index_at(0.45)], 10.0 * std::sqrt(2.0), 2.0);
+    EXPECT_LT(measured.magnitude[index_at(0.05)], 0.5);
+    EXPECT_LT(predicted.magnitude[index_at(0.05)], 0.01);
+}
+
+}  // namespace
+}  // namespace vibscore::actuator::calibration
