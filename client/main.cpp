@@ -368,6 +368,13 @@ int main(int argc, char** argv) {
     }
     if (clef_fit_verb->parsed()) {
         std::optional<vibscore::actuator::Declaration> declared;
+        // A fit needs an actuator: an empty name is not "none given" here (the default is the
+        // daemon's), and reading on without one would use a declaration that is not there.
+        if (clef_fit_actuator.empty()) {
+            std::cerr << "vibscore: clef fit: --actuator needs a file or 'daemon', not an empty "
+                         "name\n";
+            return exit_usage;
+        }
         if (const int failed = resolve_actuator(clef_fit_actuator, declared, std::cerr)) {
             return failed;
         }

@@ -14,6 +14,7 @@
 #include "client/editor/editor_model.hpp"
 #include "score/score_xml.hpp"
 #include "tests/support/daemon_fixture.hpp"
+#include "tests/support/wait_until.hpp"
 
 namespace vibscore {
 namespace {
@@ -89,6 +90,11 @@ TEST(WrongUsage, EachEndsWithTheReadmesStatusAndAMessageNamingWhatIsWrong) {
         {"VIBSCORE", {"stop", "abc"}, 2, "vibscore: ID: not a number: abc"},
         {"VIBSCORE", {"stop", "0"}, 2, "vibscore: ID: 0 is out of range (1 or more)"},
         {"VIBSCORE", {"check"}, 2, "vibscore: FILE is required"},
+        // An empty actuator name is refused, not read as a declaration that is not there.
+        {"VIBSCORE",
+         {"clef", "fit", "lra-phone", "--actuator", ""},
+         2,
+         "vibscore: clef fit: --actuator needs a file or 'daemon', not an empty name"},
         {"VIBSCORE",
          {"check", "--clefs", "/nonexistent", "f.xml"},
          2,
@@ -388,6 +394,54 @@ TEST(Readme, EveryCommandItShowsWorksVerbatim) {
     EXPECT_TRUE(daemon_started);
     EXPECT_TRUE(daemon_stopped);
     EXPECT_GE(ran, 30);
+}
+
+// The private daemon of ./dev keeps a person's own settings: an [actuator] declared in
+// build/run/local.conf lasts across restarts (./dev never rewrites that file), wins over what ./dev
+// writes itself (no clash with the sim's own model), and `./dev daemon --reload` applies an edit.
+TEST(DevDaemon, KeepsTheDeclarationInLocalConfAcrossRestartsAndReloads) {
+    ReadmeCheckout checkout;
+    const auto run = [&](const std::string& line) {
+        return testing::run_command({"/bin/bash", "-c", checkout.shell(line)});
+    };
+    const auto local = checkout.path() / "build" / "run" / "local.conf";
+    const auto bus = "DBUS_SYSTEM_BUS_ADDRESS=unix:path=" +
+                     (checkout.path() / "build" / "run" / "bus").string() + " ";
+    const auto driver = [&] { return run(bus + "build/client/vibscore driver").out; };
+
+    // The first start makes a commented local.conf that declares nothing.
+    ASSERT_EQ(run("./dev daemon --background").exit_code, 0);
+    ASSERT_TRUE(std::filesystem::exists(local));
+    EXPECT_THAT(driver(), HasSubstr("actuator: none declared"));
+    ASSERT_EQ(run("./dev daemon --stop").exit_code, 0);
+
+    { std::ofstream(local, std::ios::app) << "[actuator]\nkind = lra\nresonance-hz = 170\n"; }
+    const auto started = run("./dev daemon --background");
+    ASSERT_EQ(started.exit_code, 0) << started.err;
+    EXPECT_THAT(driver(), HasSubstr("actuator: lra: resonance 170 Hz"))
+        << testing::read_file(checkout.path() / "build" / "run" / "vibscored.log");
+    ASSERT_EQ(run("./dev daemon --stop").exit_code, 0);
+    ASSERT_EQ(run("./dev daemon --background").exit_code, 0);
+    EXPECT_THAT(driver(), HasSubstr("actuator: lra: resonance 170 Hz"))
+        << "a restart lost the declaration";
+    EXPECT_THAT(testing::read_file(local), HasSubstr("resonance-hz = 170"));
+
+    // An edit, then --reload: the running daemon takes it.
+    std::string text = testing::read_file(local);
+    text.replace(text.rfind("resonance-hz = 170"), 18, "resonance-hz = 165");
+    std::ofstream(local) << text;
+    const auto reload = run("./dev daemon --reload");
+    EXPECT_EQ(reload.exit_code, 0) << reload.err;
+    EXPECT_TRUE(testing::wait_until([&] {
+        return driver().find("actuator: lra: resonance 165 Hz") != std::string::npos;
+    })) << driver();
+
+    // A line that is not `key = value` is named with the user's file and line, not ./dev's.
+    std::ofstream(local, std::ios::app) << "resonance\n";
+    const auto bad = run("./dev daemon --reload");
+    EXPECT_NE(bad.exit_code, 0);
+    EXPECT_THAT(bad.err, HasSubstr(local.string() + ":"));
+    EXPECT_THAT(bad.err, HasSubstr("'resonance' is not 'key = value'"));
 }
 
 // `vibscore list` with nothing to list says so, and where the daemon looked.
