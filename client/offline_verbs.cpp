@@ -6,6 +6,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <string_view>
 
 #include "client/pictures/response_picture.hpp"
 #include "client/pictures/signal_picture.hpp"
@@ -16,6 +17,7 @@
 #include "daemon/render/actuator_response.hpp"
 #include "daemon/render/clef_check.hpp"
 #include "daemon/render/performance.hpp"
+#include "daemon/render/sampler.hpp"
 #include "score/bundle.hpp"
 #include "score/clef_xml.hpp"
 
@@ -133,11 +135,41 @@ namespace {
 // a column is at least a millisecond for all but the shortest scores.
 constexpr double kResponsePictureRate = 1000.0;
 
+constexpr std::string_view kActuatorCsvHeader = "t,written,uncompensated,compensated\n";
+
+// `render --actuator --out F.csv` holds the response in memory, a row a sample: refused before
+// it is computed when even rows of one-character numbers ("0,0,0,0") would pass the limit every
+// signal file has (client/signal_output.hpp).
+void check_actuator_csv_rows(std::uint64_t rows, std::uint32_t rate, const std::string& path) {
+    const std::uint64_t least = kActuatorCsvHeader.size() + rows * 8;
+    if (least > kMaxSignalFileBytes) {
+        throw SignalTooLarge(path + " would take at least " + std::to_string(least) +
+                             " bytes, more than the " + std::to_string(kMaxSignalFileBytes) +
+                             " bytes (4 GiB) a signal file may take; use a lower --rate than " +
+                             std::to_string(rate) + " Hz");
+    }
+}
+
 // The strengths written and produced, one row per sample: what `render --actuator --out F.csv`
-// writes, for plots and spreadsheets.
+// writes, for plots and spreadsheets. Refused before the file is created when the rows would
+// pass the limit of a signal file.
 std::size_t write_actuator_csv(const render::ActuatorResponse& response, const std::string& path) {
+    std::uint64_t bytes = kActuatorCsvHeader.size();
+    for (std::size_t k = 0; k < response.written.size(); ++k) {
+        const double t = static_cast<double>(k) / response.rate_hz;
+        for (const double value :
+             {response.written[k], response.uncompensated[k], response.compensated[k]}) {
+            bytes += number(value).size() + 1;
+        }
+        bytes += number(t).size() + 1;
+    }
+    if (bytes > kMaxSignalFileBytes) {
+        throw SignalTooLarge(path + " would take " + std::to_string(bytes) +
+                             " bytes, more than the " + std::to_string(kMaxSignalFileBytes) +
+                             " bytes (4 GiB) a signal file may take; use a lower --rate");
+    }
     std::ofstream csv(path);
-    csv << "t,written,uncompensated,compensated\n";
+    csv << kActuatorCsvHeader;
     for (std::size_t k = 0; k < response.written.size(); ++k) {
         csv << number(static_cast<double>(k) / response.rate_hz) << ","
             << number(response.written[k]) << "," << number(response.uncompensated[k]) << ","
@@ -249,6 +281,8 @@ int render_document(const RenderRequest& request, const ClefSearch& clefs, std::
             }
         }
         if (!request.out.empty() && declared) {
+            check_actuator_csv_rows(render::sample_index_at(performance.duration(), request.rate),
+                                    request.rate, request.out);
             const auto samples = write_actuator_csv(response(request.rate), request.out);
             out << "wrote " << request.out << ": " << samples << " samples at " << request.rate
                 << " Hz of the written strength and what the actuator produces without and with "

@@ -11,6 +11,7 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "daemon/render/sampler.hpp"
@@ -45,9 +46,39 @@ void put_le(std::ostream& out, T value) {
     }
 }
 
+constexpr std::string_view kCsvHeader = "t,y\n";
+
+// The bytes of one CSV number as append_number writes it.
+std::uint64_t number_chars(double value) {
+    std::array<char, 32> buffer{};
+    return static_cast<std::uint64_t>(
+        std::to_chars(buffer.data(), buffer.data() + buffer.size(), value).ptr - buffer.data());
+}
+
+// "4294967296 bytes (4 GiB)".
+std::string bytes_text(std::uint64_t bytes) {
+    std::string text = std::to_string(bytes) + " bytes";
+    if (bytes >= (std::uint64_t{1} << 30) && bytes % (std::uint64_t{1} << 30) == 0) {
+        text += " (" + std::to_string(bytes >> 30) + " GiB)";
+    }
+    return text;
+}
+
+// The header (RIFF, fmt with cbSize, fact, data) and 4 bytes a sample.
+std::uint64_t wav_size(std::uint64_t samples) {
+    return 58 + samples * sizeof(float);
+}
+
+[[noreturn]] void refuse(const std::filesystem::path& path, const std::string& size,
+                         std::uint64_t max_bytes, std::uint32_t rate) {
+    throw SignalTooLarge(
+        path.string() + " would take " + size + ", more than the " + bytes_text(max_bytes) +
+        " a signal file may take; use a lower --rate than " + std::to_string(rate) + " Hz");
+}
+
 void write_csv(std::ostream& out, const render::Performance& performance, std::uint32_t rate,
                std::uint64_t total) {
-    out << "t,y\n";
+    out << kCsvHeader;
     std::string text;
     for_each_chunk(performance, rate, total, [&](std::uint64_t first, std::span<const double> y) {
         text.clear();
@@ -103,6 +134,23 @@ void write_wav(std::ostream& out, const render::Performance& performance, std::u
 
 }  // namespace
 
+CsvSize csv_size_bounds(std::uint64_t samples) {
+    // Far below 2^64 for any count of samples a score of at most an hour can have.
+    return {kCsvHeader.size() + samples * 4,
+            kCsvHeader.size() + samples * (2 * kMaxNumberChars + 2)};
+}
+
+std::uint64_t csv_size(const render::Performance& performance, std::uint32_t rate) {
+    const auto total = render::sample_index_at(performance.duration(), rate);
+    std::uint64_t bytes = kCsvHeader.size();
+    for_each_chunk(performance, rate, total, [&](std::uint64_t first, std::span<const double> y) {
+        for (std::size_t i = 0; i < y.size(); ++i) {
+            bytes += number_chars(static_cast<double>(first + i) / rate) + number_chars(y[i]) + 2;
+        }
+    });
+    return bytes;
+}
+
 SignalFormat signal_format_for(const std::filesystem::path& path) {
     const auto extension = path.extension().string();
     if (extension == ".csv") {
@@ -116,9 +164,24 @@ SignalFormat signal_format_for(const std::filesystem::path& path) {
 }
 
 std::uint64_t write_signal(const render::Performance& performance, std::uint32_t rate,
-                           const std::filesystem::path& path) {
+                           const std::filesystem::path& path, std::uint64_t max_bytes) {
     const auto format = signal_format_for(path);
     const auto total = render::sample_index_at(performance.duration(), rate);
+    if (format == SignalFormat::csv) {
+        // Refused before a byte is written: at once when even the shortest rows are too many,
+        // after counting the rows when only the longest would be.
+        const auto bounds = csv_size_bounds(total);
+        if (bounds.least > max_bytes) {
+            refuse(path, "at least " + bytes_text(bounds.least), max_bytes, rate);
+        }
+        if (bounds.most > max_bytes) {
+            if (const auto bytes = csv_size(performance, rate); bytes > max_bytes) {
+                refuse(path, bytes_text(bytes), max_bytes, rate);
+            }
+        }
+    } else if (const auto bytes = wav_size(total); bytes > max_bytes) {
+        refuse(path, bytes_text(bytes), max_bytes, rate);
+    }
     auto temporary = path;
     temporary += ".partial";
     {

@@ -182,6 +182,33 @@ TEST(ClientOffline, RenderIntoAMissingDirectoryFailsNamingThePath) {
         << result.err;
 }
 
+TEST(ClientOffline, RenderRefusesACsvAboveFourGibBeforeWritingAByte) {
+    // Issue 33: 14 whole notes on a tempo-60 clef (56 minutes) at 384 kHz is 1.29 G rows, at
+    // least 5.2 GB of CSV: refused at once, naming the size and the limit, as the WAV is.
+    TempDir dir;
+    dir.write("slow.xml", testing::sine_clef(60.0, {100}, {1}));
+    std::string notes;
+    for (int i = 0; i < 14; ++i) {
+        notes += "<Note length=\"whole\" number=\"1\" string=\"1\"/>";
+    }
+    const auto score =
+        dir.write("hour.xml", "<VibScore><Clef id=\"c\" href=\"slow.xml\"/><Bar clef=\"c\">" +
+                                  notes + "</Bar></VibScore>");
+    for (const char* name : {"x.csv", "x.wav"}) {
+        const auto out = dir.path() / name;
+        const auto result = run_command(
+            {vibscore(), "render", score.string(), "--rate", "384000", "--out", out.string()});
+        EXPECT_EQ(result.exit_code, 1) << name;
+        EXPECT_NE(result.err.find(out.string() + " would take "), std::string::npos) << result.err;
+        EXPECT_NE(result.err.find("more than the 4294967296 bytes (4 GiB) a signal file may take; "
+                                  "use a lower --rate than 384000 Hz"),
+                  std::string::npos)
+            << result.err;
+        EXPECT_FALSE(std::filesystem::exists(out)) << name;
+        EXPECT_FALSE(std::filesystem::exists(out.string() + ".partial")) << name;
+    }
+}
+
 TEST(ClientOffline, RenderPlotDrawsTheStrength) {
     const auto result = run_command({vibscore(), "render", shipped("create.score.xml"), "--plot"});
     ASSERT_EQ(result.exit_code, 0) << result.err;
