@@ -63,6 +63,8 @@ sdbus::Error to_bus_error(const char* method, const std::exception_ptr& error) {
         return dbus::bus_error(kInvalidDocument, document_error.what());
     } catch (const PlayerBusy& busy) {
         return dbus::bus_error(kBusy, busy.what());
+    } catch (const CoolingDown& cooling) {
+        return dbus::bus_error(kCoolingDown, cooling.what());
     } catch (const drivers::DeviceError& device_error) {
         return dbus::bus_error(kDevice, device_error.what());
     } catch (const PlaybackStuck& stuck) {

@@ -10,8 +10,9 @@
 namespace vibscore::daemon {
 
 // The named error for `error`, thrown while handling `method`: RequestError, RegistryError and
-// DocumentError by their codes, PlayerBusy as Busy, DeviceError and PlaybackStuck as Device;
-// anything else is logged and becomes org.freedesktop.DBus.Error.Failed naming the method.
+// DocumentError by their codes, PlayerBusy as Busy, CoolingDown as CoolingDown, DeviceError and
+// PlaybackStuck as Device; anything else is logged and becomes org.freedesktop.DBus.Error.Failed
+// naming the method.
 sdbus::Error to_bus_error(const char* method, const std::exception_ptr& error);
 
 // Runs a method body; whatever it throws leaves as a named D-Bus error.

@@ -199,6 +199,14 @@ DaemonConfig parse_config(const std::string& text, const std::string& file, Daem
             }
             continue;
         }
+        if (section == kLimitsSection) {
+            try {
+                config.limits.set(key, value);
+            } catch (const std::invalid_argument& error) {
+                throw ConfigError(where + ": " + error.what());
+            }
+            continue;
+        }
         if (section != "daemon") {
             config.driver_settings[section][key] = value;
             continue;

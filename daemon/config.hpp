@@ -3,6 +3,7 @@
 #include "config.h"
 #include "daemon/actuator/declaration.hpp"
 #include "daemon/device_clefs.hpp"
+#include "daemon/playback_limits.hpp"
 
 #include <filesystem>
 #include <map>
@@ -23,6 +24,7 @@ namespace vibscore::daemon {
 //   [daemon]  driver, drivers-dir, store, shipped, separation-ms, requests-per-second,
 //             request-burst, rt-priority
 //   [actuator] the actuator's physics, declared once (daemon/actuator_config.hpp)
+//   [limits]  max-on-time, max-on-time-USAGE, cool-down (daemon/playback_limits.hpp)
 //   [clefs]   WRITTEN = DEVICE: the clef bars written for WRITTEN play through on this device;
 //             "* = DEVICE" for any other clef; "fit = auto" fits every other clef to [actuator]
 //   [NAME]    the settings of driver NAME (e.g. [sim] model = erm), handed to that driver
@@ -39,6 +41,7 @@ struct DaemonConfig {
     std::map<std::string, std::map<std::string, std::string>> driver_settings;  // by driver
     DeviceClefs device_clefs;
     std::optional<actuator::Declaration> actuator;  // [actuator]; nothing: playback as written
+    PlaybackLimits limits;                          // [limits]
     // Where each [section] begins and each of its keys is set, as "file:line", for messages:
     // section_lines for every section but [daemon], setting_lines for every key ([daemon]'s and
     // [clefs]' too).
@@ -75,7 +78,9 @@ std::vector<std::string> missing_device_clefs(const DaemonConfig& config, const 
 
 // Sections besides [daemon] and the backends' that configure parts of the service.
 inline constexpr const char* kActuatorSection = "actuator";
-inline constexpr const char* kServiceSections[] = {"clefs", "virtual-vibra", kActuatorSection};
+inline constexpr const char* kLimitsSection = "limits";
+inline constexpr const char* kServiceSections[] = {"clefs", "virtual-vibra", kActuatorSection,
+                                                   kLimitsSection};
 
 // A warning for each section of `config` that is neither [daemon], a service section nor one of
 // `known` (the drivers), whose keys therefore apply nowhere: "file:line: unknown section [x] ...

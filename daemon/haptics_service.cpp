@@ -182,16 +182,24 @@ void HapticsService::Play(sdbus::Result<std::uint64_t>&& result, std::string sco
 std::uint64_t HapticsService::play(const Caller& caller, const std::string& score,
                                    const PlayOptions& options) {
     // A request that would be refused is refused before its score is read or rendered.
-    playback_.call([usage = options.usage, repeat = options.repeat](Player& player) {
+    const double cool_down_s = config_.limits.cool_down_s();
+    const auto admit = [uid = caller.uid, usage = options.usage, repeat = options.repeat,
+                        cool_down_s](Player& player) {
+        player.check_cool_down(uid, usage, repeat, cool_down_s);
         player.check_admission(usage, repeat);
-    });
+    };
+    playback_.call(admit);
     PlaybackRequest request =
         make_playback_request(find_score_to_play(registry_, score, options, config_.device_clefs),
                               options, config_.separation_ms / 1000.0);
     request.owner = caller.uid;
     request.sender = caller.sender;
+    request.max_on_time_s = config_.limits.max_on_time(options.usage);
     const auto label = request.label;
-    const auto id = playback_.call([request = std::move(request)](Player& player) mutable {
+    // Asked again with the play: the caller's previous playback may have been cut off while
+    // this one's score was rendered.
+    const auto id = playback_.call([admit, request = std::move(request)](Player& player) mutable {
+        admit(player);
         return player.play(std::move(request));
     });
     log::debug("playback " + std::to_string(id) + ": " + label + " (" +

@@ -312,6 +312,18 @@ void Player::run_due() {
         playback.pass = next->pass;
         const std::uint64_t due = due_us(playback, *next);
         const std::uint64_t now = monotonic_now_us();
+        const auto max_on_time = playback.request.max_on_time_s;
+        const auto limit_deadline = max_on_time_deadline_us(playback.start_us, max_on_time);
+        const NextStep step = next_step(now, due, limit_deadline);
+        if (step.kind == NextStep::Kind::end_over_limit) {
+            log::info("playback " + std::to_string(playback.id) + " (uid " +
+                      std::to_string(playback.request.owner) + ", " +
+                      std::string(to_string(playback.request.usage)) +
+                      ") reached its maximum on-time");
+            cool_downs_.cut_off(playback.request.owner, now);
+            finish(over_on_time_reason(*max_on_time));
+            return;
+        }
         const auto on_time_deadline = on_time_deadline_us();
         if (on_time_deadline && now >= *on_time_deadline) {
             log::warning("actuator " + std::string(actuator_->driver_name()) + " was on for its " +
@@ -321,8 +333,8 @@ void Player::run_due() {
             on_since_us_.reset();
             held_off_ = true;
         }
-        if (due > now) {
-            std::uint64_t wake = due;
+        if (step.kind == NextStep::Kind::wait) {
+            std::uint64_t wake = step.wake_us;
             if (on_since_us_ && on_time_deadline) {
                 wake = std::min(wake, *on_time_deadline);
             }
@@ -389,11 +401,17 @@ void Player::sender_vanished(const std::string& sender) {
     finish("client-vanished");
 }
 
+void Player::check_cool_down(uid_t owner, Usage usage, int repeat, double cool_down_s) const {
+    cool_downs_.check(owner, usage, repeat, cool_down_s, monotonic_now_us());
+}
+
 std::vector<std::uint64_t> Player::stop_every_playback() {
     if (!current_) {
         return {};
     }
     const std::uint64_t id = current_->id;
+    // An administrator ended it: its user may not re-take the actuator at once.
+    cool_downs_.cut_off(current_->request.owner, monotonic_now_us());
     finish(kStopped);
     return {id};
 }

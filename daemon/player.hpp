@@ -14,6 +14,7 @@
 #include "daemon/drivers/actuator.hpp"
 #include "daemon/event_loop.hpp"
 #include "daemon/playback_cues.hpp"
+#include "daemon/playback_limits.hpp"
 #include "daemon/render/cue_stream.hpp"
 #include "daemon/usage.hpp"
 
@@ -29,6 +30,10 @@ struct PlaybackRequest {
     double intensity = 1.0;
     uid_t owner = 0;     // the user who asked; may stop it
     std::string sender;  // bus connection; when it leaves, the playback ends
+    // The longest it may play, counted from its start across every repeat; past it, it ends
+    // with over_on_time_reason() ("limit-exceeded: ..."). nullopt: until it ends or is stopped.
+    // The bus service sets it from [limits] by usage (PlaybackLimits).
+    std::optional<double> max_on_time_s;
 };
 
 // What the player reports; the bus service turns these into signals.
@@ -100,9 +105,15 @@ class Player {
     void sender_vanished(const std::string& sender);
 
     // A privileged "stop everyone's playbacks" (vibscore stop --all, org.vibscore.manage):
-    // ends whatever plays, whoever started it, with reason "stopped" and the actuator off.
-    // Returns the ids it ended; none when nothing played.
+    // ends whatever plays, whoever started it, with reason "stopped" and the actuator off, and
+    // starts its owner's cool-down (check_cool_down()). Returns the ids it ended; none when
+    // nothing played.
     std::vector<std::uint64_t> stop_every_playback();
+
+    // Throws CoolingDown when `owner` may not start a playback of this usage and repeat yet:
+    // a playback of theirs was cut off (maximum on-time, stop_every_playback()) less than
+    // `cool_down_s` ago (CoolDowns).
+    void check_cool_down(uid_t owner, Usage usage, int repeat, double cool_down_s) const;
 
     // Ends any playback with `reason` and switches the actuator off (shutdown, driver switch).
     void stop_all(const std::string& reason);
@@ -169,6 +180,8 @@ class Player {
     // held back since (bar, symbol).
     std::optional<std::uint64_t> last_report_us_;
     std::optional<std::pair<std::size_t, std::size_t>> held_position_;
+    // Whose playbacks were cut off, and when: the player ends them, so it keeps the record.
+    CoolDowns cool_downs_;
 };
 
 }  // namespace vibscore::daemon

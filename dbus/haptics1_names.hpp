@@ -18,6 +18,7 @@ inline constexpr const char* kNotFound = "org.vibscore.Haptics1.Error.NotFound";
 inline constexpr const char* kPermissionDenied = "org.vibscore.Haptics1.Error.PermissionDenied";
 inline constexpr const char* kLimitExceeded = "org.vibscore.Haptics1.Error.LimitExceeded";
 inline constexpr const char* kBusy = "org.vibscore.Haptics1.Error.Busy";
+inline constexpr const char* kCoolingDown = "org.vibscore.Haptics1.Error.CoolingDown";
 inline constexpr const char* kDevice = "org.vibscore.Haptics1.Error.Device";
 
 // Not ours: what the bus says when vibscored is not there, and the generic failure a method

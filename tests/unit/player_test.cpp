@@ -572,5 +572,72 @@ TEST_F(PlayerTest, AKernelTimerIsNeverArmedPastTheMaximumOnTime) {
     player.stop(0, 1000, false);
 }
 
+// Issue 33, row 2: a stranger's `repeat -1` notification held the actuator for as long as its
+// process lived. The limit is counted from the start, across every pass.
+TEST_F(PlayerTest, ARepeatingPlaybackEndsAtItsMaximumOnTimeWithLimitExceeded) {
+    auto endless = passes(-1, 0.010);
+    endless.max_on_time_s = 0.1;
+    const auto started = monotonic_now_us();
+    player.play(endless);
+    loop.run();
+    const auto ended = monotonic_now_us();
+    EXPECT_EQ(listener.events.back(),
+              "finished 1 limit-exceeded: played for its maximum on-time of 0.1 s ([limits] "
+              "max-on-time)");
+    EXPECT_GE(ended - started, 100'000u) << "not before its limit";
+    EXPECT_LT(ended - started, 1'000'000u);
+    EXPECT_EQ(actuator.applied.back().drive.amplitude, 0.0);
+    EXPECT_FALSE(player.current_id());
+}
+
+// Issue 33, row 3: a fire-and-forget one-shot of 14 whole notes drove the actuator for 56 minutes
+// after its caller had left.
+TEST_F(PlayerTest, AFireAndForgetOneShotIsBoundedLikeAnyOther) {
+    auto long_one = request();
+    long_one.cues = cue_list({drive(0, 0.5, 170), drive(3600, 0)});
+    long_one.duration_s = 3600;
+    long_one.max_on_time_s = 0.05;
+    player.play(long_one);
+    player.sender_vanished(":1.7");
+    EXPECT_TRUE(player.current_id()) << "a one-shot plays on without its caller";
+    loop.run();
+    EXPECT_THAT(listener.events.back(), ::testing::StartsWith("finished 1 limit-exceeded: played"));
+    EXPECT_EQ(actuator.applied.back().drive.amplitude, 0.0);
+}
+
+TEST_F(PlayerTest, AScoreExactlyAsLongAsItsMaximumOnTimeCompletes) {
+    auto exact = request();
+    exact.cues = cue_list({drive(0, 0.5, 170), drive(0.05, 0)});
+    exact.duration_s = 0.05;
+    exact.max_on_time_s = 0.05;
+    player.play(exact);
+    loop.run();
+    EXPECT_EQ(listener.events.back(), "finished 1 completed");
+}
+
+TEST_F(PlayerTest, AUserCutOffByTheLimitMayNotRepeatAtOnceButMayPlayAOneShot) {
+    auto endless = passes(-1, 0.010);
+    endless.max_on_time_s = 0.03;
+    player.play(endless);
+    loop.run();
+    ASSERT_THAT(listener.events.back(), ::testing::HasSubstr("limit-exceeded"));
+    EXPECT_THROW(player.check_cool_down(1000, Usage::notification, -1, 10.0), CoolingDown);
+    EXPECT_NO_THROW(player.check_cool_down(1000, Usage::notification, 0, 10.0));
+    EXPECT_NO_THROW(player.check_cool_down(1001, Usage::notification, -1, 10.0));
+}
+
+TEST_F(PlayerTest, AUserWhosePlaybackWasStoppedByStopAllMayNotRepeatAtOnce) {
+    player.play(request(Usage::touch, -1, 1001));
+    player.stop_every_playback();
+    EXPECT_THROW(player.check_cool_down(1001, Usage::touch, 2, 10.0), CoolingDown);
+    EXPECT_NO_THROW(player.check_cool_down(1001, Usage::alarm, -1, 10.0)) << "urgent";
+}
+
+TEST_F(PlayerTest, AUsersOwnStopStartsNoCoolDown) {
+    player.play(request(Usage::notification, -1));
+    ASSERT_EQ(player.stop(0, 1000, false), Player::StopResult::stopped);
+    EXPECT_NO_THROW(player.check_cool_down(1000, Usage::notification, -1, 10.0));
+}
+
 }  // namespace
 }  // namespace vibscore::daemon
