@@ -43,6 +43,29 @@ TEST(QuotedText, ShowsEightyBytesAndTheSizeOfMore) {
     EXPECT_EQ(quoted_text(std::string(81, 'x')), "\"" + std::string(80, 'x') + "\"... (81 bytes)");
 }
 
+TEST(QuotedText, CutsBeforeAUtf8CharacterNotInsideIt) {
+    // 79 bytes, then a two-byte character across the 80th: it is left out whole.
+    const std::string text = std::string(79, 'x') + "\xc3\xa9" + "yz";
+    EXPECT_EQ(quoted_text(text), "\"" + std::string(79, 'x') + "\"... (83 bytes)");
+    // Ending exactly at the 80th byte, it is kept.
+    const std::string fits = std::string(78, 'x') + "\xc3\xa9" + "yz";
+    EXPECT_EQ(quoted_text(fits), "\"" + std::string(78, 'x') + "\xc3\xa9\"... (82 bytes)");
+}
+
+TEST(QuotedText, AMegabyteOfTextWithANulShowsEightyEscapedBytes) {
+    std::string text(100'000, 'v');
+    text[3] = '\0';
+    const std::string quoted = quoted_text(text);
+    EXPECT_EQ(quoted, "\"vvv\\x00" + std::string(76, 'v') + "\"... (100000 bytes)");
+    EXPECT_EQ(quoted.find('\0'), std::string::npos);
+}
+
+TEST(QuotedText, ShownTextIsTheSameWithoutTheQuotes) {
+    EXPECT_EQ(shown_text("sim"), "sim");
+    EXPECT_EQ(shown_text(std::string("a\0b", 3)), "a\\x00b");
+    EXPECT_EQ(shown_text(std::string(81, 'k')), std::string(80, 'k') + "... (81 bytes)");
+}
+
 TEST(ClosestName, FindsTheNameATypoWasMeantToBe) {
     const std::vector<std::string> verbs{"list", "play", "stop", "compose", "check"};
     EXPECT_EQ(closest_name("lsit", verbs), "list");  // two letters swapped
