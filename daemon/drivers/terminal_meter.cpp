@@ -1,5 +1,6 @@
 #include "daemon/drivers/terminal_meter.hpp"
 
+#include <sys/ioctl.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -41,9 +42,29 @@ TerminalMeter::TerminalMeter(int fd, std::string label, Glyphs glyphs)
     : fd_(fd), label_(std::move(label)), glyphs_(glyphs) {}
 
 TerminalMeter::~TerminalMeter() {
-    if (drawn_) {
+    if (region_rows_ > 0) {
+        // Save the cursor, let the whole screen scroll again (which homes the cursor), come back,
+        // and clear the meter's row so the prompt finds a clean screen.
+        write_all(fd_,
+                  "\0337\033[r\0338\0337\033[" + std::to_string(region_rows_) + ";1H\033[2K\0338");
+    } else if (drawn_) {
         write_all(fd_, "\n");
     }
+}
+
+int TerminalMeter::own_row_terminal_rows() const {
+    if (fd_ < 0 || ::isatty(fd_) != 1) {
+        return 0;
+    }
+    const char* term = std::getenv("TERM");
+    if (term == nullptr || *term == '\0' || std::string_view(term) == "dumb") {
+        return 0;
+    }
+    winsize size{};
+    if (::ioctl(fd_, TIOCGWINSZ, &size) != 0 || size.ws_row < 3) {
+        return 0;
+    }
+    return size.ws_row;
 }
 
 TerminalMeter::Glyphs TerminalMeter::glyphs_for_environment() {
@@ -91,7 +112,30 @@ std::string TerminalMeter::line(double strength, double frequency_hz) const {
 }
 
 void TerminalMeter::show(double strength, double frequency_hz) {
-    write_all(fd_, "\r" + line(strength, frequency_hz));
+    const int rows = own_row_terminal_rows();
+    if (rows == 0) {
+        if (region_rows_ > 0) {
+            write_all(fd_, "\0337\033[r\0338");  // no longer a terminal we can keep a row of
+            region_rows_ = 0;
+        }
+        write_all(fd_, "\r" + line(strength, frequency_hz));
+        drawn_ = true;
+        return;
+    }
+    std::string text;
+    if (region_rows_ != rows) {
+        // First draw, or the terminal was resized: a new line pushes what is on the bottom row up
+        // into the region (the cursor then sits on the row above the meter's), and the region
+        // becomes every row but the last. Setting a region homes the cursor: save and restore it.
+        if (region_rows_ == 0) {
+            text += "\n\033[A";
+        }
+        text += "\0337\033[1;" + std::to_string(rows - 1) + "r\0338";
+        region_rows_ = rows;
+    }
+    text +=
+        "\0337\033[" + std::to_string(rows) + ";1H\033[2K" + line(strength, frequency_hz) + "\0338";
+    write_all(fd_, text);
     drawn_ = true;
 }
 
