@@ -1,6 +1,7 @@
 #include "client/offline_verbs.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <map>
@@ -151,14 +152,21 @@ void check_actuator_csv_rows(std::uint64_t rows, std::uint32_t rate, const std::
 }
 
 // The strengths written and produced, one row per sample: what `render --actuator --out F.csv`
-// writes, for plots and spreadsheets. Refused before the file is created when the rows would
-// pass the limit of a signal file.
+// writes, for plots and spreadsheets. Refused before the file is created when a strength is not
+// finite (the declared model overflowed: a NaN in a spreadsheet helps no one) or when the rows
+// would pass the limit of a signal file.
 std::size_t write_actuator_csv(const render::ActuatorResponse& response, const std::string& path) {
     std::uint64_t bytes = kActuatorCsvHeader.size();
     for (std::size_t k = 0; k < response.written.size(); ++k) {
         const double t = static_cast<double>(k) / response.rate_hz;
         for (const double value :
              {response.written[k], response.uncompensated[k], response.compensated[k]}) {
+            if (!std::isfinite(value)) {
+                throw std::runtime_error(
+                    "the actuator's model gives a strength of " + number(value) +
+                    " at t = " + number(t) + " s, so " + path +
+                    " is not written; the [actuator] declaration cannot be simulated");
+            }
             bytes += number(value).size() + 1;
         }
         bytes += number(t).size() + 1;

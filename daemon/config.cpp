@@ -8,8 +8,10 @@
 #include <fstream>
 #include <sstream>
 
+#include "common/above_zero.hpp"
 #include "common/closest_name.hpp"
 #include "common/number_text.hpp"
+#include "common/quoted_text.hpp"
 #include "daemon/actuator_config.hpp"
 
 namespace vibscore::daemon {
@@ -33,9 +35,10 @@ double positive_number(const std::string& value, const std::string& where, const
     double number = 0.0;
     const auto [end, error] = std::from_chars(value.data(), value.data() + value.size(), number);
     if (error != std::errc() || end != value.data() + value.size() || !std::isfinite(number) ||
-        number <= 0.0 || number > max) {
-        throw ConfigError(where + ": " + key + " = \"" + value +
-                          "\" is not a number above 0 and at most " + number_text(max));
+        !above_zero(number) || number > max) {
+        throw ConfigError(where + ": " + shown_text(key) + " = " + quoted_text(value) +
+                          " is not a number above 0 and at most " + number_text(max) +
+                          " (the smallest above 0 is " + number_text(kSmallestAboveZero) + ")");
     }
     return number;
 }
@@ -44,8 +47,8 @@ int priority(const std::string& value, const std::string& where, const std::stri
     int number = 0;
     const auto [end, error] = std::from_chars(value.data(), value.data() + value.size(), number);
     if (error != std::errc() || end != value.data() + value.size() || number < 0 || number > 99) {
-        throw ConfigError(where + ": " + key + " = \"" + value +
-                          "\" is not a whole number from 0 to 99");
+        throw ConfigError(where + ": " + shown_text(key) + " = " + quoted_text(value) +
+                          " is not a whole number from 0 to 99");
     }
     return number;
 }
@@ -54,16 +57,16 @@ int priority(const std::string& value, const std::string& where, const std::stri
 void add_device_clef(DeviceClefs& clefs, const std::string& written, const std::string& device,
                      const std::string& where) {
     if (!is_valid_name(device)) {
-        throw ConfigError(where + ": [clefs] " + written + " = \"" + device +
-                          "\" is not a registry clef name (a-z 0-9 . _ -)");
+        throw ConfigError(where + ": [clefs] " + shown_text(written) + " = " + quoted_text(device) +
+                          " is not a registry clef name (a-z 0-9 . _ -)");
     }
     if (written == "*") {
         clefs.otherwise = device;
     } else if (is_valid_name(written)) {
         clefs.by_written[written] = device;
     } else {
-        throw ConfigError(where + ": [clefs] \"" + written +
-                          "\" is neither a registry clef name nor \"*\"");
+        throw ConfigError(where + ": [clefs] " + quoted_text(written) +
+                          " is neither a registry clef name nor \"*\"");
     }
 }
 
@@ -72,7 +75,7 @@ bool fit_mode(const std::string& value, const std::string& where) {
     if (value == "auto" || value == "off") {
         return value == "auto";
     }
-    throw ConfigError(where + ": [clefs] fit = \"" + value + "\" is neither auto nor off");
+    throw ConfigError(where + ": [clefs] fit = " + quoted_text(value) + " is neither auto nor off");
 }
 
 }  // namespace
@@ -105,8 +108,8 @@ std::vector<std::string> unknown_sections(const DaemonConfig& config,
             continue;
         }
         const auto meant = closest_name(section, candidates);
-        warnings.push_back(where + ": unknown section [" + section +
-                           "]: no driver of that name, so its keys apply nowhere" +
+        warnings.push_back(where + ": unknown section " + "[" + shown_text(section) + "]" +
+                           ": no driver of that name, so its keys apply nowhere" +
                            (meant ? " (did you mean [" + *meant + "]?)" : ""));
     }
     return warnings;
@@ -132,9 +135,10 @@ void refuse_repeated(std::map<std::string, std::string>& lines, const std::strin
                      const std::string& key, const std::string& value, const std::string& where,
                      std::map<std::string, std::string>& values) {
     if (const auto first = lines.find(key); first != lines.end()) {
-        throw ConfigError(where + ": " + key + " = \"" + value + "\" sets [" + section + "] " +
-                          key + " again (" + first->second + " set it to \"" + values[key] +
-                          "\"); keep one of them");
+        throw ConfigError(where + ": " + shown_text(key) + " = " + quoted_text(value) + " sets " +
+                          "[" + shown_text(section) + "] " + shown_text(key) + " again (" +
+                          first->second + " set it to " + quoted_text(values[key]) +
+                          "); keep one of them");
     }
     lines[key] = where;
     values[key] = value;
@@ -162,16 +166,16 @@ DaemonConfig parse_config(const std::string& text, const std::string& file, Daem
             // "store = /var/lib/vib#score": cutting it at the '#' would quietly use another path.
             const auto equals = content.find('=');
             const std::string what = equals == std::string::npos || content.front() == '['
-                                         ? "\"" + content + "\""
-                                         : trim(content.substr(0, equals)) + " = \"" +
-                                               trim(content.substr(equals + 1)) + "\"";
+                                         ? quoted_text(content)
+                                         : shown_text(trim(content.substr(0, equals))) + " = " +
+                                               quoted_text(trim(content.substr(equals + 1)));
             throw ConfigError(where + ": " + what + " holds '" + content[mark] +
                               "', which starts a comment only at the start of a line or after a "
                               "space; a value cannot contain it");
         }
         if (content.front() == '[') {
             if (content.back() != ']' || content.size() < 3) {
-                throw ConfigError(where + ": malformed section header \"" + content + "\"");
+                throw ConfigError(where + ": malformed section header " + quoted_text(content));
             }
             section = trim(content.substr(1, content.size() - 2));
             if (section != "daemon") {
@@ -182,12 +186,12 @@ DaemonConfig parse_config(const std::string& text, const std::string& file, Daem
         }
         const auto equals = content.find('=');
         if (equals == std::string::npos) {
-            throw ConfigError(where + ": expected \"key = value\", found \"" + content + "\"");
+            throw ConfigError(where + ": expected \"key = value\", found " + quoted_text(content));
         }
         const auto key = trim(content.substr(0, equals));
         const auto value = trim(content.substr(equals + 1));
         if (section.empty()) {
-            throw ConfigError(where + ": \"" + key + "\" is outside any [section]");
+            throw ConfigError(where + ": " + quoted_text(key) + " is outside any [section]");
         }
         refuse_repeated(config.setting_lines[section], section, key, value, where, values[section]);
         if (section == "clefs") {
@@ -227,20 +231,20 @@ DaemonConfig parse_config(const std::string& text, const std::string& file, Daem
             config.request_burst = positive_number(value, where, key, 1e6);
             if (config.request_burst < 1.0) {
                 // A bucket that never holds a whole token refuses every request.
-                throw ConfigError(where + ": request-burst = \"" + value +
-                                  "\" is below 1: the burst must let at least one request through");
+                throw ConfigError(where + ": request-burst = " + quoted_text(value) +
+                                  " is below 1: the burst must let at least one request through");
             }
         } else if (key == "rt-priority") {
             config.rt_priority = priority(value, where, key);
         } else {
             const auto meant = closest_name(key, kDaemonKeys);
-            throw ConfigError(where + ": unknown key \"" + key + "\" in [daemon]" +
+            throw ConfigError(where + ": unknown key " + quoted_text(key) + " in [daemon]" +
                               (meant ? " (did you mean " + *meant + "?)" : "") +
                               " (expected driver, drivers-dir, store, shipped, separation-ms, "
                               "requests-per-second, request-burst or rt-priority)");
         }
         if (value.empty()) {
-            throw ConfigError(where + ": " + key + " has no value");
+            throw ConfigError(where + ": " + shown_text(key) + " has no value");
         }
     }
     config.actuator = declared_actuator(config);
@@ -288,9 +292,9 @@ std::vector<std::string> missing_device_clefs(const DaemonConfig& config,
                 where = line->second + ": ";
             }
         }
-        warnings.push_back(where + "[clefs] " + written + " = \"" + device +
-                           "\": the registry has no clef \"" + device +
-                           "\", so Play refuses every score this maps until one is composed");
+        warnings.push_back(where + "[clefs] " + shown_text(written) + " = " + quoted_text(device) +
+                           ": the registry has no clef " + quoted_text(device) +
+                           ", so Play refuses every score this maps until one is composed");
     };
     for (const auto& [written, device] : config.device_clefs.by_written) {
         check(written, device);

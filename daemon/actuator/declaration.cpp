@@ -5,10 +5,15 @@
 #include <cmath>
 #include <map>
 #include <numbers>
+#include <optional>
 #include <sstream>
+#include <string>
 
+#include "common/above_zero.hpp"
 #include "common/closest_name.hpp"
 #include "common/number_text.hpp"
+#include "common/quoted_text.hpp"
+#include "daemon/actuator/physics.hpp"
 
 namespace vibscore::actuator {
 
@@ -18,23 +23,32 @@ std::string at(const std::string& where) {
     return where.empty() ? std::string() : where + ": ";
 }
 
+// "Above 0" is common/above_zero.hpp's rule: subnormals are refused with 0.
+bool above(double value, const Limit& limit) {
+    return limit.min == 0.0 ? above_zero(value) : value > limit.min;
+}
+
 std::string range_text(const Limit& limit) {
-    return limit.min_allowed
-               ? "a number from " + number_text(limit.min) + " to " + number_text(limit.max)
-               : "a number above " + number_text(limit.min) + " and at most " +
-                     number_text(limit.max);
+    if (limit.min_allowed) {
+        return "a number from " + number_text(limit.min) + " to " + number_text(limit.max);
+    }
+    return "a number above " + number_text(limit.min) + " and at most " + number_text(limit.max) +
+           (limit.min == 0.0 ? " (at least " + number_text(kSmallestAboveZero) + ")" : "");
+}
+
+std::string key_value(const Setting& setting) {
+    return at(setting.where) + "[actuator] " + shown_text(setting.key) + " = " +
+           quoted_text(setting.value);
 }
 
 double number(const Setting& setting, const Limit& limit) {
     double value = 0.0;
     const char* const end = setting.value.data() + setting.value.size();
     const auto [ptr, error] = std::from_chars(setting.value.data(), end, value);
-    const bool above_min = limit.min_allowed ? value >= limit.min : value > limit.min;
+    const bool above_min = limit.min_allowed ? value >= limit.min : above(value, limit);
     if (error != std::errc{} || ptr != end || !std::isfinite(value) || !above_min ||
         value > limit.max) {
-        throw DeclarationError(setting.key, at(setting.where) + "[actuator] " + setting.key +
-                                                " = \"" + setting.value + "\": expected " +
-                                                range_text(limit));
+        throw DeclarationError(setting.key, key_value(setting) + ": expected " + range_text(limit));
     }
     return value;
 }
@@ -47,8 +61,7 @@ std::string choice(const Setting& setting, std::initializer_list<const char*> al
         }
         names += (names.empty() ? "" : " or ") + std::string(option);
     }
-    throw DeclarationError(setting.key, at(setting.where) + "[actuator] " + setting.key + " = \"" +
-                                            setting.value + "\": expected " + names);
+    throw DeclarationError(setting.key, key_value(setting) + ": expected " + names);
 }
 
 bool is_key(const std::string& key) {
@@ -72,6 +85,55 @@ std::string trim(const std::string& text) {
     return text.substr(begin, text.find_last_not_of(" \t\r") - begin + 1);
 }
 
+// Where the declared model stops being finite, or nothing. Each number is within its limits,
+// but together they may still overflow: a strength is a drive divided by rated-drive, and a tiny
+// rated-drive makes it (or the LRA's forcing, or its square) infinite, and then NaN. Probed at
+// the model's extremes: full drive forwards and backwards at the actuator's own frequency and
+// far off it, from rest and from the opposite steady state, over short and long steps.
+std::optional<std::string> model_fault(const Declaration& declaration) {
+    const Physics physics(declaration);
+    const auto fault = [](const char* what, double frequency_hz, double value) {
+        return std::string(what) + " under full drive at " +
+               (frequency_hz == 0.0 ? std::string("its own frequency")
+                                    : number_text(frequency_hz) + " Hz") +
+               " is " + number_text(value);
+    };
+    const double f0 = declaration.resonance_hz;
+    for (const double frequency : {0.0, 1.0, f0 / 2, f0 * 2, 20000.0}) {
+        for (const double amplitude : {1.0, -1.0}) {
+            const Drive drive{amplitude, frequency};
+            const double steady = physics.steady_strength(drive);
+            if (!std::isfinite(steady)) {
+                return fault("the steady strength", frequency, steady);
+            }
+            if (const double tau = physics.time_constant_s(drive); !std::isfinite(tau)) {
+                return fault("the time constant", frequency, tau);
+            }
+            const State opposite = physics.advance({}, {-amplitude, frequency}, 10.0);
+            for (const State& from : {State{}, opposite}) {
+                for (const double dt : {1e-4, 1e-2, 1.0}) {
+                    const State next = physics.advance(from, drive, dt);
+                    const double strength = Physics::strength(next);
+                    if (!std::isfinite(next.envelope.real()) ||
+                        !std::isfinite(next.envelope.imag())) {
+                        return fault("the strength", frequency, strength);
+                    }
+                    // Where the strength is headed is told by |z|^2's derivative.
+                    if (!std::isfinite(strength * strength)) {
+                        return fault("the strength", frequency, strength) +
+                               ", and its square overflows";
+                    }
+                }
+                const auto reach = physics.time_to(from, drive, steady / 2, 0.1);
+                if (!std::isfinite(reach.after_s)) {
+                    return fault("the time to half strength", frequency, reach.after_s);
+                }
+            }
+        }
+    }
+    return std::nullopt;
+}
+
 }  // namespace
 
 double lra_time_constant_s(double resonance_hz, double q) {
@@ -91,18 +153,18 @@ Declaration parse_declaration(const std::vector<Setting>& settings,
             const auto meant = closest_name(setting.key, known);
             throw DeclarationError(
                 setting.key,
-                at(setting.where) + "unknown key \"" + setting.key + "\" in [actuator]" +
+                at(setting.where) + "unknown key " + quoted_text(setting.key) + " in [actuator]" +
                     (meant ? " (did you mean " + *meant + "?)" : "") + "; known: " + list);
         }
         if (setting.value.empty()) {
-            throw DeclarationError(
-                setting.key, at(setting.where) + "[actuator] " + setting.key + " has no value");
+            throw DeclarationError(setting.key, at(setting.where) + "[actuator] " +
+                                                    shown_text(setting.key) + " has no value");
         }
         const auto [previous, added] = by_key.emplace(setting.key, &setting);
         if (!added) {
-            throw DeclarationError(setting.key, at(setting.where) + "[actuator] " + setting.key +
-                                                    " is set twice (first at " +
-                                                    previous->second->where + ")");
+            throw DeclarationError(setting.key,
+                                   at(setting.where) + "[actuator] " + shown_text(setting.key) +
+                                       " is set twice (first at " + previous->second->where + ")");
         }
     }
     const auto find = [&](const char* key) -> const Setting* {
@@ -119,10 +181,9 @@ Declaration parse_declaration(const std::vector<Setting>& settings,
     for (const auto& [key, setting] : by_key) {
         const bool wrong_kind = declaration.kind == Kind::erm ? lra_only(key) : erm_only(key);
         if (wrong_kind) {
-            throw DeclarationError(
-                key, at(setting->where) + "[actuator] " + key + " = \"" + setting->value +
-                         "\" is for kind = " + (declaration.kind == Kind::erm ? "lra" : "erm") +
-                         "; this actuator is kind = " + kind->value);
+            throw DeclarationError(key, key_value(*setting) + " is for kind = " +
+                                            (declaration.kind == Kind::erm ? "lra" : "erm") +
+                                            "; this actuator is kind = " + kind->value);
         }
     }
     if (const Setting* s = find(kRatedDrive.key)) {
@@ -146,6 +207,14 @@ Declaration parse_declaration(const std::vector<Setting>& settings,
     }
     if (const Setting* s = find("compensation")) {
         declaration.compensation = choice(*s, {"on", "off"}) == "on";
+    }
+    if (const auto fault = model_fault(declaration)) {
+        const Setting* s = find(kRatedDrive.key);
+        throw DeclarationError(
+            kRatedDrive.key,
+            (s != nullptr ? key_value(*s) : at(section_where) + "[actuator]") +
+                ": the actuator's model is not finite with it (" + *fault +
+                "); a rated-drive this small is no actuator: give the drive it is rated for");
     }
     return declaration;
 }
@@ -176,8 +245,8 @@ std::optional<Section> find_section(const std::string& text, const std::string& 
         }
         const auto equals = content.find('=');
         if (equals == std::string::npos) {
-            throw DeclarationError({},
-                                   where + ": expected \"key = value\", found \"" + content + "\"");
+            throw DeclarationError(
+                {}, where + ": expected \"key = value\", found " + quoted_text(content));
         }
         section->settings.push_back(
             {trim(content.substr(0, equals)), trim(content.substr(equals + 1)), where});

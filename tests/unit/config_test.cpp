@@ -145,6 +145,51 @@ TEST(Config, ANumberThatIsNotPositiveOrTooLargeOrNotANumberIsAnError) {
                 StartsWith("test.conf:2: request-burst = \"x\""));
 }
 
+TEST(Config, AboveZeroMeansANormalNumberNotASubnormal) {
+    // The smallest normal double is the smallest value taken; the largest subnormal is refused
+    // as 0 is, and so is the smallest subnormal.
+    for (const char* key : {"separation-ms", "requests-per-second"}) {
+        const std::string line = std::string("[daemon]\n") + key + " = ";
+        EXPECT_NO_THROW(parse_config(line + "2.2250738585072014e-308\n", "x")) << key;
+        for (const char* subnormal : {"2.2250738585072009e-308", "5e-324"}) {
+            EXPECT_THAT(config_error(line + subnormal + "\n"),
+                        StartsWith("test.conf:2: " + std::string(key) + " = \"" + subnormal +
+                                   "\" is not a number above 0 and at most "))
+                << key;
+        }
+    }
+    EXPECT_THAT(config_error("[daemon]\nseparation-ms = 0\n"),
+                ::testing::EndsWith(" (the smallest above 0 is 2.2250738585072014e-308)"));
+    // The one rule in [actuator] too.
+    EXPECT_THAT(config_error("[actuator]\nkind = erm\nrated-drive = 5e-324\n"),
+                StartsWith("test.conf:3: [actuator] rated-drive = \"5e-324\": expected a number "
+                           "above 0"));
+}
+
+TEST(Config, AValueIsQuotedAtMostEightyBytesLongWithItsControlCharactersEscaped) {
+    // A NUL no longer ends the message, and what follows it is shown.
+    EXPECT_EQ(config_error(std::string("[daemon]\nseparation-ms = 1\0x\n", 29)),
+              "test.conf:2: separation-ms = \"1\\x00x\" is not a number above 0 and at most 1000 "
+              "(the smallest above 0 is 2.2250738585072014e-308)");
+    // 100,000 characters: 80 of them, then the size.
+    const std::string long_value(100'000, '9');
+    EXPECT_EQ(config_error("[daemon]\nrt-priority = " + long_value + "\n"),
+              "test.conf:2: rt-priority = \"" + std::string(80, '9') +
+                  "\"... (100000 bytes) is not a whole number from 0 to 99");
+    // Keys, section headers, lines and [clefs] and [actuator] values alike.
+    for (const std::string& text :
+         {"[daemon]\n" + long_value + " = 1\n", "[" + long_value + "\n", long_value + "\n",
+          "[clefs]\nshaker = " + long_value + "X\n", "[clefs]\nfit = " + long_value + "\n",
+          "[actuator]\nkind = " + long_value + "\n", "[actuator]\n" + long_value + "\n",
+          "[daemon]\nstore = a\nstore = " + long_value + "\n"}) {
+        const std::string error = config_error(text);
+        EXPECT_LT(error.size(), 400u) << error.substr(0, 400);
+        EXPECT_THAT(error, HasSubstr("... (100"));
+    }
+    const std::string control = config_error("[clefs]\nfit = \x1b[31mred\x7f\n");
+    EXPECT_EQ(control, "test.conf:2: [clefs] fit = \"\\x1b[31mred\\x7f\" is neither auto nor off");
+}
+
 TEST(Config, ThePlaybackThreadsPriorityIsAWholeNumberUpTo99) {
     EXPECT_EQ(parse_config("", "x").rt_priority, 40);
     EXPECT_EQ(parse_config("[daemon]\nrt-priority = 99\n", "x").rt_priority, 99);
