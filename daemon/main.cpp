@@ -32,20 +32,26 @@ using namespace vibscore::daemon;
 
 namespace {
 
+// A bad configuration fails here as it fails a start: exit 1, so that a script or a package's
+// check does not take the list for the configured one. The default directory's drivers are
+// still listed after the error, to help whoever fixes the file choose a driver.
 int list_drivers(const CommandLine& command_line) {
     std::vector<drivers::DriverInfo> drivers;
+    int status = 0;
     try {
         // read_config() has already tried each module of the configured directory in a child.
         const DaemonConfig config = read_config(command_line);
         drivers = drivers::available_drivers(*config.modules);
     } catch (const std::exception& error) {
-        log::warning(std::string("listing the default drivers directory: ") + error.what());
+        log::error(error.what());
+        log::warning("listing the drivers of the default directory " VIBSCORE_DRIVERDIR " instead");
         drivers = drivers::available_drivers(std::filesystem::path(VIBSCORE_DRIVERDIR));
+        status = 1;
     }
     for (const auto& driver : drivers) {
         std::cout << driver.name << "\t" << driver.description << "\n";
     }
-    return 0;
+    return status;
 }
 
 // A [clefs] line naming a clef nobody installed would only show when a playback falls back.
