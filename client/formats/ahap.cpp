@@ -370,6 +370,30 @@ class AhapReader {
     Warnings warnings_;
 };
 
+// The strength at each bend strictly inside (from, to): two points where a curve begins with a
+// jump. None when every bend lies on the straight ramp between the ends, which the note's own
+// hairpin or glide already draws.
+template <typename StrengthAt>
+std::vector<std::pair<double, double>> bends_within(const std::vector<double>& bends, double from,
+                                                    double to, double start, double end,
+                                                    const StrengthAt& strength_at) {
+    constexpr double kStraight = 0.004;  // as grid_fit's slack for 8-bit and float noise
+    std::vector<std::pair<double, double>> points;
+    bool bent = false;
+    for (auto it = std::upper_bound(bends.begin(), bends.end(), from);
+         it != bends.end() && *it < to; ++it) {
+        const double before = strength_at(*it, false), after = strength_at(*it, true);
+        const double straight = start + (end - start) * (*it - from) / (to - from);
+        bent = bent || std::abs(before - straight) > kStraight ||
+               std::abs(after - straight) > kStraight;
+        if (std::abs(before - after) > kStraight) {
+            points.emplace_back(*it, before);
+        }
+        points.emplace_back(*it, after);
+    }
+    return bent ? points : std::vector<std::pair<double, double>>{};
+}
+
 }  // namespace
 
 std::string write_ahap(const SoundTrack& track) {
@@ -452,6 +476,18 @@ ImportedScore read_ahap(std::string_view text, const std::string& file, const Ch
     sort_curves(reader.intensity_curves);
     sort_curves(reader.sharpness_curves);
 
+    // Where the intensity control bends: every curve's start and control point. An event that
+    // spans bends keeps them, so its notes can follow the curve rather than one straight ramp.
+    std::vector<double> bends;
+    for (const auto& curve : reader.intensity_curves) {
+        bends.push_back(curve.start);
+        for (const auto& point : curve.points) {
+            bends.push_back(point.first);
+        }
+    }
+    std::sort(bends.begin(), bends.end());
+    bends.erase(std::unique(bends.begin(), bends.end()), bends.end());
+
     std::vector<SoundEvent> events;
     for (const auto& haptic : reader.events) {
         const auto at = [&](double t, bool at_start) {
@@ -468,6 +504,9 @@ ImportedScore read_ahap(std::string_view text, const std::string& file, const Ch
         std::tie(event.strength_end, event.pitch_end) =
             haptic.duration > 0.0 ? at(haptic.time + haptic.duration, false)
                                   : std::make_pair(event.strength_start, event.pitch_start);
+        event.strength_points = bends_within(
+            bends, haptic.time, haptic.time + haptic.duration, event.strength_start,
+            event.strength_end, [&](double t, bool at_start) { return at(t, at_start).first; });
         events.push_back(event);
     }
     double total = reader.last_parameter;
@@ -482,6 +521,12 @@ ImportedScore read_ahap(std::string_view text, const std::string& file, const Ch
     auto imported = build_score(placed.notes, {{0, placed.tempo}}, placed.total_ticks, chosen,
                                 reader.title, file);
     imported.warnings = std::move(reader).warnings();
+    for (const auto& shaped : placed.shaped) {
+        if (imported.warnings.size() >= limits::diagnostics) {
+            break;
+        }
+        imported.warnings.push_back({{file}, shape_note(shaped, "intensity curve")});
+    }
     return imported;
 }
 

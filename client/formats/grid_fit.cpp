@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <numeric>
 #include <optional>
 #include <set>
 
+#include "client/formats/envelope_notes.hpp"
 #include "daemon/render/performance.hpp"
 #include "score/limits.hpp"
 
@@ -215,6 +217,28 @@ GridPlacement place_on_grid(std::vector<SoundEvent> events, double total, const 
         const bool glides_pitch = tied[i] && changes(event.pitch_start, event.pitch_end);
         const bool glides_strength = tied[i] && changes(from, to) && to > kChangeSlack &&
                                      !changes(to, events[i + 1].strength_start);
+        if (!event.strength_points.empty()) {
+            const auto tie_out = !tied[i]                          ? GridNote::Tie::none
+                                 : glides_pitch || glides_strength ? GridNote::Tie::portamento
+                                                                   : GridNote::Tie::legato;
+            std::vector<EnvelopePoint> points{{note.start, from}};
+            for (const auto& [at, level] : event.strength_points) {
+                points.push_back(
+                    {std::clamp(tick(at), note.start, note.start + note.length), level});
+            }
+            points.push_back({note.start + note.length, to});
+            const bool after_crescendo =
+                !placement.notes.empty() &&
+                placement.notes.back().dynamics == Dynamics::crescendo &&
+                placement.notes.back().start + placement.notes.back().length == note.start;
+            auto shaped =
+                notes_for_envelope(std::move(points), note.string, clef, after_crescendo, tie_out);
+            placement.shaped.push_back(
+                {event.onset, shaped.pieces, shaped.worst_level_error, shaped.early_ramps});
+            previous = shaped.notes.empty() ? Dynamics::none : shaped.notes.back().dynamics;
+            placement.notes.insert(placement.notes.end(), shaped.notes.begin(), shaped.notes.end());
+            continue;
+        }
         // A hairpin goes on only through notes tied into this one: after a gap, a rise that
         // glides in pitch is the glide's own, whatever the note before did.
         const Dynamics before = i > 0 && tied[i - 1] ? previous : Dynamics::none;
@@ -250,6 +274,25 @@ GridPlacement place_on_grid(std::vector<SoundEvent> events, double total, const 
     }
     placement.total_ticks = tick(std::max(total, last_end));
     return placement;
+}
+
+std::string shape_note(const ShapedEvent& shaped, const std::string& curve) {
+    std::string note = "the event at " + seconds_text(shaped.onset) + ": its " + curve + ", in " +
+                       std::to_string(shaped.pieces) +
+                       (shaped.pieces == 1 ? " straight piece" : " straight pieces") +
+                       ", is tied notes with glides and hairpins";
+    if (shaped.worst_level_error >= 0.005) {
+        char off[32];
+        std::snprintf(off, sizeof off, "%.2f", shaped.worst_level_error);
+        note += "; levels to the nearest numbers (at most " + std::string(off) + " of full off)";
+    }
+    if (shaped.early_ramps > 0) {
+        note += "; " + std::to_string(shaped.early_ramps) +
+                (shaped.early_ramps == 1 ? " ramp that no hairpin draws reaches its level"
+                                         : " ramps that no hairpin draws reach their level") +
+                " a 32nd early";
+    }
+    return note;
 }
 
 std::vector<int> strings_by_contour(const std::vector<double>& pitches, int strings) {

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <optional>
+#include <utility>
 
 #include "score/document_error.hpp"
 #include "score/limits.hpp"
@@ -189,6 +191,41 @@ void check_laid_out(const ImportedScore& imported, const std::string& file) {
     }
 }
 
+// The levels (0..1 of the clef's strongest number) a note ramps between as the renderer plays
+// it: a crescendo from silence or from the crescendo note it directly follows, a decrescendo to
+// silence or to the decrescendo note directly after it, a portamento on one string to the next
+// note's number. Nothing for a note that holds its level.
+std::optional<std::pair<double, double>> ramp_of(const GridNote& note, const GridNote* before,
+                                                 const GridNote* after, const Clef& clef) {
+    double peak = 0.0;
+    for (const double amplitude : clef.numbers) {
+        peak = std::max(peak, std::abs(amplitude));
+    }
+    if (peak <= 0.0) {
+        return std::nullopt;
+    }
+    const auto level = [&](const GridNote& of) {
+        return clef.numbers.at(static_cast<std::size_t>(of.number - 1)) / peak;
+    };
+    switch (note.dynamics) {
+        case Dynamics::crescendo:
+            return std::make_pair(
+                before != nullptr && before->dynamics == Dynamics::crescendo ? level(*before) : 0.0,
+                level(note));
+        case Dynamics::decrescendo:
+            return std::make_pair(
+                level(note),
+                after != nullptr && after->dynamics == Dynamics::decrescendo ? level(*after) : 0.0);
+        case Dynamics::none:
+            break;
+    }
+    if (note.tie_to_next == GridNote::Tie::portamento && after != nullptr &&
+        after->string == note.string && after->number != note.number) {
+        return std::make_pair(level(note), level(*after));
+    }
+    return std::nullopt;
+}
+
 }  // namespace
 
 void check_document_size(std::string_view text, const std::string& file) {
@@ -303,21 +340,47 @@ ImportedScore build_score(std::vector<GridNote> notes, std::vector<TempoChange> 
 
     std::vector<Written> sequence;
     std::int64_t now = 0;
-    for (const auto& note : voice) {
+    for (std::size_t i = 0; i < voice.size(); ++i) {
+        const auto& note = voice[i];
         if (note.start > now) {
             sequence.push_back({Rest{}, note.start - now});
         }
+        const GridNote* before = i > 0 && voice[i - 1].start + voice[i - 1].length == note.start
+                                     ? &voice[i - 1]
+                                     : nullptr;
+        const GridNote* after =
+            i + 1 < voice.size() && note.start + note.length == voice[i + 1].start ? &voice[i + 1]
+                                                                                   : nullptr;
+        const auto ramp = ramp_of(note, before, after, chosen.clef);
         const auto parts = lengths_for(note.length);
+        std::int64_t done = 0;
         for (std::size_t p = 0; p < parts.size(); ++p) {
             Note written;
             written.length = parts[p];
             written.number = note.number;
             written.string = note.string;
             written.dynamics = note.dynamics;
-            // The parts of a note too long for one symbol are tied by legato.
             const bool last = p + 1 == parts.size();
-            sequence.push_back(
-                {written, ticks_of(parts[p]), last ? note.tie_to_next : GridNote::Tie::legato});
+            auto tie = last ? note.tie_to_next : GridNote::Tie::legato;
+            // The parts of a note too long for one symbol are tied by legato; those of a hairpin
+            // or a glide each take the level the ramp has reached, so the whole note still
+            // ramps from its start to its end instead of reaching its level with the first part.
+            if (ramp && parts.size() > 1) {
+                const double from = static_cast<double>(done) / static_cast<double>(note.length);
+                const double to = static_cast<double>(done + ticks_of(parts[p])) /
+                                  static_cast<double>(note.length);
+                const double at = note.dynamics == Dynamics::crescendo ? to : from;
+                if (!(last && note.dynamics == Dynamics::crescendo) &&
+                    !(p == 0 && note.dynamics != Dynamics::crescendo)) {
+                    written.number = nearest_number(
+                        chosen.clef, ramp->first + (ramp->second - ramp->first) * at);
+                }
+                if (!last && note.dynamics == Dynamics::none) {
+                    tie = GridNote::Tie::portamento;
+                }
+            }
+            done += ticks_of(parts[p]);
+            sequence.push_back({written, ticks_of(parts[p]), tie});
         }
         now = note.start + note.length;
     }

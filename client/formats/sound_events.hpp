@@ -1,6 +1,7 @@
 #pragma once
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "score/bundle.hpp"
@@ -22,6 +23,9 @@ struct SoundEvent {
     double pitch_start = 0.0, pitch_end = 0.0;
     // The frequency the clef gives the note, in Hz; 0 on curve and line clefs.
     double frequency_start = 0.0, frequency_end = 0.0;
+    // Where the strength bends between start and end (absolute time, strength), in time order:
+    // an imported curve that is more than one straight ramp. Empty for a straight one.
+    std::vector<std::pair<double, double>> strength_points;
 
     double end() const { return onset + duration; }
 };

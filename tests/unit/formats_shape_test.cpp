@@ -1,0 +1,198 @@
+// Issue 31 item 2: an import keeps the shape of what it imports. Judged by what plays: the
+// imported score is rendered and its envelope compared with the curve the file asks for.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <functional>
+
+#include "client/formats/ahap.hpp"
+#include "client/formats/score_builder.hpp"
+#include "client/formats/sound_events.hpp"
+#include "daemon/render/performance.hpp"
+#include "score/bundle.hpp"
+#include "score/clef_xml.hpp"
+#include "tests/support/run_command.hpp"
+
+namespace vibscore {
+namespace {
+
+using ::testing::HasSubstr;
+
+formats::ChosenClef lra_phone() {
+    const auto path =
+        std::filesystem::path(testing::required_env("VIBSCORE_CLEFS")) / "lra-phone.clef.xml";
+    return {"lra-phone", load_clef_file(path)};
+}
+
+ScoreBundle bound(const formats::ImportedScore& imported) {
+    ParsedScore parsed{imported.score, {}};
+    parsed.where.clefs.resize(imported.score.clefs.size());
+    for (const auto& bar : imported.score.bars) {
+        parsed.where.bars.emplace_back();
+        parsed.where.symbols.emplace_back(bar.symbols.size());
+    }
+    return bind_clefs(std::move(parsed), "imported",
+                      [&](const ClefDeclaration& declaration, const auto&) {
+                          for (const auto& clef : imported.clefs) {
+                              if (clef.id == declaration.id) {
+                                  return clef.clef;
+                              }
+                          }
+                          throw DocumentError({"imported"}, "no clef " + declaration.id);
+                      });
+}
+
+// The rendered envelope, 0..1 of the strongest number, every millisecond.
+struct Envelope {
+    std::vector<double> levels;
+    double step = 0.001;
+
+    double at(double t) const { return levels.at(static_cast<std::size_t>(std::lround(t / step))); }
+    double peak_time() const {
+        return static_cast<double>(std::max_element(levels.begin(), levels.end()) -
+                                   levels.begin()) *
+               step;
+    }
+    double peak() const { return *std::max_element(levels.begin(), levels.end()); }
+};
+
+Envelope rendered(const formats::ImportedScore& imported) {
+    const auto bundle = bound(imported);
+    const render::Performance performance(bundle);
+    double strongest = 0.0;
+    for (const double amplitude : lra_phone().clef.numbers) {
+        strongest = std::max(strongest, amplitude);
+    }
+    Envelope envelope;
+    for (double t = 0.0; t < performance.duration(); t += envelope.step) {
+        envelope.levels.push_back(performance.envelope_at(t) / strongest);
+    }
+    return envelope;
+}
+
+// One continuous event of `seconds` at full intensity under one intensity curve.
+std::string curve_pattern(double seconds, const std::vector<std::pair<double, double>>& points) {
+    nlohmann::json control = nlohmann::json::array();
+    for (const auto& [at, value] : points) {
+        control.push_back({{"Time", at}, {"ParameterValue", value}});
+    }
+    nlohmann::json pattern = nlohmann::json::array();
+    pattern.push_back({{"Event",
+                        {{"Time", 0.0},
+                         {"EventType", "HapticContinuous"},
+                         {"EventDuration", seconds},
+                         {"EventParameters",
+                          {{{"ParameterID", "HapticIntensity"}, {"ParameterValue", 1.0}},
+                           {{"ParameterID", "HapticSharpness"}, {"ParameterValue", 0.4}}}}}}});
+    pattern.push_back({{"ParameterCurve",
+                        {{"ParameterID", "HapticIntensityControl"},
+                         {"Time", 0.0},
+                         {"ParameterCurveControlPoints", control}}}});
+    return nlohmann::json{{"Version", 1.0}, {"Pattern", pattern}}.dump();
+}
+
+// The curve's value at t: linear between its points.
+double curve_at(const std::vector<std::pair<double, double>>& points, double t) {
+    for (std::size_t i = 1; i < points.size(); ++i) {
+        if (t <= points[i].first) {
+            const auto& [t0, v0] = points[i - 1];
+            const auto& [t1, v1] = points[i];
+            return v0 + (v1 - v0) * (t - t0) / (t1 - t0);
+        }
+    }
+    return points.back().second;
+}
+
+constexpr double kThirtySecond = 0.2 / 8;  // lra-phone's tempo, which the event's times fit
+// lra-phone's numbers lie 0.1 of full apart: a level is at most half of that from a number, and
+// a ramp between numbers may be that far from the curve's.
+constexpr double kLevelTolerance = 0.1;
+
+TEST(AhapShape, ARiseAndFallPeaksWhereTheCurvePeaksAndKeepsItsFall) {
+    const std::vector<std::pair<double, double>> curve{{0.0, 0.2}, {0.25, 1.0}, {0.5, 0.3}};
+    const auto imported = formats::read_ahap(curve_pattern(0.5, curve), "peak.ahap", lra_phone());
+    const auto envelope = rendered(imported);
+    EXPECT_NEAR(envelope.peak_time(), 0.25, kThirtySecond);
+    EXPECT_NEAR(envelope.peak(), 1.0, kLevelTolerance);
+    // The fall is kept: down through the middle of it to near the curve's end level.
+    EXPECT_NEAR(envelope.at(0.375), curve_at(curve, 0.375), kLevelTolerance);
+    EXPECT_NEAR(envelope.at(0.5 - kThirtySecond - 0.002), 0.3 + 0.7 * (kThirtySecond / 0.25),
+                kLevelTolerance);
+    EXPECT_LT(envelope.at(0.49), 0.45);
+    // Everywhere but a 32nd around the bends, the envelope is the curve.
+    for (double t = 0.005; t < 0.495; t += 0.005) {
+        if (std::abs(t - 0.25) > kThirtySecond && t < 0.5 - kThirtySecond) {
+            EXPECT_NEAR(envelope.at(t), curve_at(curve, t), kLevelTolerance) << "at " << t << " s";
+        }
+    }
+    // What could not be drawn exactly is said.
+    ASSERT_FALSE(imported.warnings.empty());
+    EXPECT_THAT(imported.warnings.back().message,
+                HasSubstr("its intensity curve, in 2 straight pieces, is tied notes"));
+    EXPECT_THAT(imported.warnings.back().message, HasSubstr("the event at 0 s"));
+}
+
+TEST(AhapShape, ARiseOnlyCurveReachesFullWhereItEndsNotAPartEarly) {
+    // 0.5 s at lra-phone's 0.2 s quarter is a half and an 8th, tied: the rise spans both.
+    const std::vector<std::pair<double, double>> curve{{0.0, 0.0}, {0.5, 1.0}};
+    const auto envelope =
+        rendered(formats::read_ahap(curve_pattern(0.5, curve), "rise.ahap", lra_phone()));
+    EXPECT_NEAR(envelope.peak_time(), 0.5, kThirtySecond);
+    for (double t = 0.01; t < 0.49; t += 0.01) {
+        EXPECT_NEAR(envelope.at(t), curve_at(curve, t), kLevelTolerance) << "at " << t << " s";
+    }
+}
+
+TEST(AhapShape, AFallOnlyCurveFallsAcrossTheWholeNote) {
+    const std::vector<std::pair<double, double>> curve{{0.0, 1.0}, {0.5, 0.0}};
+    const auto envelope =
+        rendered(formats::read_ahap(curve_pattern(0.5, curve), "fall.ahap", lra_phone()));
+    EXPECT_NEAR(envelope.peak_time(), 0.0, kThirtySecond);
+    for (double t = 0.01; t < 0.49; t += 0.01) {
+        EXPECT_NEAR(envelope.at(t), curve_at(curve, t), kLevelTolerance) << "at " << t << " s";
+    }
+}
+
+TEST(AhapShape, ACurveWithSeveralBendsKeepsEachPeakAndDip) {
+    const std::vector<std::pair<double, double>> curve{
+        {0.0, 0.3}, {0.2, 0.9}, {0.4, 0.4}, {0.6, 1.0}, {0.8, 0.5}};
+    const auto imported = formats::read_ahap(curve_pattern(0.8, curve), "waves.ahap", lra_phone());
+    const auto envelope = rendered(imported);
+    EXPECT_NEAR(envelope.peak_time(), 0.6, kThirtySecond);
+    EXPECT_NEAR(envelope.at(0.2), 0.9, kLevelTolerance);
+    EXPECT_NEAR(envelope.at(0.4), 0.4, kLevelTolerance);
+    for (double t = 0.01; t < 0.8 - kThirtySecond; t += 0.01) {
+        EXPECT_NEAR(envelope.at(t), curve_at(curve, t), kLevelTolerance) << "at " << t << " s";
+    }
+}
+
+TEST(AhapShape, AStraightCurveStaysOneNoteWithAHairpinAndSaysNothing) {
+    const std::vector<std::pair<double, double>> curve{{0.0, 0.0}, {0.2, 0.5}, {0.4, 1.0}};
+    const auto imported =
+        formats::read_ahap(curve_pattern(0.4, curve), "straight.ahap", lra_phone());
+    ASSERT_EQ(imported.score.bars.size(), 1u);
+    ASSERT_EQ(imported.score.bars[0].symbols.size(), 1u);
+    EXPECT_EQ(std::get<Note>(imported.score.bars[0].symbols[0]).dynamics, Dynamics::crescendo);
+    EXPECT_TRUE(imported.warnings.empty());
+}
+
+// An export of a score ending in a rest lasts as long as the score: Core Haptics counts a
+// pattern to its last event's end or its last parameter's start, whichever is later.
+TEST(AhapShape, AnExportOfAScoreEndingInARestPlaysAsLongAsTheScore) {
+    const auto chosen = lra_phone();
+    // Two quarter notes, then rest to the end of four bars of four: 3.2 s at 0.2 s a quarter.
+    const auto score =
+        formats::build_score({{0, 8, 1, 9}, {16, 8, 1, 5}}, {{0, 0.2}},
+                             4 * 4 * formats::ticks_per_quarter, chosen, "loop", "loop.score.xml");
+    const auto original = bound(score);
+    const render::Performance before(original);
+    ASSERT_DOUBLE_EQ(before.duration(), 3.2);
+    const auto text = formats::write_ahap(formats::sound_track(original));
+    const auto back = bound(formats::read_ahap(text, "loop.ahap", chosen));
+    EXPECT_NEAR(render::Performance(back).duration(), 3.2, 1e-9);
+}
+
+}  // namespace
+}  // namespace vibscore
