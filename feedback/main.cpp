@@ -7,10 +7,12 @@
 #include <algorithm>
 #include <csignal>
 #include <cstdlib>
+#include <filesystem>
 #include <iostream>
 #include <string>
 #include <vector>
 
+#include "common/json/build_tree.hpp"
 #include "config.h"
 #include "daemon/event_loop.hpp"
 #include "daemon/log.hpp"
@@ -88,13 +90,32 @@ int serve(const Options& options) {
     return code;
 }
 
+// The theme without --theme: $FEEDBACK_THEME; else, run from a meson build tree, its checkout's
+// (as vibscored finds its checkout's clefs: a fresh clone works before anything is installed);
+// else the installed one.
+std::string default_theme() {
+    const char* variable = std::getenv("FEEDBACK_THEME");
+    if (variable != nullptr && *variable != '\0') {
+        return variable;
+    }
+    std::error_code error;
+    const auto program = std::filesystem::read_symlink("/proc/self/exe", error);
+    if (!error) {
+        if (const auto source = source_tree_of(program)) {
+            const auto theme = *source / "feedback" / "themes" / "default.json";
+            if (std::filesystem::exists(theme, error)) {
+                return theme.string();
+            }
+        }
+    }
+    return VIBSCORE_FEEDBACK_THEME;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
     Options options;
-    const char* theme_variable = std::getenv("FEEDBACK_THEME");
-    options.theme = theme_variable != nullptr && *theme_variable != '\0' ? theme_variable
-                                                                         : VIBSCORE_FEEDBACK_THEME;
+    options.theme = default_theme();
     CLI::App app(
         "The feedbackd API (org.sigxcpu.Feedback) on the session bus, played through "
         "vibscored. Run with no arguments it serves the bus DBUS_SESSION_BUS_ADDRESS "
@@ -102,7 +123,8 @@ int main(int argc, char** argv) {
         "vibscore-feedback");
     app.add_option("--theme", options.theme,
                    "theme file: vibscore's format or feedbackd's theme JSON (default: "
-                   "$FEEDBACK_THEME, else " VIBSCORE_FEEDBACK_THEME ")");
+                   "$FEEDBACK_THEME; from a build tree, its checkout's "
+                   "feedback/themes/default.json; else " VIBSCORE_FEEDBACK_THEME ")");
     app.add_option("--profile", options.profile, "profile to start with")
         ->check(CLI::IsMember({"full", "quiet", "silent"}))
         ->capture_default_str();

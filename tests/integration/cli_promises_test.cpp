@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <fstream>
+#include <sstream>
 #include <thread>
 
 #include "client/editor/documents.hpp"
@@ -442,6 +443,46 @@ TEST(DevDaemon, KeepsTheDeclarationInLocalConfAcrossRestartsAndReloads) {
     EXPECT_NE(bad.exit_code, 0);
     EXPECT_THAT(bad.err, HasSubstr(local.string() + ":"));
     EXPECT_THAT(bad.err, HasSubstr("'resonance' is not 'key = value'"));
+}
+
+// ./dev daemon also runs vibscore-feedback (the feedbackd API) on a private session bus, with the
+// checkout's theme (a build-tree program finds its checkout's), and says how to point fbcli at it;
+// an event triggered there reaches the private vibscored's actuator.
+TEST(DevDaemon, RunsTheFeedbackServiceBesideItWithTheCheckoutsTheme) {
+    ReadmeCheckout checkout;
+    const auto run = [&](const std::string& line) {
+        return testing::run_command({"/bin/bash", "-c", checkout.shell(line)});
+    };
+    const auto started = run("./dev daemon --background");
+    ASSERT_EQ(started.exit_code, 0) << started.err;
+    const auto session = checkout.path() / "build" / "run" / "session-bus";
+    EXPECT_THAT(started.err,
+                HasSubstr("export DBUS_SESSION_BUS_ADDRESS=unix:path=" + session.string() + "\n"));
+    EXPECT_THAT(testing::read_file(checkout.path() / "build" / "run" / "feedback.log"),
+                HasSubstr("/feedback/themes/default.json"));
+
+    const auto trace = checkout.path() / "build" / "run" / "trace.csv";
+    const auto triggered =
+        run("busctl --address=unix:path=" + session.string() +
+            " -- call org.sigxcpu.Feedback /org/sigxcpu/Feedback org.sigxcpu.Feedback "
+            "TriggerFeedback 'ssa{sv}i' org.example.test phone-incoming-call 0 -1");
+    EXPECT_EQ(triggered.exit_code, 0) << triggered.err;
+    // The ringtone drives the sim: a row with a non-zero amplitude appears in the trace.
+    EXPECT_TRUE(testing::wait_until([&] {
+        const auto text = testing::read_file(trace);
+        std::istringstream rows(text);
+        std::string row;
+        while (std::getline(rows, row)) {
+            const auto comma = row.find(',');
+            if (comma != std::string::npos && row.compare(comma, 3, ",0,") != 0 &&
+                row.find("amplitude") == std::string::npos) {
+                return true;
+            }
+        }
+        return false;
+    })) << testing::read_file(trace);
+    ASSERT_EQ(run("./dev daemon --stop").exit_code, 0);
+    EXPECT_FALSE(std::filesystem::exists(checkout.path() / "build" / "run" / "feedback.pid"));
 }
 
 // `vibscore list` with nothing to list says so, and where the daemon looked.
