@@ -115,6 +115,14 @@ std::string actuator_line(const std::map<std::string, std::string>& settings) {
     return actuator::describe(declaration_of(settings));
 }
 
+// Where the numbers in use come from (ActuatorSource): "declared", or "measured DATE" after
+// `vibscore calibrate --apply`; nothing to say when none is declared.
+template <typename Proxy>
+std::string actuator_source_line(Proxy& haptics) {
+    const std::string source = haptics.ActuatorSource();
+    return source.empty() ? std::string() : "actuator numbers: " + source + "\n";
+}
+
 template <typename Body>
 int with_daemon(std::ostream& err, Body&& body) {
     std::unique_ptr<sdbus::IConnection> connection;
@@ -413,7 +421,8 @@ int describe_registry_score(const std::string& name, std::ostream& out, std::ost
             out << "  " << b + 1 << "  " << written
                 << (device == written ? " (as written)" : " -> " + device) << "\n";
         }
-        out << "actuator: " << actuator_line(haptics.Actuator()) << "\n";
+        out << "actuator: " << actuator_line(haptics.Actuator()) << "\n"
+            << actuator_source_line(haptics);
         return exit_ok;
     });
 }
@@ -442,7 +451,8 @@ int driver(const std::string& name, std::ostream& out, std::ostream& err) {
             out << " " << capability;
         }
         out << "\n" << haptics.DriverReason() << "\n";
-        out << "actuator: " << actuator_line(haptics.Actuator()) << "\n";
+        out << "actuator: " << actuator_line(haptics.Actuator()) << "\n"
+            << actuator_source_line(haptics);
         return exit_ok;
     });
 }

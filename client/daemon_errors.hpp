@@ -19,6 +19,8 @@ inline std::string describe_daemon_error(const std::string& name, const std::str
         {kLimitExceeded, "over a limit"},
         {kBusy, "busy"},
         {kDevice, "actuator failed"},
+        {kNoAccelerometer, "no accelerometer"},
+        {kUntrusted, "not trusted"},
     };
     if (const auto words = kWords.find(name); words != kWords.end()) {
         return words->second + ": " + message;

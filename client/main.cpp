@@ -8,6 +8,8 @@
 #include "client/actuator_option.hpp"
 #include "client/assign_verb.hpp"
 #include "client/bus_verbs.hpp"
+#include "client/calibrate_live.hpp"
+#include "client/calibrate_verb.hpp"
 #include "client/clef_verbs.hpp"
 #include "client/convert_verb.hpp"
 #include "client/editor/documents.hpp"
@@ -315,6 +317,41 @@ int main(int argc, char** argv) {
     assign_verb->add_flag("--list", assign_request.list,
                           "list the events and the score each plays");
 
+    CalibrateRequest calibrate_request;
+    auto* calibrate_verb = app.add_subcommand(
+        "calibrate",
+        "Measure the actuator with the device's accelerometer: vibscored plays a short probe "
+        "and estimates the [actuator] numbers (--apply: use them from now on; polkit: "
+        "org.vibscore.manage). Offline, for any recorder: --plan writes the probe, --estimate "
+        "reads a recording of it. Exit 1 when the estimate is not trusted (docs/drivers.md).");
+    calibrate_verb->add_flag("--apply", calibrate_request.apply,
+                             "live: make a trusted estimate the numbers in use, kept across "
+                             "restarts (the configuration file is left as it is)");
+    auto* calibrate_plan_flag = calibrate_verb->add_flag(
+        "--plan", calibrate_request.plan,
+        "write the probe as a drive trace (time_ns,amplitude,frequency_hz) to -o FILE");
+    auto* calibrate_estimate_option =
+        calibrate_verb
+            ->add_option("--estimate", calibrate_request.estimate,
+                         "estimate from PLAN.csv and a recording of it, ACCEL.csv (t,x,y,z: "
+                         "seconds from the plan's first row, m/s\u00b2)")
+            ->expected(2)
+            ->type_name("PLAN.csv ACCEL.csv");
+    calibrate_plan_flag->excludes(calibrate_estimate_option);
+    calibrate_verb->add_option("--kind", calibrate_request.kind, "erm or lra (offline)")
+        ->check(CLI::IsMember({"erm", "lra"}));
+    calibrate_verb
+        ->add_option("--actuator", calibrate_request.actuator_file,
+                     "offline: the nominal declaration, FILE's [actuator] section (vibscored.conf "
+                     "will do): the kind, and the numbers shown beside the measured ones")
+        ->type_name("FILE");
+    calibrate_verb->add_option("-o,--output", calibrate_request.output,
+                               "--plan: the file to write (default: standard output)");
+    calibrate_verb->add_option("--png", calibrate_request.png,
+                               "draw the recording over the model with the measured numbers "
+                               "(solid) and the declared ones (dashed) as a PNG image");
+    calibrate_verb->add_option("--svg", calibrate_request.svg, "the same picture as SVG");
+
     vibscore::editor::EditOptions edit_options;
     auto* edit_verb = app.add_subcommand(
         "edit", "Compose in the terminal, by keyboard or six buttons (docs/editor.md).");
@@ -422,6 +459,15 @@ int main(int argc, char** argv) {
     }
     if (show_verb->parsed()) {
         return vibscore::editor::show_score(show_request, std::cout, std::cerr);
+    }
+    if (calibrate_verb->parsed()) {
+        if (calibrate_request.plan) {
+            return calibrate_plan(calibrate_request, std::cout, std::cerr);
+        }
+        if (!calibrate_request.estimate.empty()) {
+            return calibrate_estimate(calibrate_request, std::cout, std::cerr);
+        }
+        return calibrate_live(calibrate_request, std::cout, std::cerr);
     }
     if (assign_verb->parsed()) {
         return assign(assign_request, std::cout, std::cerr);

@@ -7,6 +7,7 @@
 
 #include "common/json/build_tree.hpp"
 #include "config.h"
+#include "daemon/calibration_state.hpp"
 #include "daemon/drivers/available.hpp"
 #include "daemon/log.hpp"
 #include "daemon/module_record.hpp"
@@ -86,6 +87,7 @@ DaemonConfig read_config(const CommandLine& command_line) {
     if (!command_line.safe_off) {
         config.module_record = config.store / kModuleRecordFile;
     }
+    use_measured_actuator(config);  // `vibscore calibrate --apply`'s numbers, when kept
     return config;
 }
 

@@ -42,6 +42,9 @@ struct DaemonConfig {
     DeviceClefs device_clefs;
     std::optional<actuator::Declaration> actuator;  // [actuator]; nothing: playback as written
     PlaybackLimits limits;                          // [limits]
+    // Where actuator's numbers come from: "declared", or "measured <ISO date>" when the store
+    // holds a calibration of the declared kind (calibration_state.hpp); "" when none is declared.
+    std::string actuator_source;
     // Where each [section] begins and each of its keys is set, as "file:line", for messages:
     // section_lines for every section but [daemon], setting_lines for every key ([daemon]'s and
     // [clefs]' too).
@@ -79,8 +82,9 @@ std::vector<std::string> missing_device_clefs(const DaemonConfig& config, const 
 // Sections besides [daemon] and the backends' that configure parts of the service.
 inline constexpr const char* kActuatorSection = "actuator";
 inline constexpr const char* kLimitsSection = "limits";
+inline constexpr const char* kCalibrationSection = "calibration";  // accelerometer = auto|PATH
 inline constexpr const char* kServiceSections[] = {"clefs", "virtual-vibra", kActuatorSection,
-                                                   kLimitsSection};
+                                                   kLimitsSection, kCalibrationSection};
 
 // A warning for each section of `config` that is neither [daemon], a service section nor one of
 // `known` (the drivers), whose keys therefore apply nowhere: "file:line: unknown section [x] ...

@@ -7,6 +7,7 @@
 #include "config.h"
 #include "daemon/actuator/declaration.hpp"
 #include "daemon/bus_errors.hpp"
+#include "daemon/calibration_reply.hpp"
 #include "daemon/log.hpp"
 #include "daemon/request_error.hpp"
 #include "dbus/haptics1_names.hpp"
@@ -433,6 +434,62 @@ void HapticsService::playback_position(std::uint64_t id, std::size_t bar, std::s
 void HapticsService::playback_finished(std::uint64_t id, const std::string& reason) {
     log::debug("playback " + std::to_string(id) + " finished: " + reason);
     emitPlaybackFinished(id, reason);
+    if (calibrator_ != nullptr) {
+        calibrator_->playback_finished(id, reason);
+    }
+}
+
+std::string HapticsService::ActuatorSource() {
+    return config_.actuator ? (config_.actuator_source.empty() ? std::string("declared")
+                                                               : config_.actuator_source)
+                            : std::string();
+}
+
+void HapticsService::Calibrate(sdbus::Result<std::map<std::string, sdbus::Variant>>&& result,
+                               std::map<std::string, sdbus::Variant> options) {
+    const auto reply = DeferredReply<CalibrationReply>::make(std::move(result), "Calibrate");
+    reply->start([&] {
+        const Caller caller = admit_caller();
+        const CalibrateOptions parsed = parse_calibrate_options(options);
+        authorizer_.decide(caller, Action::manage,
+                           [this, reply, caller, parsed](const Decision& decision) {
+                               reply->start([&] {
+                                   decision.require("Calibrating the actuator");
+                                   start_calibration(reply, caller, parsed);
+                               });
+                           });
+    });
+}
+
+void HapticsService::start_calibration(
+    const std::shared_ptr<DeferredReply<CalibrationReply>>& reply, const Caller& caller,
+    const CalibrateOptions& options) {
+    if (calibrator_ == nullptr) {
+        throw RequestError(RequestError::Code::invalid, "this daemon cannot calibrate");
+    }
+    log::info("uid " + std::to_string(caller.uid) + " calibrates the actuator" +
+              (options.apply ? " (apply)" : ""));
+    try {
+        calibrator_->start(options.apply, caller.uid, caller.sender,
+                           [this, reply, options](std::optional<CalibrationOutcome> outcome,
+                                                  std::exception_ptr error) {
+                               if (outcome && outcome->applied) {
+                                   // The numbers in use changed: compensation and clef fitting use
+                                   // them now.
+                                   announced_actuator_ = Actuator();
+                                   dbus::emit_properties_changed(getObject(), INTERFACE_NAME,
+                                                                 {"Actuator", "ActuatorSource"});
+                               }
+                               reply->finish([&] {
+                                   if (error) {
+                                       throw_calibration_error(error);
+                                   }
+                                   return calibration_reply(*outcome, options.recording);
+                               });
+                           });
+    } catch (...) {
+        throw_calibration_error(std::current_exception());
+    }
 }
 
 }  // namespace vibscore::daemon

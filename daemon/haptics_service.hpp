@@ -10,6 +10,8 @@
 
 #include "daemon/actuator_host.hpp"
 #include "daemon/authority.hpp"
+#include "daemon/calibration_reply.hpp"
+#include "daemon/calibrator.hpp"
 #include "daemon/callers.hpp"
 #include "daemon/config.hpp"
 #include "daemon/deferred_reply.hpp"
@@ -36,6 +38,9 @@ class HapticsService final : public sdbus::AdaptorInterfaces<org::vibscore::Hapt
                    Authorizer& authorizer);
     ~HapticsService() override;
 
+    // Who runs Calibrate (none: Calibrate is refused); set once, before the bus is served.
+    void set_calibrator(Calibrator* calibrator) { calibrator_ = calibrator; }
+
     // PlayerListener: playback events become signals.
     void playback_started(std::uint64_t id, const std::string& label) override;
     void playback_position(std::uint64_t id, std::size_t bar, std::size_t symbol) override;
@@ -56,6 +61,9 @@ class HapticsService final : public sdbus::AdaptorInterfaces<org::vibscore::Hapt
     std::vector<sdbus::Struct<std::string, std::string>> ListDrivers() override;
     void SwitchDriver(sdbus::Result<>&& result, std::string driver) override;
     void SetIntensity(sdbus::Result<>&& result, double value) override;
+    void Calibrate(sdbus::Result<std::map<std::string, sdbus::Variant>>&& result,
+                   std::map<std::string, sdbus::Variant> options) override;
+    std::string ActuatorSource() override;
     std::string Driver() override;
     std::string DriverReason() override;
     std::map<std::string, std::string> RegistryFolders() override;
@@ -77,6 +85,8 @@ class HapticsService final : public sdbus::AdaptorInterfaces<org::vibscore::Hapt
     std::uint64_t play(const Caller& caller, const std::string& score, const PlayOptions& options);
     Player::StopResult stop(const Caller& caller, std::uint64_t playback_id, bool privileged);
     void set_intensity(const Caller& caller, double value);
+    void start_calibration(const std::shared_ptr<DeferredReply<CalibrationReply>>& reply,
+                           const Caller& caller, const CalibrateOptions& options);
     // Driver, DriverReason, Capabilities or Actuator changed with a switch or reload: announced
     // with PropertiesChanged.
     void driver_switched();
@@ -92,6 +102,7 @@ class HapticsService final : public sdbus::AdaptorInterfaces<org::vibscore::Hapt
     std::vector<std::string> announced_capabilities_;
     std::map<std::string, std::string> announced_actuator_;
     sdbus::Slot vanish_watch_;  // NameOwnerChanged: a caller left the bus
+    Calibrator* calibrator_ = nullptr;
 };
 
 }  // namespace vibscore::daemon

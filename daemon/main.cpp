@@ -11,6 +11,7 @@
 #include "daemon/actuator_host.hpp"
 #include "daemon/authority.hpp"
 #include "daemon/bus_credentials.hpp"
+#include "daemon/calibrator.hpp"
 #include "daemon/callers.hpp"
 #include "daemon/command_line.hpp"
 #include "daemon/drivers/available.hpp"
@@ -109,7 +110,10 @@ int serve(const CommandLine& command_line) {
                             [&](const std::string& sender) { return credentials.uid_of(sender); });
     BusPolkitAuthority polkit(*connection);
     Authorizer authorizer(polkit);
+    // Before the service, which tells it of every playback's end: gone only after the service.
+    Calibrator calibrator(config, playback, host);
     HapticsService service(*connection, config, registry, playback, callers, host, authorizer);
+    service.set_calibrator(&calibrator);
     // The kernel's vibra for programs that only know force feedback (feedbackd, games, fftest).
     const auto vibra_settings = parse_virtual_vibra_settings(config.settings_of("virtual-vibra"));
     std::optional<VirtualVibra> vibra;

@@ -99,7 +99,9 @@ std::uint64_t Player::play(PlaybackRequest request) {
     adaptation.envelopes = capabilities.envelopes;
     adaptation.scale = request.intensity * master_intensity_;
     adaptation.pulse_period_s = capabilities.pulse_period_s;
-    if (declared_) {
+    if (request.probe) {
+        adaptation.scale = 1.0;
+    } else if (declared_) {
         adaptation.actuator = declared_;
         adaptation.reverse = capabilities.reverse;
         // A device with gain scales the drives itself; the model is linear, so drives planned
@@ -113,11 +115,13 @@ std::uint64_t Player::play(PlaybackRequest request) {
     held_off_ = false;
     last_report_us_.reset();
     held_position_.reset();
+    const bool final_drives = declared_.has_value() || request.probe;
+    const double gain = request.probe ? 1.0 : master_intensity_;
     current_.emplace(Playback{id, std::move(request), std::move(cues), monotonic_now_us(), 0,
-                              capabilities, declared_.has_value()});
+                              capabilities, final_drives});
     if (capabilities.gain_control) {
         try {
-            actuator_->set_gain(master_intensity_);
+            actuator_->set_gain(gain);
         } catch (const drivers::DeviceError& error) {
             fail(error);  // like a failing first drive: the playback ends, the call succeeds
             return id;

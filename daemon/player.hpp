@@ -34,6 +34,11 @@ struct PlaybackRequest {
     // with over_on_time_reason() ("limit-exceeded: ..."). nullopt: until it ends or is stopped.
     // The bus service sets it from [limits] by usage (PlaybackLimits).
     std::optional<double> max_on_time_s;
+    // Drives of the backend's full scale as they are (-1..1), not strengths: the calibration's
+    // probe (Calibrate), which must reach the actuator unshaped by the declared actuator's
+    // compensation, the intensities or the rated drive. Still clamped to full scale and to the
+    // backend's reverse capability, and held to its maximum on-time.
+    bool probe = false;
 };
 
 // What the player reports; the bus service turns these into signals.

@@ -20,6 +20,8 @@ inline constexpr const char* kLimitExceeded = "org.vibscore.Haptics1.Error.Limit
 inline constexpr const char* kBusy = "org.vibscore.Haptics1.Error.Busy";
 inline constexpr const char* kCoolingDown = "org.vibscore.Haptics1.Error.CoolingDown";
 inline constexpr const char* kDevice = "org.vibscore.Haptics1.Error.Device";
+inline constexpr const char* kNoAccelerometer = "org.vibscore.Haptics1.Error.NoAccelerometer";
+inline constexpr const char* kUntrusted = "org.vibscore.Haptics1.Error.Untrusted";
 
 // Not ours: what the bus says when vibscored is not there, and the generic failure a method
 // sends when none of the names above fits.

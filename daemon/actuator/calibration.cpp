@@ -179,12 +179,47 @@ void estimate_erm(Estimate& e, const Plan& plan, const std::vector<Vec3>& vibrat
     }
     // A few milliseconds: several turns of the mass at speed, short against the time constants.
     const int half = std::max(1, static_cast<int>(std::lround(0.004 * e.sample_rate_hz)));
+    const double length = 2.0 * half + 1.0;
+    // Where the force is one-sided (along one axis, or an ellipse), |vibration|^2 has a ripple at
+    // twice the rotation; the moving average removes it unless the sampling aliases it near
+    // zero (the mass turning near a multiple of half the sampling rate: 200 Hz at 400 Hz).
+    // Those stretches are believed less: the ripple's share comes from the spread of the
+    // vibration across axes, its frequency from the readings' correlation with their
+    // neighbours (cos of the phase step between readings).
+    const Vec3 spread = fit::principal_spread(vibration);
+    const double ripple =
+        spread[0] + spread[1] > 0.0 ? (spread[0] - spread[1]) / (spread[0] + spread[1]) : 1.0;
+    std::vector<double> lag(vibration.size(), 0.0), power(vibration.size(), 0.0);
+    for (std::size_t k = 1; k + 1 < vibration.size(); ++k) {
+        for (int i = 0; i < 3; ++i) {
+            lag[k] += vibration[k][i] * (vibration[k - 1][i] + vibration[k + 1][i]);
+            power[k] += 2.0 * vibration[k][i] * vibration[k][i];
+        }
+    }
+    lag = fit::box_smooth(lag, 4 * half);
+    power = fit::box_smooth(power, 4 * half);
     energy = fit::box_smooth(energy, half);
+    // What else the energy carries (the noise of a sampled phase, the model's own roughness),
+    // relative to it: the ripple's weight never outweighs it by more than ~100 times.
+    constexpr double kWeightFloor = 0.1;
+    std::vector<double> weight(energy.size());
+    for (std::size_t k = 0; k < energy.size(); ++k) {
+        const double cosine = power[k] > 0.0 ? std::clamp(lag[k] / power[k], -1.0, 1.0) : 0.0;
+        const double rho = std::acos(cosine) / std::numbers::pi;  // ripple, cycles per reading
+        const double s = std::sin(std::numbers::pi * rho);
+        const double kept = std::abs(s) > 1e-9
+                                ? std::abs(std::sin(std::numbers::pi * rho * length) / (length * s))
+                                : 1.0;
+        // Relative to the energy, as the least squares of the energy itself weigh every reading
+        // alike where no ripple is left.
+        const double wobble = ripple * kept;
+        weight[k] = 1.0 / (kWeightFloor * kWeightFloor + wobble * wobble);
+    }
     const std::vector<double> regular = fit::regular_times(raw);
     fit::ErmFit best;
     bool first = true;
     for (const std::vector<double>* times : {&regular, &raw}) {
-        const fit::ErmFit f = fit::fit_erm(plan, *times, energy, half);
+        const fit::ErmFit f = fit::fit_erm(plan, *times, energy, weight, half);
         if (first || f.rss < best.rss) {
             best = f;
             first = false;

@@ -37,6 +37,7 @@ struct Energy {
     const Plan& plan;
     const std::vector<double>& t;
     const std::vector<double>& energy;
+    const std::vector<double>& weight;
     int half;
 
     // The residual, and the scale and floor that give it.
@@ -48,34 +49,36 @@ struct Energy {
             model[k] = s * s * s * s;
         }
         model = box_smooth(model, half);
-        double sm = 0.0, sy = 0.0, smm = 0.0, smy = 0.0, syy = 0.0;
-        const double n = static_cast<double>(t.size());
+        // Weighted least squares of energy = scale x model + floor.
+        double sw = 0.0, sm = 0.0, sy = 0.0, smm = 0.0, smy = 0.0, syy = 0.0;
         for (std::size_t k = 0; k < t.size(); ++k) {
-            sm += model[k];
-            sy += energy[k];
-            smm += model[k] * model[k];
-            smy += model[k] * energy[k];
-            syy += energy[k] * energy[k];
+            const double w = weight[k];
+            sw += w;
+            sm += w * model[k];
+            sy += w * energy[k];
+            smm += w * model[k] * model[k];
+            smy += w * model[k] * energy[k];
+            syy += w * energy[k] * energy[k];
         }
-        const double var_m = smm - sm * sm / n;
-        const double cov = smy - sm * sy / n;
+        const double var_m = smm - sm * sm / sw;
+        const double cov = smy - sm * sy / sw;
         const double a = var_m > 0.0 ? cov / var_m : 0.0;
-        const double c = (sy - a * sm) / n;
+        const double c = (sy - a * sm) / sw;
         if (scale) {
             *scale = a;
         }
         if (floor) {
             *floor = c;
         }
-        return std::max(0.0, syy - sy * sy / n - a * cov);
+        return std::max(0.0, syy - sy * sy / sw - a * cov);
     }
 };
 
 }  // namespace
 
 ErmFit fit_erm(const Plan& plan, const std::vector<double>& t_s, const std::vector<double>& energy,
-               int half) {
-    const Energy model{plan, t_s, energy, half};
+               const std::vector<double>& weight, int half) {
+    const Energy model{plan, t_s, energy, weight, half};
     // Coarse: both time constants on a log grid (5 ms .. 1.3 s), no delay.
     double best_up = 0.04, best_down = 0.08, best_delay = 0.0, best = 1e300;
     for (double up = 0.005; up < 0.6; up *= 1.15) {
@@ -101,15 +104,49 @@ ErmFit fit_erm(const Plan& plan, const std::vector<double>& t_s, const std::vect
         }
         return model.rss(std::exp(p[0]), std::exp(p[1]), p[2]);
     };
-    const std::vector<double> found = minimise(
-        cost, {std::log(best_up), std::log(best_down), best_delay}, {0.1, 0.1, 0.003}, 150);
+    std::vector<double> found = minimise(cost, {std::log(best_up), std::log(best_down), best_delay},
+                                         {0.1, 0.1, 0.003}, 150);
+    // What is left of the ripple, and the noise of a phase the readings sample at random,
+    // grow with the energy itself: weighed by the inverse square of the fitted energy (plus a
+    // little, so the noise floor does not take over), every part of the rise and fall counts
+    // by its relative error, and the coast's tail, which says most about the spin-down, is not
+    // drowned by the plateau.
+    constexpr double lambda = 0.01;
+    {
+        double a = 0.0, c = 0.0;
+        model.rss(std::exp(found[0]), std::exp(found[1]), found[2], &a, &c);
+        std::vector<double> shape(t_s.size());
+        for (std::size_t k = 0; k < t_s.size(); ++k) {
+            const double speed =
+                erm_speed(plan, std::exp(found[0]), std::exp(found[1]), found[2], t_s[k]);
+            shape[k] = speed * speed * speed * speed;
+        }
+        shape = box_smooth(shape, half);
+        std::vector<double> relative(t_s.size());
+        for (std::size_t k = 0; k < t_s.size(); ++k) {
+            relative[k] = weight[k] / std::pow(shape[k] + lambda, 2.0);
+        }
+        const Energy second{plan, t_s, energy, relative, half};
+        const auto cost2 = [&](const std::vector<double>& p) {
+            if (std::abs(p[2]) > 0.08) {
+                return 1e300;
+            }
+            return second.rss(std::exp(p[0]), std::exp(p[1]), p[2]);
+        };
+        found = minimise(cost2, found, {0.05, 0.05, 0.002}, 150);
+    }
     ErmFit out;
     out.spin_up_s = std::exp(found[0]);
     out.spin_down_s = std::exp(found[1]);
     out.delay_s = found[2];
     out.rss = model.rss(out.spin_up_s, out.spin_down_s, out.delay_s, &out.scale, &out.floor);
-    for (const double e : energy) {
-        out.energy_ss += (e - out.floor) * (e - out.floor);
+    double sw = 0.0, swe = 0.0;
+    for (std::size_t k = 0; k < energy.size(); ++k) {
+        sw += weight[k];
+        swe += weight[k] * energy[k];
+    }
+    for (std::size_t k = 0; k < energy.size(); ++k) {
+        out.energy_ss += weight[k] * std::pow(energy[k] - swe / sw, 2.0);
     }
     return out;
 }

@@ -30,6 +30,10 @@ std::vector<Vec3> high_pass(const std::vector<Sample>& samples, int half);
 // The direction the vibration mostly takes (principal axis of the readings), unit length.
 Vec3 principal_axis(const std::vector<Vec3>& vibration);
 
+// The spread of the vibration along its three principal axes, largest first (eigenvalues of
+// its covariance).
+Vec3 principal_spread(const std::vector<Vec3>& vibration);
+
 // Minimises `f` from `start` (Nelder-Mead) with initial steps `step`; returns the best point.
 std::vector<double> minimise(const std::function<double(const std::vector<double>&)>& f,
                              std::vector<double> start, const std::vector<double>& step,
@@ -62,9 +66,10 @@ struct ErmFit {
     double rss = 0.0;
     double energy_ss = 0.0;  // the energy's own spread about the floor
 };
-// `energy`: |vibration|^2 smoothed by box_smooth over `half`.
+// `energy`: |vibration|^2 smoothed by box_smooth over `half`; `weight`: how much each reading's
+// energy is to be believed (weighted least squares).
 ErmFit fit_erm(const Plan& plan, const std::vector<double>& t_s, const std::vector<double>& energy,
-               int half);
+               const std::vector<double>& weight, int half);
 
 // An ERM's normalised speed (1 = full scale's) at `t_s` under `plan`, shifted `delay_s`.
 double erm_speed(const Plan& plan, double spin_up_s, double spin_down_s, double delay_s,

@@ -76,7 +76,7 @@ Plan make_plan(Kind kind, const std::optional<Declaration>& nominal) {
             t += kLraRingS;
         }
     }
-    plan.rows.back().t_s = t;  // the last ring-down or coast ends the plan
+    plan.rows.push_back({t, 0.0, 0.0});  // the end of the last ring-down or coast
     return plan;
 }
 

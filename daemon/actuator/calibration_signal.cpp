@@ -116,6 +116,47 @@ Vec3 principal_axis(const std::vector<Vec3>& vibration) {
     return axis;
 }
 
+Vec3 principal_spread(const std::vector<Vec3>& vibration) {
+    double c[3][3]{};
+    for (const Vec3& v : vibration) {
+        for (int i = 0; i < 3; ++i) {
+            for (int j = 0; j < 3; ++j) {
+                c[i][j] += v[i] * v[j];
+            }
+        }
+    }
+    // Jacobi rotations: a 3x3 symmetric matrix converges in a handful of sweeps.
+    for (int sweep = 0; sweep < 50; ++sweep) {
+        const double off = c[0][1] * c[0][1] + c[0][2] * c[0][2] + c[1][2] * c[1][2];
+        if (off <= 1e-30 * (c[0][0] * c[0][0] + c[1][1] * c[1][1] + c[2][2] * c[2][2]) ||
+            off == 0.0) {
+            break;
+        }
+        for (int p = 0; p < 2; ++p) {
+            for (int q = p + 1; q < 3; ++q) {
+                if (c[p][q] == 0.0) {
+                    continue;
+                }
+                const double theta = 0.5 * std::atan2(2.0 * c[p][q], c[q][q] - c[p][p]);
+                const double cs = std::cos(theta), sn = std::sin(theta);
+                for (int k = 0; k < 3; ++k) {  // columns
+                    const double a = c[k][p], b = c[k][q];
+                    c[k][p] = cs * a - sn * b;
+                    c[k][q] = sn * a + cs * b;
+                }
+                for (int k = 0; k < 3; ++k) {  // rows
+                    const double a = c[p][k], b = c[q][k];
+                    c[p][k] = cs * a - sn * b;
+                    c[q][k] = sn * a + cs * b;
+                }
+            }
+        }
+    }
+    Vec3 out{c[0][0], c[1][1], c[2][2]};
+    std::sort(out.begin(), out.end(), std::greater<>());
+    return out;
+}
+
 std::vector<double> minimise(const std::function<double(const std::vector<double>&)>& f,
                              std::vector<double> start, const std::vector<double>& step,
                              int iterations) {

@@ -1,10 +1,15 @@
 #pragma once
 
+#include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "common/device_error.hpp"
+
+namespace vibscore::sensors {
+class Accelerometer;
+}
 
 namespace vibscore::drivers {
 
@@ -73,6 +78,10 @@ class Actuator {
     // Backends with gain control scale every drive by `gain` (0..1, the master intensity) in
     // the device; the player then leaves the master intensity out of the drives it sends.
     virtual void set_gain(double /*gain*/) {}
+
+    // A sensor that feels this actuator's vibration and comes with the backend (the sim's model
+    // of one), for `vibscore calibrate` when [calibration] names no device; nullptr for most.
+    virtual std::shared_ptr<sensors::Accelerometer> accelerometer() const { return nullptr; }
 };
 
 }  // namespace vibscore::drivers

@@ -32,6 +32,9 @@ class ConfiguredActuator final : public Actuator {
     void prepare(const Drive& next) override { backend_->prepare(next); }
     void set_gain(double gain) override { backend_->set_gain(gain); }
     void set_off_timer(double seconds) override { backend_->set_off_timer(seconds); }
+    std::shared_ptr<sensors::Accelerometer> accelerometer() const override {
+        return backend_->accelerometer();
+    }
 
   private:
     std::unique_ptr<Actuator> backend_;

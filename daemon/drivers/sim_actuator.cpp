@@ -21,6 +21,35 @@ std::string meter_label(Kind kind) {
 // The [sim] keys that describe the simulated actuator itself.
 constexpr const char* kModelKeys[] = {"model", "resonance-hz", "q", "spin-up-ms", "spin-down-ms"};
 
+// [sim] true-*: the actuator as it truly is, apart from what is declared; and its accelerometer.
+void read_truth(DriverSettings& read, SimSettings& sim) {
+    auto truth = sim.actuator;
+    bool differs = false;
+    const auto read_true = [&](const char* key, double& value, double scale, double min,
+                               double max) {
+        if (read.has(key)) {
+            value = read.number(key, value * scale, min, max) / scale;
+            differs = true;
+        }
+    };
+    read_true("true-resonance-hz", truth.resonance_hz, 1.0, actuator::kResonanceHz.min,
+              actuator::kResonanceHz.max);
+    read_true("true-q", truth.q, 1.0, actuator::kQ.min, actuator::kQ.max);
+    read_true("true-spin-up-ms", truth.spin_up_s, 1000.0, actuator::kSpinUpMs.min,
+              actuator::kSpinUpMs.max);
+    read_true("true-spin-down-ms", truth.spin_down_s, 1000.0, actuator::kSpinDownMs.min,
+              actuator::kSpinDownMs.max);
+    if (differs) {
+        sim.truth = truth;
+    }
+    sim.accelerometer.rate_hz =
+        read.number("accelerometer-rate-hz", sim.accelerometer.rate_hz, 0.0, 100000.0);
+    sim.accelerometer.noise_rms =
+        read.number("accelerometer-noise", sim.accelerometer.noise_rms, 0.0, 1000.0);
+    sim.accelerometer.peak_accel =
+        read.number("accelerometer-peak", sim.accelerometer.peak_accel, 0.001, 1000.0);
+}
+
 }  // namespace
 
 actuator::Declaration undeclared_sim_actuator() {
@@ -38,7 +67,11 @@ actuator::Declaration undeclared_sim_actuator() {
 SimActuator::SimActuator(SimSettings settings, MonotonicClock clock)
     : clock_(clock ? std::move(clock) : MonotonicClock(monotonic_now_ns)),
       reverse_(settings.declared && settings.actuator.brake == actuator::Brake::reverse),
-      model_(settings.actuator) {
+      model_(settings.truth.value_or(settings.actuator)) {
+    if (settings.accelerometer.rate_hz > 0.0) {
+        accelerometer_ = std::make_shared<SimAccelerometer>(
+            settings.truth.value_or(settings.actuator), settings.accelerometer);
+    }
     if (settings.trace) {
         trace_.emplace(*settings.trace);
     }
@@ -65,6 +98,9 @@ void SimActuator::take(double amplitude, double frequency_hz) {
     // after it: how far the actuator got with the previous drive.
     const double response = model_.response_at(t_s);
     model_.command(t_s, {amplitude, frequency_hz});
+    if (accelerometer_) {
+        accelerometer_->command(now_ns, {amplitude, frequency_hz});
+    }
     ++commands_;
     if (meter_) {
         // The meter shows where the actuator is heading (rest, while braking); an ERM has no
@@ -132,6 +168,7 @@ std::unique_ptr<Actuator> make_sim_actuator(const std::map<std::string, std::str
         model.spin_down_s =
             read.number("spin-down-ms", model.spin_down_s * 1000.0, 0.1, 10000.0) / 1000.0;
     }
+    read_truth(read, sim);
     if (auto trace = read.text("trace")) {
         sim.trace = *trace;
     }

@@ -12,6 +12,7 @@
 #include "common/monotonic_clock.hpp"
 #include "daemon/actuator/timeline.hpp"
 #include "daemon/drivers/actuator.hpp"
+#include "daemon/drivers/sim_accelerometer.hpp"
 #include "daemon/drivers/terminal_meter.hpp"
 #include "daemon/drivers/trace_file.hpp"
 
@@ -26,6 +27,11 @@ struct SimSettings {
     // The actuator is the one [actuator] declares: its brake says whether the simulated board
     // has an H-bridge (the reverse-drive capability).
     bool declared = false;
+    // The actuator as it truly is, when it should differ from what is declared ([sim] true-*):
+    // what the model and the accelerometer simulate. nullopt: the declared one.
+    std::optional<actuator::Declaration> truth;
+    // The sim's accelerometer ([sim] accelerometer-*); rate 0: none.
+    actuator::SensorOptions accelerometer;
     std::optional<std::filesystem::path> trace;  // CSV of every drive as sent, when set
     bool meter = false;                          // draw a live meter on meter_fd
     int meter_fd = 2;
@@ -54,6 +60,9 @@ class SimActuator : public Actuator {
     // taken the drive by then.
     void apply(const Drive& drive) override;
     void off() noexcept override;
+    std::shared_ptr<sensors::Accelerometer> accelerometer() const override {
+        return accelerometer_;
+    }
 
     const actuator::Timeline& model() const { return model_; }
     // Commands taken so far, apply() and off() alike.
@@ -69,6 +78,7 @@ class SimActuator : public Actuator {
     std::unique_ptr<TerminalMeter> meter_;
     std::uint64_t commands_ = 0;
     bool trace_failure_logged_ = false;
+    std::shared_ptr<SimAccelerometer> accelerometer_;
 };
 
 // Builds a SimActuator from the string settings of the daemon's configuration:
@@ -80,6 +90,11 @@ class SimActuator : public Actuator {
 //   q             LRA quality factor (default 8)
 //   spin-up-ms    ERM spin-up time constant (default 50)
 //   spin-down-ms  ERM spin-down time constant (default 80)
+// and, declared or not, how the simulated actuator truly is when it should differ (what
+// `vibscore calibrate` then measures): true-resonance-hz, true-q, true-spin-up-ms,
+// true-spin-down-ms (default: as declared), and its accelerometer: accelerometer-rate-hz
+// (default 1000; 0: none), accelerometer-noise (m/s² RMS per axis, default 0.02),
+// accelerometer-peak (m/s² at full drive, default 10).
 // With `declared`, the sim simulates that actuator, and those five keys are refused: the physics
 // is declared once. Throws SettingError naming the key and the value for an invalid value or an
 // unknown key, and std::runtime_error when the trace file cannot be created.

@@ -240,6 +240,17 @@ TEST(CalibrationEstimate, FindsAnErmsTimeConstantsAt400HzWithARotatingForce) {
     EXPECT_NEAR(*e.spin_down_s, 0.060, 0.060 * 0.15);
 }
 
+TEST(CalibrationEstimate, FindsAnErmTurningAtHalfTheSamplingRateAlongOneAxisAt400Hz) {
+    // At full speed 200 Hz sampled at 400 Hz, the energy of a force along one axis beats slowly
+    // with the sampling: the estimate leans on the spin-up and the coast instead.
+    SensorOptions sensor = at(400.0, 8);
+    sensor.erm_full_speed_hz = 201.0;
+    const Estimate e = measure(erm(0.030, 0.120), example_erm(), sensor);
+    ASSERT_TRUE(e.trusted) << (e.problems.empty() ? "" : e.problems.front());
+    EXPECT_NEAR(*e.spin_up_s, 0.030, 0.030 * 0.15);
+    EXPECT_NEAR(*e.spin_down_s, 0.120, 0.120 * 0.15);
+}
+
 TEST(CalibrationEstimate, NoVibrationIsRefusedAndNothingIsMeasured) {
     SensorOptions sensor = at(1000.0);
     sensor.peak_accel = 0.0;  // the phone does not feel the actuator

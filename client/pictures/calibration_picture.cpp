@@ -1,0 +1,204 @@
+#include "client/pictures/calibration_picture.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+#include "client/pictures/axis_ticks.hpp"
+#include "client/pictures/picture_text.hpp"
+
+namespace vibscore::pictures {
+
+namespace {
+
+constexpr double kLeft = 58.0, kRight = 16.0, kTop = 50.0, kBottom = 42.0;
+constexpr double kTitleBaseline = 20.0, kCaptionBaseline = 38.0;
+constexpr double kLegendLine = 20.0, kLegendGap = 16.0;
+
+struct Entry {
+    CalibrationPicture::Layer layer;
+    const double* ink;
+    const char* label;
+};
+
+constexpr Entry kEntries[] = {
+    {CalibrationPicture::recorded, CalibrationPicture::recorded_ink, "recorded"},
+    {CalibrationPicture::fitted, CalibrationPicture::fitted_ink, "model, measured numbers"},
+    {CalibrationPicture::declared, CalibrationPicture::declared_ink, "model, declared numbers"},
+};
+
+// The recording thin (it is noisy), the fit solid and widest, the declaration dashed: the two
+// models stay apart where they agree.
+void stroke_style(cairo_t* cairo, CalibrationPicture::Layer layer) {
+    static const double dashes[] = {6.0, 3.0};
+    cairo_set_dash(cairo, nullptr, 0, 0);
+    switch (layer) {
+        case CalibrationPicture::recorded:
+            cairo_set_line_width(cairo, 1.0);
+            break;
+        case CalibrationPicture::declared:
+            cairo_set_line_width(cairo, 1.6);
+            cairo_set_dash(cairo, dashes, 2, 0);
+            break;
+        default:
+            cairo_set_line_width(cairo, 1.8);
+            break;
+    }
+}
+
+double largest(const actuator::calibration::Trace& trace) {
+    double peak = 0.0;
+    for (const double value : trace.magnitude) {
+        if (std::isfinite(value)) {
+            peak = std::max(peak, std::abs(value));
+        }
+    }
+    return peak;
+}
+
+double last_time(const actuator::calibration::Trace& trace) {
+    return trace.t_s.empty() ? 0.0 : trace.t_s.back();
+}
+
+}  // namespace
+
+CalibrationPicture::CalibrationPicture(Traces traces, std::string title, std::string caption,
+                                       const Options& options)
+    : traces_(std::move(traces)),
+      title_(std::move(title)),
+      caption_(std::move(caption)),
+      options_(options) {
+    const double peak =
+        std::max({largest(traces_.recorded), largest(traces_.fitted), largest(traces_.declared)});
+    top_ = peak > 0.0 ? peak * 1.08 : 1.0;
+    span_ = std::max({last_time(traces_.recorded), last_time(traces_.fitted),
+                      last_time(traces_.declared), 1e-3});
+}
+
+double CalibrationPicture::x_of(double t) const {
+    return kLeft + t / span_ * (options_.width - kLeft - kRight);
+}
+
+double CalibrationPicture::y_of(double accel) const {
+    const double bottom = options_.height - kBottom;
+    return bottom - accel / top_ * (bottom - kTop);
+}
+
+void CalibrationPicture::draw(cairo_t* cairo, Layers layers) const {
+    draw_header(cairo, layers);
+    draw_traces(cairo, layers);
+    draw_axes(cairo, layers);
+}
+
+void CalibrationPicture::draw_header(cairo_t* cairo, Layers layers) const {
+    const double right = options_.width - kRight;
+    select_font(cairo, 10, false);
+    std::vector<double> entry_x(std::size(kEntries));
+    double x = right;
+    for (std::size_t i = std::size(kEntries); i-- > 0;) {
+        x -= kLegendLine + 5 + text_width(cairo, kEntries[i].label);
+        entry_x[i] = x;
+        x -= kLegendGap;
+    }
+    const double legend_left = x;
+    for (std::size_t i = 0; i < std::size(kEntries); ++i) {
+        const Entry& entry = kEntries[i];
+        if (layers & legend) {
+            cairo_set_source_rgb(cairo, entry.ink[0], entry.ink[1], entry.ink[2]);
+            stroke_style(cairo, entry.layer);
+            cairo_move_to(cairo, std::round(entry_x[i]), kLegendLine - 4.5);
+            cairo_line_to(cairo, std::round(entry_x[i]) + kLegendLine, kLegendLine - 4.5);
+            cairo_stroke(cairo);
+            cairo_set_dash(cairo, nullptr, 0, 0);
+        }
+        if (layers & legend_text) {
+            select_font(cairo, 10, false);
+            cairo_set_source_rgb(cairo, 0, 0, 0);
+            show_text_at(cairo, entry_x[i] + kLegendLine + 5, kTitleBaseline, entry.label);
+        }
+    }
+    if (layers & title) {
+        cairo_set_source_rgb(cairo, 0, 0, 0);
+        select_font(cairo, 14, true);
+        show_text_at(cairo, kLeft, kTitleBaseline,
+                     elided_text(cairo, title_, legend_left - 12 - kLeft));
+    }
+    if (layers & caption) {
+        cairo_set_source_rgb(cairo, 0.3, 0.3, 0.3);
+        select_font(cairo, 10, false);
+        show_text_at(cairo, kLeft, kCaptionBaseline, elided_text(cairo, caption_, right - kLeft));
+    }
+}
+
+void CalibrationPicture::draw_axes(cairo_t* cairo, Layers layers) const {
+    const double bottom = options_.height - kBottom;
+    const double right = options_.width - kRight;
+    cairo_set_source_rgb(cairo, 0, 0, 0);
+    cairo_set_line_width(cairo, 1.0);
+    cairo_set_dash(cairo, nullptr, 0, 0);
+    if (layers & frame) {
+        cairo_rectangle(cairo, kLeft + 0.5, kTop + 0.5, right - kLeft, bottom - kTop);
+        cairo_stroke(cairo);
+    }
+    select_font(cairo, 10, false);
+    const double step = tick_step(span_, 10);
+    for (double t = 0.0; t <= span_ + step * 1e-6; t += step) {
+        const double x = std::round(x_of(t)) + 0.5;
+        if (layers & frame) {
+            cairo_move_to(cairo, x, bottom);
+            cairo_line_to(cairo, x, bottom + 5);
+            cairo_stroke(cairo);
+        }
+        if (layers & axis_labels) {
+            const auto label = tick_label(t, step);
+            show_text_at(cairo, x - text_width(cairo, label) / 2, bottom + 17, label);
+        }
+    }
+    const double accel_step = tick_step(top_, 4);
+    for (double a = 0.0; a <= top_ + accel_step * 1e-6; a += accel_step) {
+        const double y = std::round(y_of(a)) + 0.5;
+        if (layers & frame) {
+            cairo_move_to(cairo, kLeft - 5, y);
+            cairo_line_to(cairo, kLeft, y);
+            cairo_stroke(cairo);
+        }
+        if (layers & axis_labels) {
+            const auto label = tick_label(a, accel_step);
+            show_text_at(cairo, kLeft - 8 - text_width(cairo, label), y + 4, label);
+        }
+    }
+    if (layers & axis_labels) {
+        show_text_at(cairo, right - 40, bottom + 33, "t (s)");
+        show_text_at(cairo, kLeft, bottom + 33, "vibration (m/s\u00b2, gravity taken out)");
+    }
+}
+
+void CalibrationPicture::draw_traces(cairo_t* cairo, Layers layers) const {
+    cairo_set_line_join(cairo, CAIRO_LINE_JOIN_BEVEL);
+    for (const Entry& entry : kEntries) {
+        const auto& trace = entry.layer == recorded ? traces_.recorded
+                            : entry.layer == fitted ? traces_.fitted
+                                                    : traces_.declared;
+        if (!(layers & entry.layer) || trace.t_s.empty()) {
+            continue;
+        }
+        const std::size_t count = std::min(trace.t_s.size(), trace.magnitude.size());
+        bool drawing = false;
+        for (std::size_t k = 0; k < count; ++k) {
+            if (!std::isfinite(trace.magnitude[k])) {
+                drawing = false;  // a gap the estimate could not fill is left open
+                continue;
+            }
+            const double x = x_of(trace.t_s[k]);
+            const double y = y_of(trace.magnitude[k]);
+            drawing ? cairo_line_to(cairo, x, y) : cairo_move_to(cairo, x, y);
+            drawing = true;
+        }
+        cairo_set_source_rgb(cairo, entry.ink[0], entry.ink[1], entry.ink[2]);
+        stroke_style(cairo, entry.layer);
+        cairo_stroke(cairo);
+    }
+    cairo_set_dash(cairo, nullptr, 0, 0);
+}
+
+}  // namespace vibscore::pictures

@@ -1,0 +1,230 @@
+// `vibscore calibrate` end to end (issue 32; docs/drivers.md, "Calibrating"): the real daemon on
+// a private bus with the sim backend, whose TRUE actuator ([sim] true-*) differs from the one
+// declared, recorded by the sim's accelerometer; and the offline --plan / --estimate path with a
+// recording made by the sensor model.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <future>
+#include <regex>
+#include <sstream>
+#include <thread>
+
+#include "daemon/actuator/calibration.hpp"
+#include "daemon/actuator/vibration_sensor.hpp"
+#include "tests/support/daemon_fixture.hpp"
+#include "tests/support/run_command.hpp"
+#include "tests/support/support.hpp"
+
+namespace vibscore {
+namespace {
+
+using testing::DaemonFixture;
+using ::testing::HasSubstr;
+using ::testing::StartsWith;
+
+// Declared LRA 175 Hz Q 15; the sim's true one 168 Hz Q 10.
+constexpr const char* kDeclaredLra =
+    "[actuator]\nkind = lra\nresonance-hz = 175\nq = 15\nbrake = reverse\n";
+constexpr double kTrueHz = 168.0;
+constexpr double kTrueQ = 10.0;
+
+std::string sim_lines(const DaemonFixture& daemon, const std::string& accelerometer) {
+    return "trace = " + daemon.trace().string() + "\ntrue-resonance-hz = 168\ntrue-q = 10\n" +
+           accelerometer;
+}
+
+// The daemon with the declared LRA and the sim's true one, its accelerometer as given.
+void configure(DaemonFixture& daemon, const std::string& accelerometer) {
+    daemon.stop_daemon();
+    daemon.write_config(kDeclaredLra, sim_lines(daemon, accelerometer));
+    daemon.start_daemon();
+}
+
+testing::CommandResult vibscore(const std::vector<std::string>& args) {
+    std::vector<std::string> argv{testing::required_env("VIBSCORE")};
+    argv.insert(argv.end(), args.begin(), args.end());
+    return testing::run_command(argv);
+}
+
+std::string property(const DaemonFixture& daemon, const std::string& name) {
+    return daemon
+        .busctl({"get-property", "org.vibscore.Haptics1", "/org/vibscore/Haptics1",
+                 "org.vibscore.Haptics1", name})
+        .out;
+}
+
+// "key = number" from the [actuator] lines calibrate prints.
+std::optional<double> printed(const std::string& out, const std::string& key) {
+    const std::regex line("(^|\\n)" + key + " = ([-0-9.eE+]+)");
+    std::smatch found;
+    if (!std::regex_search(out, found, line)) {
+        return std::nullopt;
+    }
+    return std::stod(found[2]);
+}
+
+TEST(DaemonCalibrate, ApplyMeasuresTheTrueLraKeepsItAcrossARestartAndTheClientShowsIt) {
+    DaemonFixture daemon;
+    configure(daemon, "accelerometer-rate-hz = 1000\n");
+    EXPECT_EQ(property(daemon, "ActuatorSource"), "s \"declared\"\n");
+
+    const auto calibrated = vibscore({"calibrate", "--apply"});
+    ASSERT_EQ(calibrated.exit_code, 0) << calibrated.out << calibrated.err << daemon.daemon_log();
+    const auto hz = printed(calibrated.out, "resonance-hz");
+    const auto q = printed(calibrated.out, "q");
+    ASSERT_TRUE(hz && q) << calibrated.out;
+    EXPECT_NEAR(*hz, kTrueHz, kTrueHz * 0.01);
+    EXPECT_NEAR(*q, kTrueQ, kTrueQ * 0.15);
+    EXPECT_THAT(calibrated.out, HasSubstr("# resonance-hz: measured"));
+    EXPECT_THAT(calibrated.out, HasSubstr("declared 175"));
+
+    EXPECT_THAT(property(daemon, "ActuatorSource"), StartsWith("s \"measured 20"));
+    EXPECT_THAT(property(daemon, "Actuator"), HasSubstr("\"resonance-hz\" \"16"));
+    EXPECT_TRUE(std::filesystem::exists(daemon.store() / ".actuator-calibration"));
+    const auto driver = vibscore({"driver"});
+    EXPECT_THAT(driver.out, HasSubstr("actuator numbers: measured 20")) << driver.out;
+    // The administrator's file is left as it was.
+    EXPECT_THAT(testing::read_file(daemon.config()), HasSubstr("resonance-hz = 175"));
+
+    daemon.stop_daemon();
+    daemon.start_daemon();
+    EXPECT_THAT(property(daemon, "ActuatorSource"), StartsWith("s \"measured 20"));
+    EXPECT_THAT(property(daemon, "Actuator"), HasSubstr("\"resonance-hz\" \"16"));
+    EXPECT_THAT(daemon.daemon_log(), HasSubstr("actuator: using the numbers measured"));
+}
+
+TEST(DaemonCalibrate, WithoutAnAccelerometerItRefusesSayingWhatToConfigureAndChangesNothing) {
+    DaemonFixture daemon;
+    configure(daemon, "accelerometer-rate-hz = 0\n");
+    const auto refused = vibscore({"calibrate", "--apply"});
+    EXPECT_EQ(refused.exit_code, 1);
+    EXPECT_THAT(refused.err, HasSubstr("no accelerometer"));
+    EXPECT_THAT(refused.err, HasSubstr("[calibration] accelerometer = PATH"));
+    EXPECT_EQ(property(daemon, "ActuatorSource"), "s \"declared\"\n");
+    EXPECT_FALSE(std::filesystem::exists(daemon.store() / ".actuator-calibration"));
+
+    try {
+        daemon.client()->Calibrate({});
+        ADD_FAILURE() << "Calibrate without an accelerometer answered";
+    } catch (const sdbus::Error& error) {
+        EXPECT_EQ(error.getName(), "org.vibscore.Haptics1.Error.NoAccelerometer");
+    }
+}
+
+TEST(DaemonCalibrate, ANamedDeviceThatIsNotThereIsRefusedByName) {
+    DaemonFixture daemon;
+    daemon.stop_daemon();
+    daemon.write_config(
+        std::string(kDeclaredLra) + "[calibration]\naccelerometer = /dev/iio:device97\n",
+        sim_lines(daemon, ""));
+    daemon.start_daemon();
+    const auto refused = vibscore({"calibrate"});
+    EXPECT_EQ(refused.exit_code, 1);
+    EXPECT_THAT(refused.err, HasSubstr("/dev/iio:device97: no such IIO device"));
+}
+
+TEST(DaemonCalibrate, AnUntrustedRecordingIsRefusedWithApplyAndNothingChanges) {
+    DaemonFixture daemon;
+    configure(daemon, "accelerometer-rate-hz = 1000\naccelerometer-noise = 80\n");
+    const auto refused = vibscore({"calibrate", "--apply"});
+    EXPECT_EQ(refused.exit_code, 1) << refused.out;
+    EXPECT_THAT(refused.err, HasSubstr("not trusted")) << refused.err;
+    EXPECT_EQ(property(daemon, "ActuatorSource"), "s \"declared\"\n");
+    EXPECT_THAT(property(daemon, "Actuator"), HasSubstr("\"resonance-hz\" \"175\""));
+    EXPECT_FALSE(std::filesystem::exists(daemon.store() / ".actuator-calibration"));
+
+    // Without --apply the estimate is shown, and the exit status says it is not to be trusted.
+    const auto shown = vibscore({"calibrate"});
+    EXPECT_EQ(shown.exit_code, 1);
+    EXPECT_THAT(shown.err, HasSubstr("the estimate is not trusted"));
+}
+
+TEST(DaemonCalibrate, AnUrgentPlaybackStopsTheProbeAtOnceAndNothingChanges) {
+    DaemonFixture daemon;
+    configure(daemon, "accelerometer-rate-hz = 1000\n");
+    auto client = daemon.client();
+    auto calibrating = std::async(std::launch::async, [] {
+        return vibscore({"calibrate", "--apply"});
+    });
+    ASSERT_TRUE(client->wait_for([](const testing::SeenSignal& seen) {
+        return seen.name == "PlaybackStarted" && seen.text == "<calibration>";
+    })) << daemon.daemon_log();
+    const auto rang = daemon.call({"Play", "sa{sv}", "ringtone", "1", "usage", "s", "ringtone"});
+    EXPECT_EQ(rang.exit_code, 0) << rang.err;
+    const auto refused = calibrating.get();
+    EXPECT_EQ(refused.exit_code, 1);
+    EXPECT_THAT(refused.err, HasSubstr("the probe was cut short (preempted)"));
+    EXPECT_EQ(property(daemon, "ActuatorSource"), "s \"declared\"\n");
+}
+
+// The offline path: the probe as a file, recorded by a model of a phone's accelerometer (as any
+// recorder would), estimated by the CLI.
+class OfflineCalibrate : public ::testing::Test {
+  protected:
+    void SetUp() override {
+        declared_ = dir_.write("actuator.conf", kDeclaredLra);
+        plan_ = dir_.path() / "plan.csv";
+    }
+
+    // ACCEL.csv for the plan the CLI wrote, of the true actuator.
+    std::filesystem::path record(double noise_rms) {
+        const auto plan = actuator::calibration::parse_plan_csv(
+            testing::read_file(plan_), plan_.string(), actuator::Kind::lra);
+        actuator::Declaration truth;
+        truth.kind = actuator::Kind::lra;
+        truth.resonance_hz = kTrueHz;
+        truth.q = kTrueQ;
+        actuator::SensorOptions options;
+        options.rate_hz = 1000.0;
+        options.noise_rms = noise_rms;
+        std::ostringstream csv;
+        csv.precision(9);
+        csv << "t,x,y,z\n";
+        for (const auto& s : actuator::record(plan, truth, options, 0.002, 0.2)) {
+            csv << s.t_s << "," << s.x << "," << s.y << "," << s.z << "\n";
+        }
+        return dir_.write("accel.csv", csv.str());
+    }
+
+    testing::TempDir dir_;
+    std::filesystem::path declared_, plan_;
+};
+
+TEST_F(OfflineCalibrate, PlanThenEstimateGivesTheTrueNumbersBesideTheDeclaredOnesAndAPicture) {
+    const auto planned =
+        vibscore({"calibrate", "--plan", "--actuator", declared_.string(), "-o", plan_.string()});
+    ASSERT_EQ(planned.exit_code, 0) << planned.err;
+    EXPECT_THAT(testing::read_file(plan_), StartsWith("time_ns,amplitude,frequency_hz\n"));
+    const auto accel = record(0.02);
+    const auto png = dir_.path() / "fit.png";
+    const auto estimated = vibscore({"calibrate", "--estimate", plan_.string(), accel.string(),
+                                     "--actuator", declared_.string(), "--png", png.string()});
+    ASSERT_EQ(estimated.exit_code, 0) << estimated.out << estimated.err;
+    const auto hz = printed(estimated.out, "resonance-hz");
+    ASSERT_TRUE(hz) << estimated.out;
+    EXPECT_NEAR(*hz, kTrueHz, kTrueHz * 0.01);
+    EXPECT_THAT(estimated.out, HasSubstr("declared 175"));
+    EXPECT_GT(std::filesystem::file_size(png), 1000u);
+}
+
+TEST_F(OfflineCalibrate, ARecordingDrownedInNoiseIsRefusedWithItsReasonsOnStandardError) {
+    ASSERT_EQ(vibscore({"calibrate", "--plan", "--kind", "lra", "-o", plan_.string()}).exit_code,
+              0);
+    const auto accel = record(80.0);
+    const auto estimated =
+        vibscore({"calibrate", "--estimate", plan_.string(), accel.string(), "--kind", "lra"});
+    EXPECT_EQ(estimated.exit_code, 1);
+    EXPECT_THAT(estimated.err, HasSubstr("the estimate is not trusted"));
+}
+
+TEST_F(OfflineCalibrate, WithoutAKindThePlanIsAUsageError) {
+    const auto planned = vibscore({"calibrate", "--plan", "-o", plan_.string()});
+    EXPECT_EQ(planned.exit_code, 2);
+    EXPECT_THAT(planned.err, HasSubstr("--kind erm|lra"));
+}
+
+}  // namespace
+}  // namespace vibscore
