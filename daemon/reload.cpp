@@ -3,6 +3,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "common/quoted_text.hpp"
 #include "daemon/drivers/auto_driver.hpp"
 #include "daemon/drivers/available.hpp"
 #include "daemon/drivers/configured_actuator.hpp"
@@ -43,8 +44,10 @@ void reload_config(DaemonConfig& running, DaemonConfig fresh, ActuatorHost& host
     const auto keep_until_restart = [&](const char* key, const std::filesystem::path& running_dir,
                                         std::filesystem::path& fresh_dir) {
         if (fresh_dir != running_dir) {
-            log::warning(fresh.where("daemon", key) + key + " = \"" + fresh_dir.string() +
-                         "\" changes only on restart; until then it stays " + running_dir.string());
+            log::warning(fresh.where("daemon", key) + key + " = " +
+                         quoted_text(fresh_dir.string()) +
+                         " changes only on restart; until then it stays " +
+                         shown_text(running_dir.string()));
             fresh_dir = running_dir;
         }
     };

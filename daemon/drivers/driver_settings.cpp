@@ -7,6 +7,7 @@
 
 #include "common/closest_name.hpp"
 #include "common/number_text.hpp"
+#include "common/quoted_text.hpp"
 
 namespace vibscore::drivers {
 
@@ -25,8 +26,8 @@ const std::string* DriverSettings::lookup(const std::string& key) {
 
 SettingError DriverSettings::bad(const std::string& key, const std::string& value,
                                  const std::string& expected) const {
-    return SettingError(key,
-                        driver_ + " setting " + key + " = \"" + value + "\": expected " + expected);
+    return SettingError(key, driver_ + " setting " + shown_text(key) + " = " + quoted_text(value) +
+                                 ": expected " + expected);
 }
 
 std::optional<std::string> DriverSettings::text(const std::string& key) {
@@ -120,9 +121,9 @@ SettingError DriverSettings::unknown(const std::string& key, const std::string& 
         list += (list.empty() ? "" : ", ") + name;
     }
     const auto meant = closest_name(key, std::vector<std::string>(known.begin(), known.end()));
-    return SettingError(key, "unknown " + driver_ + " setting " + key + " = \"" + value + "\"" +
-                                 (meant ? " (did you mean " + *meant + "?)" : "") +
-                                 " (known: " + list + ")");
+    return SettingError(
+        key, "unknown " + driver_ + " setting " + shown_text(key) + " = " + quoted_text(value) +
+                 (meant ? " (did you mean " + *meant + "?)" : "") + " (known: " + list + ")");
 }
 
 SettingError DriverSettings::missing(const std::string& key, const std::string& what) {

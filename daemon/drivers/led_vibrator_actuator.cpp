@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "common/quoted_text.hpp"
 #include "daemon/drivers/drive_levels.hpp"
 #include "daemon/drivers/driver_settings.hpp"
 #include "daemon/log.hpp"
@@ -38,9 +39,9 @@ std::optional<AmplitudeAttribute> read_amplitude(DriverSettings& read,
     const auto path = (given.is_absolute() ? given : device_dir / given).lexically_normal();
     const auto inside = path.lexically_relative(sysfs_root.lexically_normal());
     if (inside.empty() || *inside.begin() == "..") {
-        throw SettingError("amplitude-path", read.driver() + " setting amplitude-path = \"" +
-                                                 *text + "\": expected an attribute under " +
-                                                 sysfs_root.string());
+        throw SettingError("amplitude-path",
+                           read.driver() + " setting amplitude-path = " + quoted_text(*text) +
+                               ": expected an attribute under " + sysfs_root.string());
     }
     return AmplitudeAttribute{path, read.integer("amplitude-max", 255, 1, 1'000'000)};
 }
@@ -52,8 +53,9 @@ SysfsVibratorSettings read_common(DriverSettings& read, const char* name_key,
     settings.name = read.text(name_key, settings.name);
     if (settings.name.find('/') != std::string::npos || settings.name == "." ||
         settings.name == "..") {
-        throw SettingError(name_key, read.driver() + " setting " + name_key + " = \"" +
-                                         settings.name + "\": expected a device name, not a path");
+        throw SettingError(name_key, read.driver() + " setting " + name_key + " = " +
+                                         quoted_text(settings.name) +
+                                         ": expected a device name, not a path");
     }
     settings.duration_ms = read.integer("duration-ms", settings.duration_ms, 1, 600'000);
     settings.amplitude =

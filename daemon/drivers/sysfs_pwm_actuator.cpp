@@ -5,6 +5,7 @@
 #include <cmath>
 #include <utility>
 
+#include "common/quoted_text.hpp"
 #include "daemon/drivers/drive_levels.hpp"
 #include "daemon/drivers/driver_settings.hpp"
 #include "daemon/log.hpp"
@@ -204,8 +205,8 @@ std::unique_ptr<Actuator> make_sysfs_pwm_actuator(
     const auto direction_line = read.integer("direction-line", 0, 65535);
     if (read.has("direction-chip") && !direction_line) {
         throw SettingError("direction-chip",
-                           "sysfs-pwm setting direction-chip = \"" + direction_chip +
-                               "\" needs direction-line: the line offset on that chip");
+                           "sysfs-pwm setting direction-chip = " + quoted_text(direction_chip) +
+                               " needs direction-line: the line offset on that chip");
     }
     read.reject_unknown();
     std::unique_ptr<GpioLines> direction;

@@ -4,6 +4,7 @@
 
 #include <stdexcept>
 
+#include "common/quoted_text.hpp"
 #include "daemon/drivers/driver_settings.hpp"
 #include "daemon/drivers/evdev_discovery.hpp"
 #include "daemon/log.hpp"
@@ -28,8 +29,8 @@ VirtualVibraSettings parse_virtual_vibra_settings(
     settings.enabled = read.flag("enabled", settings.enabled);
     const auto usage = read.text("usage", std::string(to_string(settings.usage)));
     if (!parse_usage(usage)) {
-        throw std::invalid_argument("virtual-vibra setting usage = \"" + usage + "\": expected " +
-                                    std::string(usage_names()));
+        throw std::invalid_argument("virtual-vibra setting usage = " + quoted_text(usage) +
+                                    ": expected " + std::string(usage_names()));
     }
     settings.usage = *parse_usage(usage);
     settings.name = read.text("name", settings.name);

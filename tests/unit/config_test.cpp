@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "daemon/config.hpp"
+#include "daemon/drivers/driver_settings.hpp"
 #include "tests/support/support.hpp"
 
 namespace vibscore::daemon {
@@ -188,6 +189,31 @@ TEST(Config, AValueIsQuotedAtMostEightyBytesLongWithItsControlCharactersEscaped)
     }
     const std::string control = config_error("[clefs]\nfit = \x1b[31mred\x7f\n");
     EXPECT_EQ(control, "test.conf:2: [clefs] fit = \"\\x1b[31mred\\x7f\" is neither auto nor off");
+}
+
+TEST(Config, ADriversSettingIsQuotedTheSameWay) {
+    const std::string long_value(100'000, 'x');
+    drivers::DriverSettings bad_value("sim", {{"lines", std::string("1\0"
+                                                                    "7",
+                                                                    3)}});
+    try {
+        bad_value.integer("lines", 0, 1, 99);
+        ADD_FAILURE() << "no error";
+    } catch (const drivers::SettingError& error) {
+        EXPECT_EQ(std::string(error.what()),
+                  "sim setting lines = \"1\\x007\": expected a whole number from 1 to 99");
+    }
+    drivers::DriverSettings unknown("sim", {{long_value, long_value}});
+    try {
+        unknown.reject_unknown();
+        ADD_FAILURE() << "no error";
+    } catch (const drivers::SettingError& error) {
+        const std::string message = error.what();
+        EXPECT_THAT(message, StartsWith("unknown sim setting " + std::string(80, 'x') +
+                                        "... (100000 bytes) = \"" + std::string(80, 'x') +
+                                        "\"... (100000 bytes)"));
+        EXPECT_LT(message.size(), 600u);
+    }
 }
 
 TEST(Config, ThePlaybackThreadsPriorityIsAWholeNumberUpTo99) {
