@@ -323,7 +323,7 @@ int main(int argc, char** argv) {
         "Measure the actuator with the device's accelerometer: vibscored plays a short probe "
         "and estimates the [actuator] numbers (--apply: use them from now on; polkit: "
         "org.vibscore.manage). Offline, for any recorder: --plan writes the probe, --estimate "
-        "reads a recording of it. Exit 1 when the estimate is not trusted (docs/drivers.md).");
+        "reads a recording of it. Exit 1 when the estimate is not trusted.");
     calibrate_verb->add_flag("--apply", calibrate_request.apply,
                              "live: make a trusted estimate the numbers in use, kept across "
                              "restarts (the configuration file is left as it is)");

@@ -29,11 +29,11 @@ _vibscore() {
     cur=${COMP_WORDS[COMP_CWORD]}
     prev=${COMP_WORDS[COMP_CWORD-1]}
     program=${COMP_WORDS[0]}
-    local verbs="check render info play stop list get compose delete show edit drivers driver convert assign clef"
+    local verbs="check render info play stop list get compose delete show edit drivers driver convert assign clef calibrate"
     # What convert reads (--from) and writes (--to).
     local readable="score ahap android-json android-xml rtttl midi"
     local writable="score ahap android-json android-xml android-envelope midi"
-    local valued="--usage|--clef|--clefs|--out|-o|--output|--rate|--repeat|--intensity|--width|--buttons|--keymap|--button-map|--from|--to|--track|--svg|--png|--actuator"
+    local valued="--usage|--clef|--clefs|--out|-o|--output|--rate|--repeat|--intensity|--width|--buttons|--keymap|--button-map|--from|--to|--track|--svg|--png|--actuator|--kind|--estimate"
 
     verb=
     for ((i = 1; i < COMP_CWORD; i++)); do
@@ -75,7 +75,18 @@ _vibscore() {
             _vibscore_files "$cur" '*.conf'
             return ;;
         -o|--output)
-            _vibscore_files "$cur" '*.xml'
+            # calibrate --plan writes a drive trace; clef fit a clef.
+            if [[ $verb == calibrate ]]; then
+                _vibscore_files "$cur" '*.csv'
+            else
+                _vibscore_files "$cur" '*.xml'
+            fi
+            return ;;
+        --kind)
+            COMPREPLY=($(compgen -W "erm lra" -- "$cur"))
+            return ;;
+        --estimate)
+            _vibscore_files "$cur" '*.csv'
             return ;;
         --out)
             _vibscore_files "$cur" '*.@(csv|wav)'
@@ -101,6 +112,7 @@ _vibscore() {
             edit) options+=" --buttons --keymap --button-map --grab --clef" ;;
             assign) options+=" --default --list" ;;
             clef) options+=" --actuator -o --output --clefs" ;;
+            calibrate) options+=" --apply --plan --estimate --kind --actuator -o --output --png --svg" ;;
         esac
         COMPREPLY=($(compgen -W "$options" -- "$cur"))
         return
@@ -155,6 +167,9 @@ _vibscore() {
             elif [[ $position -eq 1 ]]; then
                 COMPREPLY=($(compgen -W "$(_vibscore_registry "$program" scores)" -- "$cur"))
             fi ;;
+        calibrate)
+            # The second file of --estimate PLAN.csv ACCEL.csv.
+            _vibscore_files "$cur" '*.csv' ;;
         driver)
             [[ $position -eq 0 ]] &&
                 COMPREPLY=($(compgen -W "$("$program" drivers 2>/dev/null | cut -c3- | cut -f1)" -- "$cur")) ;;
