@@ -41,9 +41,17 @@ PictureFormat picture_format_for(const std::filesystem::path& path) {
 }
 
 SurfacePtr render_image(const Drawing& drawing, Layers layers, Background background) {
-    SurfacePtr surface(cairo_image_surface_create(CAIRO_FORMAT_ARGB32,
-                                                  static_cast<int>(std::ceil(drawing.width())),
-                                                  static_cast<int>(std::ceil(drawing.height()))),
+    const double width = std::ceil(drawing.width()), height = std::ceil(drawing.height());
+    if (width > kMaxImageSide || height > kMaxImageSide) {
+        // cairo would only say "invalid value (typically too big)"; say which side and what to do.
+        throw std::runtime_error("the picture is " + std::to_string(static_cast<long long>(width)) +
+                                 "x" + std::to_string(static_cast<long long>(height)) +
+                                 " pixels, and an image is at most " +
+                                 std::to_string(kMaxImageSide) +
+                                 " on a side: draw it as an SVG (--svg), which has no such limit");
+    }
+    SurfacePtr surface(cairo_image_surface_create(CAIRO_FORMAT_ARGB32, static_cast<int>(width),
+                                                  static_cast<int>(height)),
                        &cairo_surface_destroy);
     check(cairo_surface_status(surface.get()), "picture");
     paint(drawing, surface.get(), layers, background);

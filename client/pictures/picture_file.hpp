@@ -43,6 +43,9 @@ using CairoPtr = std::unique_ptr<cairo_t, decltype(&cairo_destroy)>;
 
 enum class Background { white, none };
 
+// The widest and tallest image cairo makes: a PNG of a longer score is refused, naming its size.
+constexpr int kMaxImageSide = 32767;
+
 // The drawing on an image surface in memory (ARGB32), for tests and PNG output. Tests draw
 // single layers on no background, where a pixel's alpha is how much ink it holds (white text
 // is ink too).

@@ -1381,6 +1381,42 @@ TEST(Pictures, TheFittedClefInTheDocsIsWhatItsCommandWrites) {
     EXPECT_EQ(found, 1);
 }
 
+// A blank drawing of a given size.
+class BlankDrawing : public pictures::Drawing {
+  public:
+    BlankDrawing(double width, double height) : width_(width), height_(height) {}
+    double width() const override { return width_; }
+    double height() const override { return height_; }
+    void draw(cairo_t*, pictures::Layers) const override {}
+    pictures::Layers text_layers() const override { return 0; }
+
+  private:
+    double width_, height_;
+};
+
+TEST(Pictures, APngIsAtMost32767PixelsOnASideAndATallerOneIsRefusedNamingItsSize) {
+    TempDir dir;
+    const auto png = dir.path() / "tall.png";
+    pictures::write_picture(BlankDrawing(1, 32767), png);
+    EXPECT_TRUE(std::filesystem::exists(png));
+    pictures::write_picture(BlankDrawing(32767, 1), png);
+    for (const auto& [width, height] : {std::pair{1.0, 32767.5}, std::pair{32768.0, 1.0}}) {
+        const auto refused = dir.path() / "refused.png";
+        try {
+            pictures::write_picture(BlankDrawing(width, height), refused);
+            ADD_FAILURE() << width << "x" << height << " was written";
+        } catch (const std::runtime_error& error) {
+            EXPECT_EQ(std::string(error.what()),
+                      "the picture is " + std::to_string(static_cast<int>(std::ceil(width))) + "x" +
+                          std::to_string(static_cast<int>(std::ceil(height))) +
+                          " pixels, and an image is at most 32767 on a side: draw it as an SVG "
+                          "(--svg), which has no such limit");
+        }
+        EXPECT_FALSE(std::filesystem::exists(refused));
+        EXPECT_FALSE(std::filesystem::exists(dir.path() / "refused.png.partial"));
+    }
+}
+
 TEST(Pictures, TheFileFormatComesFromTheExtension) {
     EXPECT_EQ(pictures::picture_format_for("a.svg"), pictures::PictureFormat::svg);
     EXPECT_EQ(pictures::picture_format_for("dir/a.png"), pictures::PictureFormat::png);
