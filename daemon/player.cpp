@@ -254,6 +254,14 @@ std::optional<std::uint64_t> Player::on_time_deadline_us() const {
     return *on_since_us_ + static_cast<std::uint64_t>(std::llround(limit_s * 1e6));
 }
 
+std::uint64_t Player::next_report_us(std::uint64_t now_us) const {
+    std::uint64_t at = positions_.available_at(current_->request.sender, now_us);
+    if (last_report_us_) {
+        at = std::max(at, *last_report_us_ + kPositionReportInterval_us);
+    }
+    return at;
+}
+
 void Player::report_position(std::size_t bar, std::size_t symbol) {
     held_position_.emplace(bar, symbol);
     report_held_position(false);
@@ -265,6 +273,12 @@ void Player::report_held_position(bool force) {
     }
     const std::uint64_t now = monotonic_now_us();
     if (!force && last_report_us_ && now < *last_report_us_ + kPositionReportInterval_us) {
+        return;
+    }
+    if (!positions_.take(current_->request.sender, now)) {
+        if (force) {
+            held_position_.reset();  // PlaybackFinished follows; it is not held back for this
+        }
         return;
     }
     last_report_us_ = now;
@@ -342,8 +356,8 @@ void Player::run_due() {
             if (on_since_us_ && on_time_deadline) {
                 wake = std::min(wake, *on_time_deadline);
             }
-            if (held_position_ && last_report_us_) {
-                wake = std::min(wake, *last_report_us_ + kPositionReportInterval_us);
+            if (held_position_) {
+                wake = std::min(wake, next_report_us(now));
             }
             timer_.arm(wake);
             return;

@@ -15,6 +15,7 @@
 #include "daemon/event_loop.hpp"
 #include "daemon/playback_cues.hpp"
 #include "daemon/playback_limits.hpp"
+#include "daemon/playback_positions.hpp"
 #include "daemon/render/cue_stream.hpp"
 #include "daemon/usage.hpp"
 
@@ -64,6 +65,7 @@ inline constexpr double kPlaysOnWithoutItsCaller_s = 30.0;
 // The fastest a playback's position is reported (PlaybackPosition): each report is a bus
 // broadcast, and a UI shows no more than a few dozen a second. Positions in between are
 // coalesced: the latest is reported when the interval has passed, or when the playback ends.
+// PositionBudget bounds them per connection and in total as well, across playbacks.
 inline constexpr std::uint64_t kPositionReportInterval_us = 20'000;  // 50 a second
 
 // A request lost arbitration against the playback in progress.
@@ -164,8 +166,11 @@ class Player {
     void finish(std::string reason);
     // A position cue: reported now, or held until the report interval has passed.
     void report_position(std::size_t bar, std::size_t symbol);
-    // Reports a held position once the interval has passed (`force`: now, as the playback ends).
+    // Reports a held position once the interval has passed and the budget allows (`force`: as
+    // the playback ends: now if the budget allows, else never).
     void report_held_position(bool force);
+    // When a held position may next be reported.
+    std::uint64_t next_report_us(std::uint64_t now_us) const;
     // Ends the playback with "device-error: ...": the actuator failed under it.
     void fail(const drivers::DeviceError& error);
 
@@ -187,6 +192,8 @@ class Player {
     std::optional<std::pair<std::size_t, std::size_t>> held_position_;
     // Whose playbacks were cut off, and when: the player ends them, so it keeps the record.
     CoolDowns cool_downs_;
+    // PlaybackPosition's bounds per connection and in total, across playbacks.
+    PositionBudget positions_;
 };
 
 }  // namespace vibscore::daemon

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <iostream>
 
 #include "tests/support/daemon_fixture.hpp"
 
@@ -133,6 +134,75 @@ TEST_F(DaemonStopAllCoolDown, AUserWhosePlaybackAnAdminStoppedMayNotRepeatAtOnce
     EXPECT_EQ(error_name_of([&] { root->Play("ringtone", options("notification", 1)); }),
               "<no error>")
         << "the admin's own playback did not end";
+}
+
+// Row 4: a stream of short Plays, each preempting the one before, gave 111 positions a second;
+// now one connection's playbacks together send at most 50 a second (and a burst of 2), and all
+// connections together at most 100 (and 4).
+class DaemonPositions : public ::testing::Test {
+  protected:
+    DaemonFixture daemon;
+
+    // Plays short playbacks for a second, each client in turn, as fast as the calls return;
+    // returns the seconds from the first Play to the last one's PlaybackFinished, as `watcher`
+    // saw it.
+    double stream(std::vector<std::unique_ptr<testing::HapticsClient>>& players,
+                  testing::HapticsClient& watcher,
+                  std::map<std::uint64_t, std::size_t>& player_of) {
+        const auto start = Clock::now();
+        std::uint64_t last = 0;
+        for (std::size_t i = 0; Clock::now() - start < std::chrono::seconds(1); ++i) {
+            const auto who = i % players.size();
+            last = players[who]->Play("touch-tick", options("touch", 0));
+            player_of[last] = who;
+        }
+        EXPECT_TRUE(watcher.wait_finished(last));
+        return std::chrono::duration<double>(Clock::now() - start).count();
+    }
+};
+
+TEST_F(DaemonPositions, AStreamOfShortPlaysGetsAtMost50PositionsASecond) {
+    auto watcher = daemon.client();
+    std::vector<std::unique_ptr<testing::HapticsClient>> players;
+    players.push_back(daemon.client());
+    std::map<std::uint64_t, std::size_t> player_of;
+    const double elapsed_s = stream(players, *watcher, player_of);
+    std::size_t positions = 0;
+    for (const auto& seen : watcher->signals()) {
+        positions += seen.name == "PlaybackPosition" ? 1 : 0;
+    }
+    std::cout << "one connection: " << positions << " positions in " << elapsed_s << " s ("
+              << static_cast<double>(positions) / elapsed_s << " a second, " << player_of.size()
+              << " Plays)\n";
+    EXPECT_GE(positions, 2u);
+    EXPECT_LE(static_cast<double>(positions), 2.0 + 50.0 * elapsed_s)
+        << positions << " positions in " << elapsed_s << " s of " << player_of.size() << " Plays";
+}
+
+TEST_F(DaemonPositions, ManyConnectionsTogetherGetAtMost100PositionsASecond) {
+    auto watcher = daemon.client();
+    std::vector<std::unique_ptr<testing::HapticsClient>> players;
+    for (int i = 0; i < 4; ++i) {
+        players.push_back(daemon.client());
+    }
+    std::map<std::uint64_t, std::size_t> player_of;
+    const double elapsed_s = stream(players, *watcher, player_of);
+    std::vector<std::size_t> each(players.size());
+    std::size_t positions = 0;
+    for (const auto& seen : watcher->signals()) {
+        if (seen.name == "PlaybackPosition") {
+            ++positions;
+            ++each.at(player_of.at(seen.id));
+        }
+    }
+    std::cout << "four connections: " << positions << " positions in " << elapsed_s << " s ("
+              << static_cast<double>(positions) / elapsed_s << " a second, " << player_of.size()
+              << " Plays)\n";
+    EXPECT_LE(static_cast<double>(positions), 4.0 + 100.0 * elapsed_s)
+        << positions << " positions in " << elapsed_s << " s of " << player_of.size() << " Plays";
+    for (const auto count : each) {
+        EXPECT_LE(static_cast<double>(count), 2.0 + 50.0 * elapsed_s);
+    }
 }
 
 }  // namespace

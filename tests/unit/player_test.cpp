@@ -639,5 +639,39 @@ TEST_F(PlayerTest, AUsersOwnStopStartsNoCoolDown) {
     EXPECT_NO_THROW(player.check_cool_down(1000, Usage::notification, -1, 10.0));
 }
 
+// Issue 33, row 4: each new playback began with a fresh position interval, so a stream of short
+// Plays sent 111 positions a second. The bound is per connection across its playbacks.
+TEST_F(PlayerTest, AStreamOfShortPlaysFromOneConnectionGetsAtMost50PositionsASecond) {
+    listener.exit_on_finish = false;
+    const auto started = monotonic_now_us();
+    for (int i = 0; i < 200; ++i) {
+        player.play(request(Usage::touch));  // each preempts the one before
+    }
+    const double elapsed_s = static_cast<double>(monotonic_now_us() - started) / 1e6;
+    const auto positions = listener.position_times_us.size();
+    EXPECT_GE(positions, 2u);
+    EXPECT_LE(static_cast<double>(positions),
+              static_cast<double>(kPositionBurstPerConnection) +
+                  static_cast<double>(kPositionsPerSecondPerConnection) * elapsed_s)
+        << positions << " positions in " << elapsed_s << " s";
+}
+
+TEST_F(PlayerTest, ShortPlaysFromManyConnectionsAreBoundedInTotal) {
+    listener.exit_on_finish = false;
+    const auto started = monotonic_now_us();
+    for (int i = 0; i < 300; ++i) {
+        auto short_one = request(Usage::touch);
+        short_one.sender = ":1." + std::to_string(i % 10);
+        player.play(short_one);
+    }
+    const double elapsed_s = static_cast<double>(monotonic_now_us() - started) / 1e6;
+    const auto positions = listener.position_times_us.size();
+    EXPECT_GE(positions, static_cast<std::size_t>(kPositionBurstInTotal));
+    EXPECT_LE(static_cast<double>(positions),
+              static_cast<double>(kPositionBurstInTotal) +
+                  static_cast<double>(kPositionsPerSecondInTotal) * elapsed_s)
+        << positions << " positions in " << elapsed_s << " s";
+}
+
 }  // namespace
 }  // namespace vibscore::daemon
