@@ -27,7 +27,7 @@ constexpr double kMaxErmResidual = 0.6;
 // LRA: the search reaches this far beyond the probe's tones; an answer at its edge is refused.
 constexpr double kLraSearchMargin = 1.12;
 constexpr double kMinQ = 2.0, kMaxQ = 150.0;
-// ERM: what the probe's steps can time (0.4 s on, 0.6 s off).
+// ERM: what the probe's steps can time (0.35 s on, 0.55 s off).
 constexpr double kMinSpinS = 0.006, kMaxSpinUpS = 0.2, kMaxSpinDownS = 0.4;
 // Clipping: this share of one axis's readings (and at least 5) at exactly its extreme value,
 // far from its median. A vibration's own peaks put a few readings on the top quantisation

@@ -19,13 +19,15 @@ namespace {
 // is measured against it) and room for a recorder that starts a little late.
 constexpr double kLeadInS = 0.1;
 
-// ERM: full-scale steps. 0.4 s on brings a motor with a spin-up time constant of up to ~100 ms
-// within 2 % of full speed; 0.6 s off lets one with a 200 ms spin-down coast to where its
-// vibration (which goes with speed squared) is 1/400 of full. Two cycles: the second starts
-// from the rest the first left, so a slow stray start does not decide the fit alone.
-constexpr double kErmOnS = 0.4;
-constexpr double kErmOffS = 0.6;
-constexpr int kErmCycles = 2;
+// ERM: full-scale steps. 0.35 s on brings a motor with a spin-up time constant of 80 ms within
+// 1.3 % of full speed; 0.55 s off lets one with a 200 ms spin-down coast to where its vibration
+// (which goes with speed squared) is 1/250 of full. The model carries the state from one step to
+// the next, so neither has to settle completely. Three cycles: each rise and fall is another
+// look at the time constants, and the energy of a vibration the sensor samples at random phases
+// is noisy (bench/calibrate: three cycles halve the worst spin-up error of two).
+constexpr double kErmOnS = 0.35;
+constexpr double kErmOffS = 0.55;
+constexpr int kErmCycles = 3;
 
 // LRA: stepped tones, each followed by a free ring-down. The ring-downs give the resonance and
 // the decay whatever tone drove them; the tones' steady strengths, which peak at resonance,
