@@ -5,7 +5,9 @@
 
 #include "client/editor/actions.hpp"
 #include "client/editor/status_line.hpp"
+#include "client/formats/score_builder.hpp"
 #include "score/clef_xml.hpp"
+#include "score/registry_names.hpp"
 
 namespace vibscore::editor {
 
@@ -133,8 +135,7 @@ Request ButtonScheme::tap(Button button, EditorModel& model, std::optional<Time>
             if (at) {
                 taps_.finish(*at);
             }
-            end_tapping(model);
-            return {};
+            return end_tapping(model);
         case Button::left:
             taps_ = {};
             mode_ = Mode::browse;
@@ -146,28 +147,70 @@ Request ButtonScheme::tap(Button button, EditorModel& model, std::optional<Time>
     return {};
 }
 
-void ButtonScheme::end_tapping(EditorModel& model) {
+// A rhythm tapped at another pace than its bar's clef plays at that pace: on a copy of the
+// clef at the tapped tempo, named as the importers name theirs (lra-phone-150bpm), made once
+// and found again when another rhythm is tapped at that tempo.
+Request ButtonScheme::end_tapping(EditorModel& model) {
     mode_ = Mode::browse;
     const auto sounds = taps_.sounds();
     taps_ = {};
     if (sounds.empty()) {
         model.say("nothing tapped");
-        return;
+        return {};
     }
     const std::string& clef = model.score().bars.at(model.cursor().bar).clef;
     const KnownClef* known = clef_book_->find(clef);
     const double clef_tempo = known ? known->clef.tempo : 0.0;
     const Note proposed = model.proposed_note();
     try {
-        const auto rhythm =
-            tapped_rhythm(sounds, clef_tempo, clef, proposed.string, proposed.number);
-        model.insert_bars(rhythm.bars);
+        auto rhythm = tapped_rhythm(sounds, clef_tempo, clef, proposed.string, proposed.number);
         char tempo[32];
         std::snprintf(tempo, sizeof tempo, "%.2f", rhythm.tempo);
-        model.say(std::to_string(rhythm.notes) + " notes at " + tempo + " s a beat: S changes");
+        std::string said = std::to_string(rhythm.notes) + " notes at " + tempo + " s a beat";
+        Request request;
+        if (known != nullptr && rhythm.tempo != clef_tempo) {
+            Clef copy = known->clef;
+            copy.tempo = rhythm.tempo;
+            std::string id =
+                formats::clef_id_for({known->declaration.id, known->clef}, rhythm.tempo);
+            // A copy made before (perhaps under a free name, beside another clef of this name).
+            const KnownClef* found = clef_book_->find(id);
+            for (const auto& each : clef_book_->clefs()) {
+                if (each.clef == copy && each.declaration.id.starts_with(id)) {
+                    found = &each;
+                    id = each.declaration.id;
+                    break;
+                }
+            }
+            if (found == nullptr || found->clef != copy) {
+                if (found != nullptr) {
+                    std::vector<std::string> names;
+                    for (const auto& each : clef_book_->clefs()) {
+                        names.push_back(each.declaration.id);
+                    }
+                    id = free_name(id, names);
+                }
+                const ClefDeclaration declaration{id, id + std::string(kClefSuffix)};
+                add_clef({declaration, copy, false});
+                request = {Request::Kind::store_clef, id};
+                request.document = write_clef(copy);
+            }
+            model.add_available_clef(clef_book_->find(id)->declaration);
+            for (auto& bar : rhythm.bars) {
+                bar.clef = id;
+            }
+            // The clef first: on a 40-column line the tempo it plays at is what must show.
+            said = std::to_string(rhythm.notes) + " notes, clef " + id + " (" + tempo + " s)";
+        } else {
+            said += ": S changes";
+        }
+        model.insert_bars(rhythm.bars);
+        model.say(said);
+        return request;
     } catch (const std::exception& error) {
         model.say(std::string("not tapped: ") + error.what());
     }
+    return {};
 }
 
 Request ButtonScheme::browse(Button button, EditorModel& model) {
@@ -775,8 +818,14 @@ std::string ButtonScheme::hint(const EditorModel& model) const {
             return name_.hint();
         case Mode::replace_menu:
             return replace_hint(replacing_);
-        case Mode::tapping:
-            return "tap S:note \u2193rest \u2191 B:done \u2190drop";
+        case Mode::tapping: {
+            // Counted as they come, so a person sees each tap taken.
+            const int tapped = taps_.taps();
+            const std::string count = tapped == 0   ? "tap"
+                                      : tapped == 1 ? "1 tap"
+                                                    : std::to_string(tapped) + " taps";
+            return count + " S:note \u2193rest \u2191 B:done \u2190drop";
+        }
         case Mode::use_for:
             return "\u2191\u2193choose Sel:save for it Back:close";
         case Mode::clef_list:

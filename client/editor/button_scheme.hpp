@@ -36,13 +36,14 @@ struct Request {
         keep_event,  // "keep as it was": give `event` back the score `name` ("" the theme's)
         hear_clef,   // play string `string` at number `number` through the clef `document`
         save_clef,   // store the clef `document` as `name` and use it for the cursor's bar
+        store_clef,  // store the clef `document` as `name`: bars already use it (a tempo clef)
     };
     Kind kind = Kind::none;
     std::string name;        // open: the registry name or file; save_as: the name to save under
     std::size_t bar = 0;     // play: the first bar
     bool then_quit = false;  // save_as: quit once saved
     std::string event;       // save, save_as: once saved, `event` plays it ("use for ...")
-    std::string document;    // hear_clef, save_clef: the clef as a VibClef document
+    std::string document;    // hear_clef, save_clef, store_clef: the clef as a VibClef document
     int string = 0;          // hear_clef
     int number = 0;
     bool operator==(const Request&) const = default;
@@ -198,7 +199,7 @@ class ButtonScheme {
     void begin_clef_name();
     Request use_for_press(Button button, EditorModel& model);
     Request assigned_press(Button button);
-    void end_tapping(EditorModel& model);
+    Request end_tapping(EditorModel& model);
 
     Mode mode_ = Mode::browse;
     EntrySteps steps_;

@@ -390,6 +390,9 @@ class Session {
             case Request::Kind::save_clef:
                 save_clef(request);
                 return;
+            case Request::Kind::store_clef:
+                store_clef(request);
+                return;
             case Request::Kind::quit:
                 running_ = false;
                 return;
@@ -467,17 +470,37 @@ class Session {
 
     // Stores the edited clef under a new name (the registry, or a file beside a file score) and
     // the bars at the cursor use it.
+    // Writes the clef where the score will find it: beside a file score, or in the registry.
+    // False (and says why) where there is neither.
+    bool store_clef_document(const Request& request, const char* not_done) {
+        const std::string href = request.name + std::string(kClefSuffix);
+        if (source_.kind == ScoreSource::Kind::file) {
+            const auto path = std::filesystem::path(source_.name).parent_path() / href;
+            write_document_file(path, request.document);
+        } else if (daemon_) {
+            daemon_->compose(request.name, request.document);
+        } else {
+            message_ = std::string(not_done) + ": no daemon";
+            return false;
+        }
+        return true;
+    }
+
+    // A tempo clef the tapped bars already use: stored, or the status line says it is not.
+    void store_clef(const Request& request) {
+        try {
+            read_clef(request.document, request.name + std::string(kClefSuffix));
+            store_clef_document(request, ("clef " + request.name + " not stored").c_str());
+        } catch (const std::exception& error) {
+            message_ = "clef " + request.name + " not stored: " + std::string(error.what());
+        }
+    }
+
     void save_clef(const Request& request) {
         const std::string href = request.name + std::string(kClefSuffix);
         try {
             const Clef clef = read_clef(request.document, href);
-            if (source_.kind == ScoreSource::Kind::file) {
-                const auto path = std::filesystem::path(source_.name).parent_path() / href;
-                write_document_file(path, request.document);
-            } else if (daemon_) {
-                daemon_->compose(request.name, request.document);
-            } else {
-                message_ = "clef not saved: no daemon";
+            if (!store_clef_document(request, "clef not saved")) {
                 return;
             }
             const ClefDeclaration declaration{request.name, href};

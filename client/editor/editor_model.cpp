@@ -873,6 +873,17 @@ bool EditorModel::insert_bars(const std::vector<Bar>& bars) {
     }
     score.bars.insert(score.bars.begin() + static_cast<std::ptrdiff_t>(first), bars.begin(),
                       bars.end());
+    // A clef the bars use that the score does not declare yet (a tapped rhythm's tempo clef) is
+    // declared with them, in the same undo step.
+    for (const auto& bar : bars) {
+        if (score.find_clef(bar.clef) == nullptr) {
+            for (const auto& available : *available_clefs_) {
+                if (available.id == bar.clef) {
+                    score.clefs.push_back(available);
+                }
+            }
+        }
+    }
     cursor_ = {first, 0};
     land();
     return true;

@@ -109,7 +109,8 @@ class EditorModel {
     bool set_clef_of_bars(std::size_t first, std::size_t last, const ClefDeclaration& clef);
     // Whole bars (a tapped rhythm) put in as bars at the cursor, one undo step: an empty bar is
     // replaced by them, at a bar line they go in before or after the bar, inside a bar it is
-    // split there. The cursor goes to their first symbol.
+    // split there. The cursor goes to their first symbol. A clef they use that the score does
+    // not declare (a tapped rhythm's tempo clef, made available first) is declared with them.
     bool insert_bars(const std::vector<Bar>& bars);
 
     // The six-button entry of one symbol, undone as one step: begin_entry puts the proposed

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 
 #include "client/formats/grid_fit.hpp"
@@ -52,33 +53,55 @@ double common_interval(const std::vector<double>& intervals) {
 }
 
 // Onsets fitted to the 32nd-note grid of a tempo: the grid step and where it starts that put
-// them nearest (least squares, refined from `tempo`), and the furthest any is from it, in steps.
+// them nearest (least squares, refined from `tempo`), and the furthest any is from it, in units.
 struct GridFit {
-    double step = 0.0;
+    double step = 0.0;  // a 32nd note, in seconds
     double origin = 0.0;
-    double worst = 0.0;
+    double worst = 0.0;         // in `unit`s
+    std::int64_t unit = 1;      // the finest length read between two taps, in 32nds
     std::vector<double> ticks;  // each onset's place on the grid, the first at 0
 };
 
-// The grid a release's end lands on, in 32nds: a 16th.
-constexpr double kReleaseTicks = 2.0;
+// The grid a release's end lands on, in 32nds: a 16th (or the finest length read, if longer).
+constexpr std::int64_t kReleaseTicks = 2;
 
 // How far refining may move a tempo from the one guessed.
 constexpr double kMostTuned = 0.1;
 
+// A thumb keeps time to some ±20 ms, so the time between two taps is ±40 ms: the finest length
+// told apart between taps is the shortest of 32nd, 16th, 8th and quarter that is no shorter than
+// this. Finer ones would write the same tapped interval two ways by where it falls.
+constexpr double kFinestTapped = 0.09;
+
+std::int64_t finest_unit(double step) {
+    std::int64_t unit = 1;
+    while (unit < formats::ticks_per_quarter && static_cast<double>(unit) * step < kFinestTapped) {
+        unit *= 2;
+    }
+    return unit;
+}
+
+// Each tap's place counted from the one before it, by the time between them alone: the same
+// interval is the same length wherever it falls, and an error does not add up.
+std::vector<double> places(const std::vector<double>& onsets, double step, std::int64_t unit) {
+    const double length = step * static_cast<double>(unit);
+    std::vector<double> ks(onsets.size(), 0.0);
+    for (std::size_t i = 1; i < onsets.size(); ++i) {
+        const double units = std::max(1.0, std::round((onsets[i] - onsets[i - 1]) / length));
+        ks[i] = ks[i - 1] + units * static_cast<double>(unit);
+    }
+    return ks;
+}
+
 GridFit fit_to_grid(const std::vector<double>& onsets, double tempo) {
-    GridFit fit{tempo / formats::ticks_per_quarter, onsets.front(), 0.0, {}};
+    GridFit fit{tempo / formats::ticks_per_quarter, onsets.front(), 0.0, 1, {}};
+    fit.unit = finest_unit(fit.step);
     const auto n = static_cast<double>(onsets.size());
     std::vector<double> ks(onsets.size(), 0.0);
-    // On a grid of 16ths, where a guess a few per cent off and a thumb's ±20 ms still count each
-    // time between taps right; then each tap goes to the 32nd nearest it on the line fitted.
-    for (const int per_quarter : {4, 4, 4}) {
-        const double step = fit.step * formats::ticks_per_quarter / per_quarter;
-        // Each tap's place counted from the one before it: an error does not add up over a
-        // long rhythm.
-        for (std::size_t i = 1; i < onsets.size(); ++i) {
-            ks[i] = ks[i - 1] + std::round((onsets[i] - onsets[i - 1]) / step);
-        }
+    // Count each time between taps on the grid, fit the line through the taps, count again on
+    // the line's grid: a guess a few per cent off settles in a few rounds.
+    for (int round = 0; round < 3; ++round) {
+        ks = places(onsets, fit.step, fit.unit);
         double sk = 0.0, st = 0.0, skk = 0.0, skt = 0.0;
         for (std::size_t i = 0; i < onsets.size(); ++i) {
             sk += ks[i];
@@ -94,17 +117,13 @@ GridFit fit_to_grid(const std::vector<double>& onsets, double tempo) {
         if (fitted <= 0.0) {
             break;
         }
-        fit.step = fitted * per_quarter / formats::ticks_per_quarter;
+        fit.step = fitted;
         fit.origin = (st - fitted * sk) / n;
     }
-    const double first = std::round((onsets.front() - fit.origin) / fit.step);
+    ks = places(onsets, fit.step, fit.unit);
     for (std::size_t i = 0; i < onsets.size(); ++i) {
-        ks[i] = std::round((onsets[i] - fit.origin) / fit.step) - first;
-    }
-    fit.origin += first * fit.step;
-    for (std::size_t i = 0; i < onsets.size(); ++i) {
-        fit.worst =
-            std::max(fit.worst, std::abs(onsets[i] - fit.origin - ks[i] * fit.step) / fit.step);
+        fit.worst = std::max(fit.worst, std::abs(onsets[i] - fit.origin - ks[i] * fit.step) /
+                                            (fit.step * static_cast<double>(fit.unit)));
     }
     fit.ticks = ks;
     // Refining only tunes the tempo guessed; one that wandered off found another grid.
@@ -115,8 +134,8 @@ GridFit fit_to_grid(const std::vector<double>& onsets, double tempo) {
     return fit;
 }
 
-// How far from its grid a thumb's tap may land and still be read as on it, in grid steps (32nd
-// notes): under half a step, each lands on the nearest place, as it was meant.
+// How far from its grid a thumb's tap may land and still be read as on it, in the finest length
+// read: under half of one, each lands on the nearest place, as it was meant.
 constexpr double kTapSlack = 0.48;
 
 }  // namespace
@@ -225,7 +244,10 @@ TappedRhythm tapped_rhythm(const std::vector<TapRecorder::Sound>& sounds, double
         tempo = clef_tempo;
         fit.step = tempo / formats::ticks_per_quarter;
     }
-    tempo = std::clamp(tempo, limits::min_tempo_s, limits::max_tempo_s);
+    // To the millisecond: the tempo clef made for it says what it plays, and a millisecond a
+    // beat is far below what a thumb keeps.
+    tempo =
+        std::clamp(std::round(tempo * 1000.0) / 1000.0, limits::min_tempo_s, limits::max_tempo_s);
 
     // On the grid of that tempo, the times are exact: the importers' quantisation then keeps
     // the tempo and lays the notes and rests out in bars.
@@ -235,10 +257,11 @@ TappedRhythm tapped_rhythm(const std::vector<TapRecorder::Sound>& sounds, double
         const double next = i + 1 < sounds.size() ? fit.ticks[i + 1] : HUGE_VAL;
         const bool to_next = i + 1 < sounds.size() && sounds[i].end >= sounds[i + 1].onset;
         // A thumb lets go less exactly than it presses: where a release ends a note, the end
-        // goes to the nearest 16th.
-        const double at = (sounds[i].end - fit.origin) / fit.step;
+        // goes to the nearest 16th (or the finest length read), counted from its own tap.
+        const auto release = static_cast<double>(std::max(kReleaseTicks, fit.unit));
+        const double held = (sounds[i].end - sounds[i].onset) / fit.step;
         end_ticks[i] = to_next ? next
-                               : std::clamp(kReleaseTicks * std::round(at / kReleaseTicks),
+                               : std::clamp(fit.ticks[i] + release * std::round(held / release),
                                             std::min(fit.ticks[i] + 1.0, next), next);
     }
     std::vector<formats::SoundEvent> events;

@@ -30,6 +30,8 @@ class TapRecorder {
 
     bool empty() const { return taps_.empty(); }
     int notes() const;
+    // Notes and rests tapped so far.
+    int taps() const { return static_cast<int>(taps_.size()); }
 
     // Onsets and ends in seconds from the first tap, as a rhythm to quantise.
     struct Sound {
@@ -56,8 +58,10 @@ class TapRecorder {
 // (client/formats/grid_fit.*, score_builder.*): lengths from 32nd to whole, dots, bars of four
 // beats. The tempo is chosen to fit: the most common time between taps is a quarter note (as
 // the importers choose it), refined to the taps; the bar clef's own `clef_tempo` when that is
-// within 5 % of it, so a rhythm tapped at the clef's pace needs no other clef. Every note sits on
-// `string` with `number`.
+// within 5 % of it, so a rhythm tapped at the clef's pace needs no other clef. Each time between
+// two taps is read on its own, to the finest length a thumb's ±20 ms can tell at that tempo, so
+// the same interval is the same length wherever it falls. Every note sits on `string` with
+// `number`; the bars are on `clef_id`, and the caller puts them on a clef of `tempo`.
 struct TappedRhythm {
     std::vector<Bar> bars;  // on clef `clef_id`
     double tempo = 0.0;     // seconds per quarter note the taps fit

@@ -14,6 +14,8 @@
 #include "client/editor/documents.hpp"
 #include "client/editor/editor.hpp"
 #include "client/editor/planner/press_planner.hpp"
+#include "daemon/render/performance.hpp"
+#include "score/bundle.hpp"
 #include "score/clef_xml.hpp"
 #include "tests/hil/score_expectations.hpp"
 #include "tests/support/editor_support.hpp"
@@ -403,10 +405,16 @@ TEST_F(EditorEndToEnd, AFileOpenedSavesWithoutAskingAndSaveAsWritesANewFileBesid
 
 TEST_F(EditorEndToEnd, ARhythmTappedOnEnterBecomesNotesOnTheGridAndIsSaved) {
     // A new score, the menu's first line, eight taps 0.4 s apart, Back: two bars of quarter
-    // notes at 0.4 s a beat (lra-phone plays 0.2 s: another tempo than the clef's).
+    // notes at 0.4 s a beat (lra-phone plays 0.2 s: another tempo than the clef's), on a copy
+    // of lra-phone at the tapped tempo (issue 31), so the saved score plays as long as tapped.
     const ClefDeclaration lra{"lra-phone", "lra-phone.clef.xml"};
     editor::Editor copy{
         editor::EditorModel(editor::EditorModel::blank_score("my-taps", lra), {lra}), {}};
+    copy.scheme.set_clef_book(editor::ClefBook(
+        {{lra,
+          load_clef_file(std::filesystem::path(testing::required_env("VIBSCORE_CLEFS")) /
+                         "lra-phone.clef.xml"),
+          true}}));
     TmuxPane pane(edit_command("my-taps"), 40, 12);
     ASSERT_TRUE(pane.wait_for_text("S:new note")) << pane.screen();
     send(pane, {Button::back, Button::select});
@@ -425,14 +433,25 @@ TEST_F(EditorEndToEnd, ARhythmTappedOnEnterBecomesNotesOnTheGridAndIsSaved) {
     std::this_thread::sleep_until(began + std::chrono::milliseconds(400 * 8));
     send(pane, {Button::back});
     copy.press_at(Button::back, std::chrono::milliseconds(400 * 8));
-    ASSERT_TRUE(pane.wait_for_text("8 notes at 0.40 s a beat: S changes")) << pane.screen();
-    EXPECT_EQ(copy.model.message(), "8 notes at 0.40 s a beat: S changes");
+    ASSERT_TRUE(pane.wait_for_text("8 notes, clef lra-phone-150bpm (0.40 s)")) << pane.screen();
+    EXPECT_EQ(copy.model.message(), "8 notes, clef lra-phone-150bpm (0.40 s)");
     ASSERT_EQ(copy.model.score().bars.size(), 2u);
 
     send(pane, menu_presses(copy, "save"));
     ASSERT_TRUE(pane.wait_for_text("saved as my-taps")) << pane.screen();
-    const auto stored = read_score(client->Get("score", "my-taps"), "my-taps").score;
+    const auto text = client->Get("score", "my-taps");
+    const auto stored = read_score(text, "my-taps").score;
     EXPECT_EQ(stored.bars, copy.model.score().bars);
+    // Judged by what plays: the stored score on the stored tempo clef lasts the 3.2 s tapped.
+    const auto bundle =
+        bind_clefs(read_score(text, "my-taps"), "my-taps",
+                   [&](const ClefDeclaration& declaration, const auto&) {
+                       return read_clef(client->Get("clef", declaration.id), declaration.href);
+                   });
+    EXPECT_NEAR(render::Performance(bundle).duration(), 3.2, 0.05 * 3.2);
+    for (const auto& bar : stored.bars) {
+        EXPECT_EQ(bar.clef, "lra-phone-150bpm");
+    }
     for (const auto& bar : stored.bars) {
         ASSERT_EQ(bar.symbols.size(), 4u);
         for (const auto& symbol : bar.symbols) {

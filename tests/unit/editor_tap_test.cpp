@@ -2,10 +2,15 @@
 // in, notes and rests on the score's grid out.
 #include <gtest/gtest.h>
 
+#include <map>
 #include <optional>
 #include <random>
+#include <set>
 
 #include "client/editor/tap_rhythm.hpp"
+#include "daemon/render/performance.hpp"
+#include "score/bundle.hpp"
+#include "score/clef_xml.hpp"
 #include "tests/support/editor_support.hpp"
 
 namespace vibscore {
@@ -148,6 +153,94 @@ TEST(TappedRhythm, AReleaseJustUnderTheShortestRestIsTheSilenceBetweenNotes) {
     EXPECT_DOUBLE_EQ(fast(0.149), 0.4);
 }
 
+// Issue 31: a rhythm tapped at 0.25, 0.40 and 0.87 s a beat plays as long as it was tapped,
+// and an interval tapped twice is written the same way wherever in the bar it falls.
+// The rhythm in beats between taps: each length comes back at several places in the bars.
+constexpr double kTappedBeats[] = {1, 1, 0.5, 0.5, 1, 2, 1, 0.5, 0.5, 1.5, 0.5, 1, 1, 2, 1, 1};
+
+double rendered_seconds(const editor::TappedRhythm& rhythm) {
+    ParsedScore parsed;
+    parsed.score.title = "tapped";
+    parsed.score.clefs.push_back({"lra", "lra-phone.clef.xml"});
+    parsed.score.bars = rhythm.bars;
+    parsed.where.clefs.resize(1);
+    for (const auto& bar : rhythm.bars) {
+        parsed.where.bars.emplace_back();
+        parsed.where.symbols.emplace_back(bar.symbols.size());
+    }
+    const auto bundle = bind_clefs(std::move(parsed), "tapped", [&](const auto&, const auto&) {
+        Clef clef;
+        clef.tempo = rhythm.tempo;  // the tempo clef the editor makes for it
+        clef.numbers = {1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0};
+        clef.strings.resize(6, ClefString{150.0, {}});
+        return clef;
+    });
+    return render::Performance(bundle).duration();
+}
+
+TEST(TappedRhythm, PlaysAsLongAsTappedAtThreeTemposAndWritesEachIntervalOneWay) {
+    for (const double beat : {0.25, 0.40, 0.87}) {
+        for (unsigned seed = 1; seed <= 50; ++seed) {
+            Jitter jitter(seed);
+            TapRecorder taps;
+            double nominal = 0.0;
+            std::vector<double> onsets;
+            for (const double beats : kTappedBeats) {
+                onsets.push_back(jitter(nominal));
+                taps.press_select(at(onsets.back()));
+                nominal += beats * beat;
+            }
+            const double done = jitter(nominal);
+            taps.finish(at(done));
+            // The bar clef's tempo is 0.2 s: none of these is at its pace.
+            const auto rhythm = editor::tapped_rhythm(taps.sounds(), 0.2, "lra", 3, 5);
+            const std::string where =
+                "at " + std::to_string(beat) + " s a beat, seed " + std::to_string(seed);
+            EXPECT_NEAR(rhythm.tempo, beat, 0.05 * beat) << where;
+            const double span = done - onsets.front();
+            EXPECT_NEAR(rendered_seconds(rhythm), span, 0.05 * span) << where;
+            // Every tapped interval of the same beats is the same length.
+            std::map<double, std::set<Length>> written;
+            std::size_t k = 0;
+            for (const auto& bar : rhythm.bars) {
+                for (const auto& symbol : bar.symbols) {
+                    ASSERT_TRUE(std::holds_alternative<Note>(symbol)) << where;
+                    ASSERT_LT(k, std::size(kTappedBeats)) << where;
+                    written[kTappedBeats[k++]].insert(std::get<Note>(symbol).length);
+                }
+            }
+            EXPECT_EQ(k, std::size(kTappedBeats)) << where;
+            for (const auto& [beats, lengths] : written) {
+                EXPECT_EQ(lengths.size(), 1u) << beats << " beats " << where;
+            }
+        }
+    }
+}
+
+// The pair of the issue (355 and 361 ms) tapped in the first bar and again in the second is
+// written the same both times.
+TEST(TappedRhythm, TheSameTappedPairIsWrittenTheSameInEveryBar) {
+    TapRecorder taps;
+    double t = 0.0;
+    const double gaps[] = {0.4, 0.355, 0.361, 0.4, 0.4, 0.4, 0.4, 0.355, 0.361, 0.4, 0.4};
+    for (const double gap : gaps) {
+        taps.press_select(at(t));
+        t += gap;
+    }
+    taps.finish(at(t));
+    const auto rhythm = editor::tapped_rhythm(taps.sounds(), 0.2, "lra", 3, 5);
+    std::vector<Length> lengths;
+    for (const auto& bar : rhythm.bars) {
+        for (const auto& symbol : bar.symbols) {
+            ASSERT_TRUE(std::holds_alternative<Note>(symbol));
+            lengths.push_back(std::get<Note>(symbol).length);
+        }
+    }
+    ASSERT_EQ(lengths.size(), std::size(gaps));
+    EXPECT_EQ(lengths[1], lengths[7]);
+    EXPECT_EQ(lengths[2], lengths[8]);
+}
+
 TEST(TappedRhythm, NothingTappedIsNothing) {
     TapRecorder taps;
     taps.finish(at(3.0));
@@ -161,6 +254,11 @@ class TapEntry : public ::testing::Test {
     TapEntry() {
         Clef clef;
         clef.tempo = 0.5;
+        // A whole clef: a tempo clef made from it is a document the clef reader takes.
+        clef.numbers = {0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9, 1.0};
+        for (int s = 0; s < 6; ++s) {
+            clef.strings.push_back({155.0 + 16.0 * s, {}});
+        }
         editor.scheme.set_clef_book(editor::ClefBook({{testing::kLra, clef}}));
         testing::to_menu_entry(editor, "tap a rhythm");
         editor.press(editor::Button::select);
@@ -182,15 +280,51 @@ TEST_F(TapEntry, TwelveTapsAreFigure75AtTheProposedNoteAndSelectThenChangesThem)
         tap(jitter(100.0 + 0.8 * k));  // a terminal: presses only
     }
     EXPECT_EQ(editor.scheme.taps(), 12);
-    editor.press_at(editor::Button::back, at(jitter(109.6)));
+    EXPECT_EQ(editor.scheme.hint(editor.model),
+              "12 taps S:note \u2193rest \u2191 B:done \u2190drop");
+    const auto request = editor.press_at(editor::Button::back, at(jitter(109.6)));
     EXPECT_EQ(editor.scheme.mode(), editor::ButtonScheme::Mode::browse);
-    EXPECT_EQ(editor.model.score().bars, figure_75());
-    EXPECT_EQ(editor.model.message(), "12 notes at 0.80 s a beat: S changes");
+    // Tapped at 0.8 s a beat, not the clef's 0.5: on a copy of the clef at the tapped tempo,
+    // declared by the score and stored by the editor (the request).
+    auto on_tempo_clef = figure_75();
+    for (auto& bar : on_tempo_clef) {
+        bar.clef = "lra-75bpm";
+    }
+    EXPECT_EQ(editor.model.score().bars, on_tempo_clef);
+    EXPECT_EQ(editor.model.message(), "12 notes, clef lra-75bpm (0.80 s)");
+    EXPECT_EQ(request.kind, editor::Request::Kind::store_clef);
+    EXPECT_EQ(request.name, "lra-75bpm");
+    EXPECT_DOUBLE_EQ(read_clef(request.document, "lra-75bpm.clef.xml").tempo, 0.8);
+    ASSERT_NE(editor.model.score().find_clef("lra-75bpm"), nullptr);
+    EXPECT_EQ(editor.model.score().find_clef("lra-75bpm")->href, "lra-75bpm.clef.xml");
     // On the first note tapped, to change them one after another.
     EXPECT_EQ(editor.model.cursor(), (editor::Position{0, 0}));
     // One undo step takes the whole rhythm back.
     ASSERT_TRUE(editor.model.undo());
     EXPECT_TRUE(editor.model.score().bars[0].symbols.empty());
+}
+
+TEST_F(TapEntry, TheTempoClefIsMadeOnceAndFoundAgainAndTapsAtTheClefsPaceNeedNone) {
+    EXPECT_EQ(editor.scheme.hint(editor.model), "tap S:note \u2193rest \u2191 B:done \u2190drop");
+    tap(1.0);
+    EXPECT_EQ(editor.scheme.hint(editor.model), "1 tap S:note \u2193rest \u2191 B:done \u2190drop");
+    for (int k = 1; k < 4; ++k) {
+        tap(1.0 + 0.4 * k);
+    }
+    EXPECT_EQ(editor.press_at(editor::Button::back, at(2.6)).kind,
+              editor::Request::Kind::store_clef);
+    EXPECT_EQ(editor.model.message(), "4 notes, clef lra-150bpm (0.40 s)");
+    // Again at that tempo, from the tapped bars: the clef made is found, not made twice.
+    testing::to_menu_entry(editor, "tap a rhythm");
+    editor.press(editor::Button::select);
+    for (int k = 0; k < 4; ++k) {
+        tap(10.0 + 0.4 * k);
+    }
+    EXPECT_EQ(editor.press_at(editor::Button::back, at(11.6)).kind, editor::Request::Kind::none);
+    EXPECT_EQ(editor.model.score().bars.size(), 2u);
+    for (const auto& bar : editor.model.score().bars) {
+        EXPECT_EQ(bar.clef, "lra-150bpm");
+    }
 }
 
 TEST_F(TapEntry, HeldAndReleasedOnKeysThatSaySoAndUpEndsTapping) {
