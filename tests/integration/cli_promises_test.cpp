@@ -54,13 +54,13 @@ TEST(WrongUsage, EachEndsWithTheReadmesStatusAndAMessageNamingWhatIsWrong) {
          "vibscore: unknown command \"frobnicate\"; the commands are: check render convert clef "
          "info "
          "play stop "
-         "list get compose delete drivers driver show assign edit"},
+         "list get compose delete drivers driver show assign calibrate edit"},
         {"VIBSCORE",
          {"lsit"},
          2,
          "vibscore: unknown command \"lsit\" (did you mean list?); the commands are: check render "
          "convert "
-         "clef info play stop list get compose delete drivers driver show assign edit"},
+         "clef info play stop list get compose delete drivers driver show assign calibrate edit"},
         {"VIBSCORE",
          {"play", "x", "--usage", "bogus"},
          2,
