@@ -4,10 +4,12 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <set>
 
 #include "common/number_text.hpp"
 #include "daemon/actuator/physics.hpp"
 #include "daemon/render/actuator_response.hpp"
+#include "daemon/render/clef_check.hpp"
 
 namespace vibscore::render {
 
@@ -60,6 +62,31 @@ std::vector<ActuatorWarning> actuator_warnings(const ScoreBundle& bundle,
                         static_cast<std::size_t>(std::ceil(t * kRate - 1e-9)));
     };
     const bool lra = declaration.kind == actuator::Kind::lra;
+    // Every note whose number its clef's check calls out of reach on its string (the one rule,
+    // render::out_of_reach): named each, with number, string and bar.
+    std::set<std::pair<std::size_t, std::size_t>> unreachable;  // (bar, symbol), from 0
+    std::vector<ActuatorWarning> out_of_reach_notes;
+    for (std::size_t b = 0; b < bundle.score.bars.size(); ++b) {
+        const Bar& bar = bundle.score.bars[b];
+        const Clef& clef = bundle.clef_of(bar);
+        for (std::size_t s = 0; s < bar.symbols.size(); ++s) {
+            const auto* note = std::get_if<Note>(&bar.symbols[s]);
+            if (note == nullptr || note->number < 1 || note->string < 1) {
+                continue;
+            }
+            const auto number = static_cast<std::size_t>(note->number - 1);
+            const auto string = static_cast<std::size_t>(note->string - 1);
+            if (const auto full = out_of_reach(clef, number, string, declaration)) {
+                unreachable.insert({b, s});
+                out_of_reach_notes.push_back(
+                    {b + 1, note_in_bar(bundle, b, s),
+                     "number " + std::to_string(note->number) + " (strength " +
+                         number_text(clef.numbers[number]) + ") out of reach on string " +
+                         std::to_string(note->string) + " of clef " + bar.clef +
+                         " (full drive gives at most " + two_places(*full) + " there)"});
+            }
+        }
+    }
     std::map<std::pair<const Clef*, int>, bool> strings_warned;
     for (const Tone& tone : performance.tones()) {
         const double asked = std::max(std::abs(tone.amplitude_start), std::abs(tone.amplitude_end));
@@ -98,7 +125,9 @@ std::vector<ActuatorWarning> actuator_warnings(const ScoreBundle& bundle,
             written = std::max(written, response.written[k]);
             produced = std::max(produced, response.compensated[k]);
         }
-        if (!(written > 0.0) || produced >= 0.9 * written) {
+        // A note out of reach is named so above: "too short" would give the wrong reason.
+        if (!(written > 0.0) || produced >= 0.9 * written ||
+            unreachable.contains({tone.bar, tone.symbol})) {
             continue;
         }
         const auto needed = physics.time_to({}, {1.0, frequency}, 0.9 * written, 10.0);
@@ -113,6 +142,11 @@ std::vector<ActuatorWarning> actuator_warnings(const ScoreBundle& bundle,
         }
         warnings.push_back(std::move(warning));
     }
+    // In score order, each note's warnings together (its string's first).
+    warnings.insert(warnings.end(), out_of_reach_notes.begin(), out_of_reach_notes.end());
+    std::stable_sort(warnings.begin(), warnings.end(), [](const auto& a, const auto& b) {
+        return std::pair(a.bar, a.note) < std::pair(b.bar, b.note);
+    });
     return warnings;
 }
 

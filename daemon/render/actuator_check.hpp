@@ -22,7 +22,10 @@ struct ActuatorWarning {
 // - a note that, played with compensation (overdrive, braking as declared), never reaches 90 %
 //   of its written strength while it sounds: too short for the actuator;
 // - an LRA string where full drive gives less than half the strength the score asks on it (named
-//   at its first note).
+//   at its first note);
+// - every note whose number is out of reach on its string, by the clef check's own rule
+//   (render::out_of_reach: what `check CLEF --actuator` names for that clef).
+// In score order.
 std::vector<ActuatorWarning> actuator_warnings(const ScoreBundle& bundle,
                                                const Performance& performance,
                                                const actuator::Declaration& declaration);

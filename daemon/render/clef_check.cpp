@@ -99,10 +99,9 @@ void check_sine(const Clef& clef, const actuator::Declaration& declaration,
         std::string strings;
         double best = 0.0;
         for (std::size_t s = 0; s < clef.strings.size(); ++s) {
-            const double full = physics.steady_strength({1.0, clef.strings[s].frequency});
-            if (full < clef.numbers[n]) {
+            if (const auto full = out_of_reach(clef, n, s, declaration)) {
                 strings += (strings.empty() ? "" : ", ") + std::to_string(s + 1);
-                best = std::max(best, full);
+                best = std::max(best, *full);
             }
         }
         if (!strings.empty()) {
@@ -119,7 +118,7 @@ void check_shape(const Clef& clef, const actuator::Declaration& declaration,
     const double strongest = strongest_of(clef);
     const double reachable = physics.steady_strength({1.0, 0.0});
     for (std::size_t n = 0; n < clef.numbers.size(); ++n) {
-        if (clef.numbers[n] > reachable) {
+        if (!clef.strings.empty() && out_of_reach(clef, n, 0, declaration)) {
             warnings.push_back("number " + std::to_string(n + 1) + " (strength " +
                                number_text(clef.numbers[n]) + "): out of reach, full drive gives " +
                                two_places(reachable));
@@ -149,6 +148,24 @@ void check_shape(const Clef& clef, const actuator::Declaration& declaration,
 }
 
 }  // namespace
+
+std::optional<double> out_of_reach(const Clef& clef, std::size_t number, std::size_t string,
+                                   const actuator::Declaration& declaration) {
+    if (number >= clef.numbers.size() || string >= clef.strings.size()) {
+        return std::nullopt;
+    }
+    const bool sine = clef.type == ClefType::sine;
+    if (sine && declaration.kind == actuator::Kind::erm) {
+        return std::nullopt;
+    }
+    // A shape plays at the actuator's own frequency (0 asks for it), whichever string.
+    const double frequency = sine ? clef.strings[string].frequency : 0.0;
+    const double full = actuator::Physics(declaration).steady_strength({1.0, frequency});
+    if (full < clef.numbers[number]) {
+        return full;
+    }
+    return std::nullopt;
+}
 
 std::vector<std::string> clef_warnings(const Clef& clef, const actuator::Declaration& declaration) {
     const actuator::Physics physics(declaration);

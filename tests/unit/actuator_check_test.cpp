@@ -10,6 +10,8 @@
 
 #include "daemon/render/actuator_check.hpp"
 #include "daemon/render/actuator_response.hpp"
+#include "daemon/render/clef_check.hpp"
+#include "score/clef_xml.hpp"
 #include "tests/support/example_actuators.hpp"
 #include "tests/support/run_command.hpp"
 #include "tests/support/support.hpp"
@@ -77,6 +79,40 @@ TEST(ActuatorCheck, AnLraStringWhereFullDriveGivesLessThanHalfIsNamedOnce) {
     EXPECT_EQ(std::count_if(found.begin(), found.end(),
                             [](const auto& w) { return w.text.find("string 2") == 0; }),
               1);
+}
+
+// The clef check and the score check share one rule of "out of reach": a score playing exactly
+// the number the clef check names on the string it names is warned too, at that note, with
+// number, string and bar; a number within reach on that string is not.
+TEST(ActuatorCheck, ANoteTheClefCheckCallsOutOfReachIsNamedWithNumberStringAndBar) {
+    // 192 Hz on the LRA at 175 Hz, Q 15: full drive gives about 0.47 there, less than number 5
+    // (0.6) but more than half of it, so only the rule shared with the clef check can say so.
+    const std::string clef =
+        testing::sine_clef(0.2, {175.0, 180.0, 192.0}, {0.1, 0.2, 0.3, 0.4, 0.6});
+    const auto clef_found = render::clef_warnings(read_clef(clef, "c.xml"), example_lra());
+    EXPECT_THAT(clef_found, ::testing::Contains(
+                                HasSubstr("number 5 (strength 0.6): out of reach on string 3 ")));
+    const auto bundle = testing::bundle_from(
+        testing::one_clef_score("<Bar clef=\"c\"><Note length=\"half\" number=\"4\" string=\"3\"/>"
+                                "<Note length=\"half\" number=\"5\" string=\"3\"/></Bar>"
+                                "<Bar clef=\"c\"><Note length=\"half\" number=\"5\" string=\"2\"/>"
+                                "<Note length=\"half\" number=\"5\" string=\"3\"/></Bar>"),
+        {{"c.xml", clef}});
+    const auto found = warnings(bundle, example_lra());
+    std::vector<std::string> described;
+    for (const auto& warning : found) {
+        described.push_back(render::describe(warning));
+    }
+    EXPECT_THAT(described,
+                ::testing::ElementsAre(
+                    AllOf(HasSubstr("bar 1, note 2: number 5 (strength 0.6) out of reach on "
+                                    "string 3 of clef c (full drive gives at most 0.4"),
+                          HasSubstr(" there)")),
+                    HasSubstr("bar 2, note 2: number 5 (strength 0.6) out of reach on string 3")));
+    // The rule itself at its edges: number 5 on string 3 only; number 4 there, 5 on string 2 reach.
+    EXPECT_TRUE(render::out_of_reach(read_clef(clef, "c.xml"), 4, 2, example_lra()).has_value());
+    EXPECT_FALSE(render::out_of_reach(read_clef(clef, "c.xml"), 3, 2, example_lra()).has_value());
+    EXPECT_FALSE(render::out_of_reach(read_clef(clef, "c.xml"), 4, 1, example_lra()).has_value());
 }
 
 std::string vibscore() {
