@@ -65,13 +65,14 @@ int main(int argc, char** argv) {
     int count = 24;
     std::uint64_t seed = 32;
     bool verbose = false;
-    std::vector<std::string> variants{"uniform", "sampled-jitter", "rotating-erm"};
+    std::vector<std::string> variants{"uniform", "sampled-jitter", "rotating-erm", "spring-lra"};
     app.add_option("--count", count, "actuators of each kind per rate and variant");
     app.add_option("--seed", seed, "the random actuators' and sensors' seed");
     app.add_option("--variants", variants,
                    "sensor variants: uniform (readings on the sensor's clock, reported times "
                    "jittered), sampled-jitter (readings taken at jittered times), rotating-erm "
-                   "(the ERM's force turning in a plane)");
+                   "(the ERM's force turning in a plane), spring-lra (the phone feels the LRA's "
+                   "spring, not its mass's acceleration)");
     std::vector<std::string> kinds{"lra", "erm"};
     app.add_option("--kinds", kinds, "lra, erm or both");
     app.add_flag("--verbose", verbose, "one line per actuator");
@@ -85,6 +86,7 @@ int main(int argc, char** argv) {
         for (const Kind kind : {Kind::lra, Kind::erm}) {
             const std::string kind_name = kind == Kind::lra ? "lra" : "erm";
             if ((variant == "rotating-erm" && kind == Kind::lra) ||
+                (variant == "spring-lra" && kind == Kind::erm) ||
                 std::find(kinds.begin(), kinds.end(), kind_name) == kinds.end()) {
                 continue;
             }
@@ -110,6 +112,7 @@ int main(int argc, char** argv) {
                     sensor.peak_accel = between(4.0, 16.0);
                     sensor.erm_full_speed_hz = between(100.0, 250.0);
                     sensor.erm_rotating = variant == "rotating-erm";
+                    sensor.lra_spring = variant == "spring-lra";
                     sensor.jittered_sampling = variant == "sampled-jitter";
                     sensor.seed = random();
                     if (kind == Kind::lra) {

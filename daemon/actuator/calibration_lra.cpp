@@ -174,19 +174,24 @@ class Model {
     const std::vector<double>& y_;
 };
 
-// Steady acceleration response at drive frequency f relative to the one at resonance.
-double response_at(double f, double f0, double gamma) {
+// Steady response at drive frequency f relative to the one at resonance: of the mass's
+// acceleration (`power` 2: what the phone feels when it feels the mass's reaction), velocity (1)
+// or position (0: a phone that feels the spring's force).
+double response_at(double f, double f0, double gamma, int power = 2) {
     const double w = kTwoPi * f, w0 = kTwoPi * f0;
-    const double q = w0 / (2.0 * gamma);
-    return w * w / std::sqrt(std::pow(w0 * w0 - w * w, 2.0) + std::pow(2.0 * gamma * w, 2.0)) / q;
+    return std::pow(w / w0, power) * w0 * w0 /
+           std::sqrt(std::pow(w0 * w0 - w * w, 2.0) + std::pow(2.0 * gamma * w, 2.0)) /
+           (w0 / (2.0 * gamma));
 }
 
 // How far the tones' steady responses are from the resonance curve of (f0, gamma), relative;
 // and the full-scale strength that scales the curve to them.
-std::pair<double, double> tone_misfit(const std::vector<Tone>& tones, double f0, double gamma) {
+std::pair<double, double> tone_misfit(const std::vector<Tone>& tones, double f0, double gamma,
+                                      int power = 2) {
     double mp = 0.0, pp = 0.0, mm = 0.0;
     for (const Tone& tone : tones) {
-        const double p = std::abs(tone.amplitude) * response_at(tone.frequency_hz, f0, gamma);
+        const double p =
+            std::abs(tone.amplitude) * response_at(tone.frequency_hz, f0, gamma, power);
         mp += tone.response * p;
         pp += p * p;
         mm += tone.response * tone.response;
@@ -197,10 +202,21 @@ std::pair<double, double> tone_misfit(const std::vector<Tone>& tones, double f0,
     const double scale = mp / pp;
     double miss = 0.0;
     for (const Tone& tone : tones) {
-        const double p = std::abs(tone.amplitude) * response_at(tone.frequency_hz, f0, gamma);
+        const double p =
+            std::abs(tone.amplitude) * response_at(tone.frequency_hz, f0, gamma, power);
         miss += std::pow(tone.response - scale * p, 2.0);
     }
     return {std::sqrt(miss / mm), scale};
+}
+
+// The misfit of the curve shape that fits best: how the phone couples to the mass is the
+// mounting's, and a mirror image must lose under every coupling, not just the one assumed.
+double best_tone_misfit(const std::vector<Tone>& tones, double f0, double gamma) {
+    double best = 1e300;
+    for (const int power : {0, 1, 2}) {
+        best = std::min(best, tone_misfit(tones, f0, gamma, power).first);
+    }
+    return best;
 }
 
 struct Point {
@@ -272,7 +288,11 @@ LraFit fit_lra(const Plan& plan, const std::vector<double>& t_s, const std::vect
     const double mirror = rate_hz - best.f0;
     if (mirror >= low_hz && mirror <= high_hz && std::abs(mirror - best.f0) > 0.002 * best.f0) {
         Point start{mirror, best.gamma, best.offset, model.rss(mirror, best.gamma, best.offset)};
-        candidates.push_back(refine(model, start, low_hz, high_hz));
+        // Kept on its own side of half the rate: the search would otherwise slide back to the
+        // first, which fits exactly as well.
+        const double half = 0.5 * rate_hz;
+        candidates.push_back(refine(model, start, mirror > half ? std::max(low_hz, half) : low_hz,
+                                    mirror > half ? high_hz : std::min(high_hz, half)));
     }
     double least = 1e300;
     for (const Point& c : candidates) {
@@ -288,17 +308,26 @@ LraFit fit_lra(const Plan& plan, const std::vector<double>& t_s, const std::vect
         std::vector<Tone> tones;
         double quiet = 0.0;
         const double r = model.rss(c.f0, c.gamma, c.offset, &tones, &quiet);
-        const auto [misfit, scale] = tone_misfit(tones, c.f0, c.gamma);
-        if (misfit < best_misfit) {
-            best_misfit = misfit;
+        const double scale = tone_misfit(tones, c.f0, c.gamma).second;
+        const double choice = best_tone_misfit(tones, c.f0, c.gamma);
+        if (choice < best_misfit) {
+            best_misfit = choice;
             out.resonance_hz = c.f0;
             out.decay_per_s = c.gamma;
             out.offset_s = c.offset;
             out.rss = r;
             out.vibration_ss = quiet;
-            out.tone_misfit = misfit;
+            out.tone_misfit = choice;
             out.full_scale = scale;
         }
+    }
+    // A resonance this close to half the sampling rate and its mirror image are a few hertz
+    // apart, and the tones, a few per cent apart themselves, cannot tell which: between the two
+    // the error is at most half their distance.
+    if (candidates.size() == 2 && candidates[1].rss <= 1.5 * least &&
+        candidates[0].rss <= 1.5 * least &&
+        std::abs(candidates[0].f0 - candidates[1].f0) < 0.018 * out.resonance_hz) {
+        out.resonance_hz = 0.5 * (candidates[0].f0 + candidates[1].f0);
     }
     out.samples = static_cast<double>(t_s.size());
     return out;

@@ -156,6 +156,9 @@ double VibrationSensor::vibration() const {
     }
     // The mass's acceleration x'' (the phone feels its reaction; the sign is the axis's).
     const double w0 = kTwoPi * truth_.resonance_hz;
+    if (options_.lra_spring) {
+        return -w0 * w0 * x_;  // at resonance as strong as x'' (both F Q)
+    }
     const double force = options_.peak_accel / truth_.q;
     return force * drive_.amplitude * std::cos(phase_) - (w0 / truth_.q) * v_ - w0 * w0 * x_;
 }

@@ -17,7 +17,8 @@
 //  LRA: the moving mass is a resonator, x'' + (w0/Q) x' + w0^2 x = F u cos(phase), the drive's
 //       phase continuous across drive changes (as the backends drive it) and its frequency the
 //       drive's (0: the true resonance). The phone feels the reaction to the mass's
-//       acceleration x'', along one fixed axis. F is such that full-scale drive at resonance
+//       acceleration x'' (or, with `lra_spring`, the spring's force), along one fixed axis.
+//       F is such that full-scale drive at resonance
 //       settles at `peak_accel`.
 //  ERM: the motor's speed s (1 = the speed full-scale drive settles at) is first order, towards
 //       the drive's amplitude with the spin-up time constant while driven and towards rest with
@@ -36,6 +37,9 @@ struct SensorOptions {
     double peak_accel = 10.0;  // m/s² peak at full-scale drive (at resonance / full speed)
     double erm_full_speed_hz = 180.0;
     bool erm_rotating = false;
+    // LRA: the phone feels the mass's acceleration (false) or, mounted through its spring, the
+    // spring's force, w0^2 x (true): the same ring, a resonance curve tilted the other way.
+    bool lra_spring = false;
     double range = 4.0 * 9.80665;  // ±4 g
     int bits = 12;                 // 0: no quantisation
     double noise_rms = 0.02;       // m/s² per axis
