@@ -21,6 +21,8 @@ inline std::string describe_daemon_error(const std::string& name, const std::str
         {kDevice, "actuator failed"},
         {kNoAccelerometer, "no accelerometer"},
         {kUntrusted, "not trusted"},
+        // A user cut off ([limits] max-on-time, StopAll) waits before repeating again.
+        {kCoolingDown, "cooling down"},
     };
     if (const auto words = kWords.find(name); words != kWords.end()) {
         return words->second + ": " + message;

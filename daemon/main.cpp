@@ -123,7 +123,9 @@ int serve(const CommandLine& command_line) {
             [&playback](const auto& work) {
                 playback.call([work](Player& player) { work(player); });
             },
-            vibra_settings, config.separation_ms / 1000.0);
+            vibra_settings, config.separation_ms / 1000.0,
+            // The configuration of now: a reload's [limits] apply from the next effect.
+            [&config, usage = vibra_settings.usage] { return config.limits.max_on_time(usage); });
     }
     dbus::request_name(*connection, haptics1::kBusName);
     BusLoopBinding binding(loop, *connection);

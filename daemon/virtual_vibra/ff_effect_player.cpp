@@ -13,8 +13,12 @@
 
 namespace vibscore::daemon {
 
-FfEffectPlayer::FfEffectPlayer(PlayerAccess player, Usage usage, double separation_s)
-    : with_player_(std::move(player)), usage_(usage), separation_s_(separation_s) {}
+FfEffectPlayer::FfEffectPlayer(PlayerAccess player, Usage usage, double separation_s,
+                               OnTimeLimit max_on_time)
+    : with_player_(std::move(player)),
+      usage_(usage),
+      separation_s_(separation_s),
+      max_on_time_(std::move(max_on_time)) {}
 
 FfEffectPlayer::~FfEffectPlayer() {
     stop_playing();
@@ -79,6 +83,9 @@ void FfEffectPlayer::play(int id, int count) {
         PlaybackRequest request = make_playback_request(score, options, separation_s_);
         request.owner = 0;
         request.sender.clear();  // not a bus client: it ends with its effect
+        if (max_on_time_) {
+            request.max_on_time_s = max_on_time_();
+        }
         // The work owns its request: a playback thread that does not answer in time runs it
         // later or never (PlaybackThread::call).
         const auto started = std::make_shared<std::uint64_t>(0);

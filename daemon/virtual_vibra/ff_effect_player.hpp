@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <functional>
 #include <map>
+#include <optional>
 #include <string>
 
 #include "daemon/play_request.hpp"
@@ -20,10 +21,16 @@ namespace vibscore::daemon {
 // vibscored (PlaybackThread::call), so the vibra, served on the bus thread, never touches the
 // player from the wrong thread.
 using PlayerAccess = std::function<void(const std::function<void(Player&)>&)>;
+// The maximum on-time ([limits]) of the vibra's usage now, asked at each play so that a reload
+// applies from the next effect, as it does for Play; nothing: no maximum.
+using OnTimeLimit = std::function<std::optional<double>()>;
 
 class FfEffectPlayer final : public FfRequests {
   public:
-    FfEffectPlayer(PlayerAccess player, Usage usage, double separation_s);
+    // An effect that loops until stopped, like any playback of a non-urgent usage, ends at
+    // `max_on_time` ("no one holds the vibrator", a game that never sends stop included).
+    FfEffectPlayer(PlayerAccess player, Usage usage, double separation_s,
+                   OnTimeLimit max_on_time = {});
     ~FfEffectPlayer() override;
     FfEffectPlayer(const FfEffectPlayer&) = delete;
     FfEffectPlayer& operator=(const FfEffectPlayer&) = delete;
@@ -47,6 +54,7 @@ class FfEffectPlayer final : public FfRequests {
     PlayerAccess with_player_;
     Usage usage_;
     double separation_s_;
+    OnTimeLimit max_on_time_;
     double gain_ = 1.0;
     struct Effect {
         ScoreToPlay score;

@@ -40,8 +40,9 @@ VirtualVibraSettings parse_virtual_vibra_settings(
 }
 
 VirtualVibra::VirtualVibra(EventLoop& loop, PlayerAccess player,
-                           const VirtualVibraSettings& settings, double separation_s)
-    : effects_(std::move(player), settings.usage, separation_s),
+                           const VirtualVibraSettings& settings, double separation_s,
+                           OnTimeLimit max_on_time)
+    : effects_(std::move(player), settings.usage, separation_s, std::move(max_on_time)),
       device_(device_setup(settings), effects_) {
     sd_event_source* source = nullptr;
     if (sd_event_add_io(loop.get(), &source, device_.fd(), EPOLLIN, &VirtualVibra::on_request,

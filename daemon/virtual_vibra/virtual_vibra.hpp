@@ -36,7 +36,7 @@ class VirtualVibra {
   public:
     // Throws DeviceError when the device cannot be made (no uinput).
     VirtualVibra(EventLoop& loop, PlayerAccess player, const VirtualVibraSettings& settings,
-                 double separation_s);
+                 double separation_s, OnTimeLimit max_on_time = {});
     ~VirtualVibra();
     VirtualVibra(const VirtualVibra&) = delete;
     VirtualVibra& operator=(const VirtualVibra&) = delete;

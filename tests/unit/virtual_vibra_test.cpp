@@ -184,6 +184,10 @@ class Finishes : public PlayerListener {
 
 class FfEffectPlayerTest : public ::testing::Test {
   protected:
+    static void effect_id(FfEffectPlayer& into, ff_effect effect, int id) {
+        effect.id = static_cast<std::int16_t>(id);
+        ASSERT_EQ(into.upload(effect), 0);
+    }
     int upload(ff_effect effect, int id) {
         effect.id = static_cast<std::int16_t>(id);
         return effects.upload(effect);
@@ -239,6 +243,24 @@ TEST_F(FfEffectPlayerTest, AnEffectUntilStoppedPlaysOnAndOnWhateverTheCount) {
     EXPECT_EQ(player.current_id(), id) << "past its one-second pass";
     effects.play(0, 0);
     EXPECT_FALSE(player.current_id());
+}
+
+// No one holds the vibrator through it either: an effect looping until stopped (a game that never
+// sends stop) ends at its usage's maximum on-time, asked at the play, as a Play's would.
+TEST_F(FfEffectPlayerTest, AnEffectUntilStoppedEndsAtTheMaximumOnTime) {
+    std::optional<double> limit = 0.2;
+    FfEffectPlayer limited{[this](const auto& work) { work(player); }, Usage::notification, 0.03,
+                           [&limit] { return limit; }};
+    effect_id(limited, rumble(0xffff, 0, 0), 0);
+    const auto started_us = monotonic_now_us();
+    limited.play(0, 1);
+    ASSERT_TRUE(player.current_id());
+    loop.run();  // returns once nothing plays
+    EXPECT_GE(monotonic_now_us() - started_us, 200'000u);
+    ASSERT_FALSE(listener.events.empty());
+    EXPECT_EQ(listener.events.back().rfind("finished limit-exceeded: played for its maximum", 0),
+              0u)
+        << listener.events.back();
 }
 
 TEST_F(FfEffectPlayerTest, PlayZeroAndEraseStopWhatPlays) {
