@@ -55,6 +55,7 @@ struct Calibrator::Run {
     std::int64_t t0_ns = 0;                         // the probe's first drive
     std::map<std::uint64_t, std::string> finished;  // playbacks that ended since it began
     std::optional<std::string> ended;               // why the probe's playback ended
+    std::optional<std::uint64_t> intruder;          // another playback that started while recording
     bool abandoned = false;                         // the calibrator is going away
 
     // The run's thread's, read on the bus thread once it is done.
@@ -126,6 +127,16 @@ void Calibrator::start(bool apply, uid_t owner, const std::string& sender, Done 
     log::info("calibration: probing the actuator (" + actuator::describe(*config_.actuator) + ", " +
               std::to_string(run->plan.duration_s()) + " s) with " + run->sensor_name);
     worker_ = std::thread([this, run] { record(run); });
+}
+
+void Calibrator::playback_started(std::uint64_t id) {
+    if (!running_) {
+        return;
+    }
+    const std::lock_guard lock(running_->mutex);
+    if (running_->playback_id && *running_->playback_id != id && !running_->intruder) {
+        running_->intruder = id;  // it vibrates over the probe's end: the recording is spoilt
+    }
 }
 
 void Calibrator::playback_finished(std::uint64_t id, const std::string& reason) {
@@ -202,9 +213,19 @@ void Calibrator::record(const std::shared_ptr<Run>& run) {
     const bool ended = run->changed.wait_for(lock, patience, [&] {
         return run->abandoned || run->error || (run->probe_started && run->ended);
     });
-    if (!run->abandoned && !run->error && ended) {
-        // The readings the sensor took while the probe ended, still on their way.
-        run->changed.wait_for(lock, kRecordingTail, [&] { return run->abandoned; });
+    if (!run->abandoned && !run->error && ended && run->ended == "completed") {
+        // The player is done with the probe's last drive, but the plan goes on after it (the
+        // last coast, the last free ring-down) until its end; and the readings the sensor took
+        // by then are still on their way.
+        const auto plan_end = std::chrono::nanoseconds(
+            run->t0_ns + static_cast<std::int64_t>(run->plan.duration_s() * 1e9) -
+            monotonic_now_ns());
+        run->changed.wait_for(lock,
+                              std::max(plan_end, std::chrono::nanoseconds(0)) + kRecordingTail,
+                              [&] { return run->abandoned; });
+    }
+    if (run->intruder && run->ended == "completed") {
+        run->ended = "playback " + std::to_string(*run->intruder) + " started";
     }
     const auto reason = run->ended;
     const std::int64_t t0_ns = run->t0_ns;

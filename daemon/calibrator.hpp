@@ -68,7 +68,10 @@ class Calibrator {
     // std::runtime_error (the accelerometer failed). Throws those at once when known at once.
     void start(bool apply, uid_t owner, const std::string& sender, Done done);
 
-    // The service's PlayerListener hears of every playback's end and tells this (bus thread).
+    // The service's PlayerListener hears of every playback's start and end and tells this (bus
+    // thread): the probe's end, or another playback over the probe's last coast or ring-down
+    // (the player is done with the probe before the plan ends), spoiling the recording.
+    void playback_started(std::uint64_t id);
     void playback_finished(std::uint64_t id, const std::string& reason);
 
     // The state file's path (the store's kCalibrationStateFile).

@@ -425,6 +425,9 @@ std::string HapticsService::Version() {
 
 void HapticsService::playback_started(std::uint64_t id, const std::string& label) {
     emitPlaybackStarted(id, label);
+    if (calibrator_ != nullptr) {
+        calibrator_->playback_started(id);
+    }
 }
 
 void HapticsService::playback_position(std::uint64_t id, std::size_t bar, std::size_t symbol) {

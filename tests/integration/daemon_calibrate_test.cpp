@@ -71,8 +71,11 @@ TEST(DaemonCalibrate, ApplyMeasuresTheTrueLraKeepsItAcrossARestartAndTheClientSh
     configure(daemon, "accelerometer-rate-hz = 1000\n");
     EXPECT_EQ(property(daemon, "ActuatorSource"), "s \"declared\"\n");
 
-    const auto calibrated = vibscore({"calibrate", "--apply"});
+    testing::TempDir pictures;
+    const auto svg = pictures.path() / "fit.svg";
+    const auto calibrated = vibscore({"calibrate", "--apply", "--svg", svg.string()});
     ASSERT_EQ(calibrated.exit_code, 0) << calibrated.out << calibrated.err << daemon.daemon_log();
+    EXPECT_THAT(testing::read_file(svg), HasSubstr("<svg"));
     const auto hz = printed(calibrated.out, "resonance-hz");
     const auto q = printed(calibrated.out, "q");
     ASSERT_TRUE(hz && q) << calibrated.out;
@@ -94,6 +97,25 @@ TEST(DaemonCalibrate, ApplyMeasuresTheTrueLraKeepsItAcrossARestartAndTheClientSh
     EXPECT_THAT(property(daemon, "ActuatorSource"), StartsWith("s \"measured 20"));
     EXPECT_THAT(property(daemon, "Actuator"), HasSubstr("\"resonance-hz\" \"16"));
     EXPECT_THAT(daemon.daemon_log(), HasSubstr("actuator: using the numbers measured"));
+}
+
+TEST(DaemonCalibrate, AnErmsTimeConstantsAreMeasuredWithoutBeingApplied) {
+    DaemonFixture daemon;
+    daemon.stop_daemon();
+    daemon.write_config(
+        "[actuator]\nkind = erm\nspin-up-ms = 40\nspin-down-ms = 80\n",
+        "trace = " + daemon.trace().string() + "\ntrue-spin-up-ms = 55\ntrue-spin-down-ms = 120\n");
+    daemon.start_daemon();
+    const auto calibrated = vibscore({"calibrate"});
+    ASSERT_EQ(calibrated.exit_code, 0) << calibrated.out << calibrated.err << daemon.daemon_log();
+    const auto up = printed(calibrated.out, "spin-up-ms");
+    const auto down = printed(calibrated.out, "spin-down-ms");
+    ASSERT_TRUE(up && down) << calibrated.out;
+    EXPECT_NEAR(*up, 55.0, 55.0 * 0.15);
+    EXPECT_NEAR(*down, 120.0, 120.0 * 0.15);
+    EXPECT_THAT(calibrated.err, HasSubstr("--apply makes these the numbers in use"));
+    EXPECT_EQ(property(daemon, "ActuatorSource"), "s \"declared\"\n");
+    EXPECT_THAT(property(daemon, "Actuator"), HasSubstr("\"spin-up-ms\" \"40\""));
 }
 
 TEST(DaemonCalibrate, WithoutAnAccelerometerItRefusesSayingWhatToConfigureAndChangesNothing) {
