@@ -204,7 +204,12 @@ std::uint64_t HapticsService::play(const Caller& caller, const std::string& scor
         return player.play(std::move(request));
     });
     log::debug("playback " + std::to_string(id) + ": " + label + " (" +
-               std::string(to_string(options.usage)) + ") for uid " + std::to_string(caller.uid));
+                   std::string(to_string(options.usage)) + ") for uid " +
+                   std::to_string(caller.uid),
+               {{"PLAYBACK_ID", std::to_string(id)},
+                {"CALLER_UID", std::to_string(caller.uid)},
+                {"USAGE", std::string(to_string(options.usage))},
+                {"SCORE", label}});
     return id;
 }
 
@@ -270,7 +275,8 @@ void HapticsService::StopAll(sdbus::Result<>&& result) {
                     which += " " + std::to_string(id);
                 }
                 log::info("uid " + std::to_string(caller.uid) + " stopped every playback:" +
-                          (which.empty() ? std::string(" none was playing") : which));
+                              (which.empty() ? std::string(" none was playing") : which),
+                          {{"CALLER_UID", std::to_string(caller.uid)}, {"REASON", "stop-all"}});
             });
     });
 }
@@ -283,7 +289,8 @@ void HapticsService::Compose(sdbus::Result<>&& result, std::string name, std::st
                      [this, caller, name = std::move(name), document = std::move(document)] {
                          const auto stored = registry_.compose(name, document);
                          log::info("uid " + std::to_string(caller.uid) + " composed " +
-                                   std::string(to_string(stored)) + " \"" + name + "\"");
+                                       std::string(to_string(stored)) + " \"" + name + "\"",
+                                   {{"CALLER_UID", std::to_string(caller.uid)}, {"SCORE", name}});
                          if (stored == DocumentKind::clef) {
                              log_stored_clef(registry_, config_.device_clefs, config_.actuator,
                                              name);
@@ -301,7 +308,8 @@ void HapticsService::Delete(sdbus::Result<>&& result, std::string kind, std::str
         when_allowed(reply, caller, Action::compose, "Delete", [this, caller, which, name] {
             registry_.remove(which, name);
             log::info("uid " + std::to_string(caller.uid) + " deleted " +
-                      std::string(to_string(which)) + " \"" + name + "\"");
+                          std::string(to_string(which)) + " \"" + name + "\"",
+                      {{"CALLER_UID", std::to_string(caller.uid)}, {"SCORE", name}});
             emitRegistryChanged(std::string(to_string(which)), name);
         });
     });
@@ -372,7 +380,8 @@ void HapticsService::SwitchDriver(sdbus::Result<>&& result, std::string driver) 
                 throw RequestError(RequestError::Code::not_found,
                                    "no driver \"" + driver + "\" (available: " + names + ")");
             }
-            log::info("uid " + std::to_string(caller.uid) + " switches the driver to " + driver);
+            log::info("uid " + std::to_string(caller.uid) + " switches the driver to " + driver,
+                      {{"CALLER_UID", std::to_string(caller.uid)}});
             try {
                 playback_.call([&host = host_, driver](Player&) { host.switch_to(driver); });
             } catch (const std::invalid_argument& error) {
@@ -388,7 +397,8 @@ void HapticsService::set_intensity(const Caller& caller, double value) {
                            "Intensity " + number_text(value) + " is outside 0..1");
     }
     playback_.call([value](Player& player) { player.set_master_intensity(value); });
-    log::info("uid " + std::to_string(caller.uid) + " set Intensity to " + number_text(value));
+    log::info("uid " + std::to_string(caller.uid) + " set Intensity to " + number_text(value),
+              {{"CALLER_UID", std::to_string(caller.uid)}});
 }
 
 void HapticsService::SetIntensity(sdbus::Result<>&& result, double value) {
@@ -435,7 +445,8 @@ void HapticsService::playback_position(std::uint64_t id, std::size_t bar, std::s
 }
 
 void HapticsService::playback_finished(std::uint64_t id, const std::string& reason) {
-    log::debug("playback " + std::to_string(id) + " finished: " + reason);
+    log::debug("playback " + std::to_string(id) + " finished: " + reason,
+               {{"PLAYBACK_ID", std::to_string(id)}, {"REASON", reason}});
     emitPlaybackFinished(id, reason);
     if (calibrator_ != nullptr) {
         calibrator_->playback_finished(id, reason);
@@ -471,7 +482,8 @@ void HapticsService::start_calibration(
         throw RequestError(RequestError::Code::invalid, "this daemon cannot calibrate");
     }
     log::info("uid " + std::to_string(caller.uid) + " calibrates the actuator" +
-              (options.apply ? " (apply)" : ""));
+                  (options.apply ? " (apply)" : ""),
+              {{"CALLER_UID", std::to_string(caller.uid)}});
     try {
         calibrator_->start(options.apply, caller.uid, caller.sender,
                            [this, reply, options](std::optional<CalibrationOutcome> outcome,

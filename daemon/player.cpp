@@ -335,9 +335,13 @@ void Player::run_due() {
         const NextStep step = next_step(now, due, limit_deadline);
         if (step.kind == NextStep::Kind::end_over_limit) {
             log::info("playback " + std::to_string(playback.id) + " (uid " +
-                      std::to_string(playback.request.owner) + ", " +
-                      std::string(to_string(playback.request.usage)) +
-                      ") reached its maximum on-time");
+                          std::to_string(playback.request.owner) + ", " +
+                          std::string(to_string(playback.request.usage)) +
+                          ") reached its maximum on-time",
+                      {{"PLAYBACK_ID", std::to_string(playback.id)},
+                       {"CALLER_UID", std::to_string(playback.request.owner)},
+                       {"USAGE", std::string(to_string(playback.request.usage))},
+                       {"REASON", "limit-exceeded"}});
             cool_downs_.cut_off(playback.request.owner, now);
             finish(over_on_time_reason(*max_on_time));
             return;

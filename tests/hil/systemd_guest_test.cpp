@@ -127,6 +127,19 @@ TEST(SystemdGuest, TheJournalHasItsMessages) {
         << warnings;
 }
 
+// Under systemd the daemon writes to the journal itself, with fields a person can query: root's
+// StopAll is found by its CALLER_UID and REASON, not by grepping text.
+TEST(SystemdGuest, TheJournalFindsALineByItsFields) {
+    ASSERT_EQ(sh("vibscore stop --all").exit_code, 0);
+    EXPECT_TRUE(eventually([] {
+        return sh("journalctl -u vibscored -b CALLER_UID=0 REASON=stop-all -o cat --no-pager")
+                   .out.find("uid 0 stopped every playback") != std::string::npos;
+    })) << out_of("journalctl -u vibscored -b -o verbose --no-pager | tail -40");
+    // The priority is the journal's own, not a "<6>" prefix in the text.
+    EXPECT_EQ(out_of("journalctl -u vibscored -b -o cat --no-pager | grep -c '^<[0-7]>' || true"),
+              "0\n");
+}
+
 // The package's driver = auto on a phone: the vibra is there before the packages are, the
 // shipped udev rules tag it, and a fresh install plays on it with nothing configured.
 TEST(SystemdGuest, AFreshInstallPlaysOnTheUdevTaggedVibraWithNoConfiguration) {
