@@ -73,6 +73,9 @@ int main(int argc, char** argv) {
                    "jittered), sampled-jitter (readings taken at jittered times), rotating-erm "
                    "(the ERM's force turning in a plane), spring-lra (the phone feels the LRA's "
                    "spring, not its mass's acceleration)");
+    double max_delay_ms = 15.0;
+    app.add_option("--max-delay-ms", max_delay_ms,
+                   "the drive reaches the actuator up to this late (uniformly random)");
     std::vector<std::string> kinds{"lra", "erm"};
     app.add_option("--kinds", kinds, "lra, erm or both");
     app.add_flag("--verbose", verbose, "one line per actuator");
@@ -128,7 +131,7 @@ int main(int argc, char** argv) {
                     }
                     // The drive reaches the actuator a little late; the recorder starts with
                     // the plan.
-                    const double delay = between(0.0, 0.015);
+                    const double delay = between(0.0, max_delay_ms / 1000.0);
                     const cal::Plan plan = cal::make_plan(kind, nominal);
                     const std::vector<cal::Sample> samples =
                         record(plan, truth, sensor, delay, 0.05);

@@ -296,6 +296,20 @@ TEST(CalibrationEstimate, BelowTheLowestRateNothingIsGuessed) {
     }
 }
 
+TEST(CalibrationEstimate, AResonanceBeyondWhatTheProbeCoversIsRefused) {
+    // Declared 175 Hz: the probe covers up to 175 x 1.25 and the search a little beyond; a part
+    // at 320 Hz is far outside, and the estimate says to declare a nearer nominal value.
+    const Estimate e = measure(example_lra(320.0, 12.0), example_lra(175.0), at(1000.0));
+    EXPECT_FALSE(e.trusted);
+    EXPECT_TRUE(mentions(e.problems, "at the edge of what the probe covers")) << e.problems.front();
+}
+
+TEST(CalibrationEstimate, AnErmTooSlowForTheProbeIsRefused) {
+    const Estimate e = measure(erm(0.400, 0.150), example_erm(), at(1000.0));
+    EXPECT_FALSE(e.trusted);
+    EXPECT_TRUE(mentions(e.problems, "beyond what the probe can time")) << e.problems.front();
+}
+
 TEST(CalibrationEstimate, TooFewReadingsAreRefused) {
     const Plan plan = make_plan(Kind::erm, std::nullopt);
     std::vector<Sample> samples = record(plan, example_erm(), at(1000.0));
