@@ -12,6 +12,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <iostream>
 #include <map>
 #include <optional>
@@ -121,9 +122,11 @@ ScoreBundle for_actuator(ScoreBundle bundle, const Declaration& declared) {
 }
 
 std::vector<render::Cue> drives_for(const render::Performance& performance,
-                                    const Declaration& declared, bool compensation) {
+                                    const Declaration& declared, bool compensation,
+                                    const render::Uncertainty& uncertainty) {
     render::CueAdaptation adaptation;
     adaptation.actuator = declared;
+    adaptation.uncertainty = uncertainty;
     adaptation.actuator->compensation = compensation;
     adaptation.reverse = true;
     auto cues =
@@ -133,19 +136,12 @@ std::vector<render::Cue> drives_for(const render::Performance& performance,
     return cues;
 }
 
-// One piece on one actuator: planned for `declared`, felt on `truth`.
-ScoreFeel feel(const Piece& piece, const Declaration& declared, const Declaration& truth,
-               bool compensation) {
-    const render::Performance performance(for_actuator(piece.bundle, declared));
-    const auto drives = drives_for(performance, declared, compensation);
-    const auto count =
-        static_cast<std::size_t>(std::ceil((performance.duration() + kTail) * kRate));
-    std::vector<double> written;
-    for (std::size_t k = 0; k < count; ++k) {
-        written.push_back(performance.envelope_at(static_cast<double>(k) / kRate));
-    }
+// Drives felt on `truth`, measured against the written strength.
+ScoreFeel judge(const std::string& name, const std::vector<bench::NoteSpan>& notes,
+                const std::vector<double>& written, const std::vector<render::Cue>& drives,
+                const Declaration& truth) {
     const bench::Plant plant(truth);
-    const auto produced = plant.respond(drives, kRate, count);
+    const auto produced = plant.respond(drives, kRate, written.size());
     const auto produced_until = [&](double t) {
         std::vector<render::Cue> before;
         for (const auto& cue : drives) {
@@ -153,10 +149,94 @@ ScoreFeel feel(const Piece& piece, const Declaration& declared, const Declaratio
                 before.push_back(cue);
             }
         }
-        return plant.respond(before, kRate, count);
+        return plant.respond(before, kRate, written.size());
     };
-    return bench::measure(piece.name, bench::note_spans(performance, 1.0), written, produced,
-                          produced_until, kRate);
+    return bench::measure(name, notes, written, produced, produced_until, kRate);
+}
+
+// One piece on one actuator: planned for `declared`, felt on `truth`.
+ScoreFeel feel(const Piece& piece, const Declaration& declared, const Declaration& truth,
+               bool compensation, const render::Uncertainty& uncertainty) {
+    const render::Performance performance(for_actuator(piece.bundle, declared));
+    const auto drives = drives_for(performance, declared, compensation, uncertainty);
+    const auto count =
+        static_cast<std::size_t>(std::ceil((performance.duration() + kTail) * kRate));
+    std::vector<double> written;
+    for (std::size_t k = 0; k < count; ++k) {
+        written.push_back(performance.envelope_at(static_cast<double>(k) / kRate));
+    }
+    return judge(piece.name, bench::note_spans(performance, 1.0), written, drives, truth);
+}
+
+// A test score written directly as notes (strength, frequency), each followed by silence: the
+// notes far from an LRA's resonance that a clef fitted to it would never write, but a score may.
+struct TestNote {
+    double onset, length, strength, frequency_hz;
+};
+struct TestScore {
+    std::string name;
+    Declaration actuator;
+    std::vector<TestNote> notes;
+};
+
+ScoreFeel feel_test(const TestScore& score, bool compensation,
+                    const render::Uncertainty& uncertainty) {
+    std::vector<render::Cue> cues;
+    std::vector<bench::NoteSpan> spans;
+    double duration = 0.0;
+    for (const auto& note : score.notes) {
+        cues.push_back(render::drive_at(note.onset, note.strength, note.frequency_hz));
+        cues.push_back(render::drive_at(note.onset + note.length, 0.0, 0.0));
+        spans.push_back({note.onset, note.onset + note.length, note.strength, false});
+        duration = std::max(duration, note.onset + note.length);
+    }
+    render::CueAdaptation adaptation;
+    adaptation.actuator = score.actuator;
+    adaptation.uncertainty = uncertainty;
+    adaptation.actuator->compensation = compensation;
+    adaptation.reverse = true;
+    auto drives = render::adapt_cues(cues, duration, adaptation);
+    std::erase_if(drives,
+                  [](const render::Cue& cue) { return cue.kind != render::Cue::Kind::drive; });
+    const auto count = static_cast<std::size_t>(std::ceil((duration + kTail) * kRate));
+    std::vector<double> written(count, 0.0);
+    for (const auto& note : score.notes) {
+        for (std::size_t k = 0; k < count; ++k) {
+            const double t = static_cast<double>(k) / kRate;
+            if (t >= note.onset && t < note.onset + note.length) {
+                written[k] = note.strength;
+            }
+        }
+    }
+    return judge(score.name, spans, written, drives, score.actuator);
+}
+
+std::vector<TestScore> test_scores() {
+    // Three long notes and three short ones per score, 120 ms of silence after each.
+    const auto score = [](std::string name, Declaration actuator,
+                          std::vector<std::pair<double, double>> strengths_at) {
+        TestScore test{std::move(name), actuator, {}};
+        double t = 0.0;
+        int i = 0;
+        for (const auto& [strength, frequency] : strengths_at) {
+            const double length = i++ % 2 == 0 ? 0.150 : 0.040;
+            test.notes.push_back({t, length, strength, frequency});
+            t += length + 0.120;
+        }
+        return test;
+    };
+    const std::vector<std::pair<double, double>> lra170{{0.8, 185}, {0.6, 185}, {0.6, 155},
+                                                        {1.0, 160}, {0.8, 180}, {0.4, 190}};
+    const std::vector<std::pair<double, double>> lra175{{0.8, 190}, {0.6, 160}, {1.0, 175},
+                                                        {0.6, 185}, {0.8, 165}, {0.4, 200}};
+    const std::vector<std::pair<double, double>> lra235{{0.8, 215}, {0.6, 250}, {1.0, 235},
+                                                        {0.6, 220}, {0.8, 250}, {0.4, 235}};
+    const std::vector<std::pair<double, double>> erm{{1.0, 0}, {0.6, 0}, {0.3, 0},
+                                                     {1.0, 0}, {0.8, 0}, {0.4, 0}};
+    return {score("LRA 170 Hz Q 15, notes 155-190 Hz", example_lra(170.0, 15.0), lra170),
+            score("LRA 175 Hz Q 15, notes 160-200 Hz", example_lra(175.0, 15.0), lra175),
+            score("LRA 235 Hz Q 25, notes 215-250 Hz", example_lra(235.0, 25.0), lra235),
+            score("ERM 40/80 ms, strengths 0.3-1", example_erm(), erm)};
 }
 
 // Everything measured of one actuator, one way.
@@ -164,15 +244,17 @@ struct Totals {
     int notes = 0, reached = 0, silences = 0, felt = 0;
     double onset_ms = 0, stop_ms = 0, error = 0;  // medians
     int taps_felt = 0, taps_gaps = 0;
+    double rebound = 0, overshoot = 0;  // the most over the pieces
     std::vector<ScoreFeel> scores;
 };
 
+// (Compensation planned for the declaration as exact unless `uncertainty` says otherwise.)
 Totals run(const std::vector<Piece>& all, const Declaration& declared, const Declaration& truth,
-           bool compensation) {
+           bool compensation, const render::Uncertainty& uncertainty = {}) {
     Totals totals;
     std::vector<double> onsets, stops, errors;
     for (const auto& piece : all) {
-        ScoreFeel score = feel(piece, declared, truth, compensation);
+        ScoreFeel score = feel(piece, declared, truth, compensation, uncertainty);
         totals.notes += score.notes;
         totals.reached += score.reached;
         totals.silences += score.silences;
@@ -180,6 +262,8 @@ Totals run(const std::vector<Piece>& all, const Declaration& declared, const Dec
         onsets.insert(onsets.end(), score.onsets_ms.begin(), score.onsets_ms.end());
         stops.insert(stops.end(), score.stops_ms.begin(), score.stops_ms.end());
         errors.push_back(score.envelope_error);
+        totals.rebound = std::max(totals.rebound, score.max_rebound);
+        totals.overshoot = std::max(totals.overshoot, score.max_overshoot);
         if (piece.name == "taps") {
             totals.taps_felt = score.felt;
             totals.taps_gaps = score.silences;
@@ -219,7 +303,8 @@ std::string json_totals(const Totals& t) {
         << ",\"onset_ms\":" << json_number(t.onset_ms) << ",\"stop_ms\":" << json_number(t.stop_ms)
         << ",\"silences\":" << t.silences << ",\"felt\":" << t.felt
         << ",\"envelope_error\":" << json_number(t.error) << ",\"taps_felt\":" << t.taps_felt
-        << ",\"taps_gaps\":" << t.taps_gaps << "}";
+        << ",\"taps_gaps\":" << t.taps_gaps << ",\"rebound\":" << json_number(t.rebound)
+        << ",\"overshoot\":" << json_number(t.overshoot) << "}";
     return out.str();
 }
 
@@ -254,6 +339,175 @@ void print_row(const std::string& label, const Totals& t) {
 void print_header(const char* title) {
     std::printf("\n%s\n  %-34s %7s %7s %7s   %7s %6s   %s\n", title, "", "reach90", "onset", "stop",
                 "silence", "error", "taps");
+}
+
+// ---- robustness to a wrong declaration (issue 32) -------------------------------------------
+
+// Per piece, the three figures compared on and off: onset and stop medians (ms), envelope error.
+struct Figures {
+    double onset, stop, error;
+};
+Figures figures(const ScoreFeel& score) {
+    return {bench::median(score.onsets_ms), bench::median(score.stops_ms), score.envelope_error};
+}
+
+// on / off, "never" counting as larger than anything; 1 when both are 0 or both never.
+double on_off_ratio(double on, double off) {
+    if (std::isnan(on) || std::isnan(off)) {
+        return 1.0;
+    }
+    if (!std::isfinite(on)) {
+        return std::isfinite(off) ? INFINITY : 1.0;
+    }
+    if (!std::isfinite(off)) {
+        return 0.0;
+    }
+    return off > 0.0 ? on / off : (on > 0.0 ? INFINITY : 1.0);
+}
+
+// Worse beyond what the measurement resolves: one sample (0.5 ms), or 0.005 of error.
+bool worse(double on, double off, double resolution) {
+    if (std::isnan(on) || std::isnan(off)) {
+        return false;
+    }
+    if (!std::isfinite(on)) {
+        return std::isfinite(off);
+    }
+    return std::isfinite(off) && on > off + resolution;
+}
+
+struct Truth {
+    std::string label;
+    Declaration declaration;
+};
+
+// The worst on/off ratio of one figure of one piece over the truths, and where.
+struct Worst {
+    double ratio = 0.0, on = NAN, off = NAN;
+    std::string truth;
+    int worse = 0;  // truths where on is worse than off
+    void take(double on_value, double off_value, double resolution, const std::string& label) {
+        const double r = on_off_ratio(on_value, off_value);
+        if (r > ratio || truth.empty()) {
+            ratio = r;
+            on = on_value;
+            off = off_value;
+            truth = label;
+        }
+        worse += ::worse(on_value, off_value, resolution) ? 1 : 0;
+    }
+};
+
+std::string ratio_text(double r) {
+    if (!std::isfinite(r)) {
+        return "inf";
+    }
+    char text[32];
+    std::snprintf(text, sizeof text, "%.2f", r);
+    return text;
+}
+
+// Every piece planned for `declared`, felt on each truth, off and on: per piece the worst ratio of
+// each figure. Returns the section's JSON.
+std::string robustness(const std::vector<Piece>& all, const std::string& title,
+                       const Declaration& declared, const std::vector<Truth>& truths,
+                       const render::Uncertainty& uncertainty) {
+    std::vector<Worst> onset(all.size()), stop(all.size()), error(all.size());
+    int cells = 0, cells_worse = 0;
+    for (const auto& truth : truths) {
+        const Totals off = run(all, declared, truth.declaration, false);
+        const Totals on = run(all, declared, truth.declaration, true, uncertainty);
+        for (std::size_t p = 0; p < all.size(); ++p) {
+            const Figures a = figures(on.scores[p]), b = figures(off.scores[p]);
+            onset[p].take(a.onset, b.onset, 0.5, truth.label);
+            stop[p].take(a.stop, b.stop, 0.5, truth.label);
+            error[p].take(a.error, b.error, 0.005, truth.label);
+            ++cells;
+            cells_worse += worse(a.onset, b.onset, 0.5) || worse(a.stop, b.stop, 0.5) ||
+                                   worse(a.error, b.error, 0.005)
+                               ? 1
+                               : 0;
+        }
+    }
+    std::printf(
+        "\n%s: %zu truths; per piece the worst on/off ratio (on / off at it, and the truth), "
+        "and in how many truths on is worse\n",
+        title.c_str(), truths.size());
+    std::printf("  %-22s %-34s %-34s %-34s\n", "", "onset", "stop", "error");
+    const auto cell = [](const Worst& w, bool ms) {
+        char text[96];
+        if (ms) {
+            std::snprintf(text, sizeof text, "%s (%s/%s %s) %dx", ratio_text(w.ratio).c_str(),
+                          ms_text(w.on).c_str(), ms_text(w.off).c_str(), w.truth.c_str(), w.worse);
+        } else {
+            std::snprintf(text, sizeof text, "%s (%.2f/%.2f %s) %dx", ratio_text(w.ratio).c_str(),
+                          w.on, w.off, w.truth.c_str(), w.worse);
+        }
+        return std::string(text);
+    };
+    double worst_onset = 0, worst_stop = 0, worst_error = 0;
+    std::string json = "{\"title\":\"" + bench::json_escape(title) + "\",\"pieces\":[";
+    for (std::size_t p = 0; p < all.size(); ++p) {
+        std::printf("  %-22s %-34s %-34s %-34s\n", all[p].name.c_str(),
+                    cell(onset[p], true).c_str(), cell(stop[p], true).c_str(),
+                    cell(error[p], false).c_str());
+        worst_onset = std::max(worst_onset, onset[p].ratio);
+        worst_stop = std::max(worst_stop, stop[p].ratio);
+        worst_error = std::max(worst_error, error[p].ratio);
+        json += std::string(p ? "," : "") + "{\"piece\":\"" + bench::json_escape(all[p].name) +
+                "\",\"onset_ratio\":" + json_number(onset[p].ratio) +
+                ",\"stop_ratio\":" + json_number(stop[p].ratio) +
+                ",\"error_ratio\":" + json_number(error[p].ratio) + "}";
+    }
+    std::printf(
+        "  worst ratio: onset %s, stop %s, error %s; on worse than off in %d of %d "
+        "(piece, truth) pairs\n",
+        ratio_text(worst_onset).c_str(), ratio_text(worst_stop).c_str(),
+        ratio_text(worst_error).c_str(), cells_worse, cells);
+    json += "],\"worst\":{\"onset\":" + json_number(worst_onset) +
+            ",\"stop\":" + json_number(worst_stop) + ",\"error\":" + json_number(worst_error) +
+            "},\"worse_pairs\":" + std::to_string(cells_worse) +
+            ",\"pairs\":" + std::to_string(cells) + "}";
+    return json;
+}
+
+std::vector<Truth> lra_truths(const Declaration& declared, bool quick) {
+    std::vector<Truth> truths;
+    const std::vector<double> fs = quick ? std::vector<double>{0.95, 1.0, 1.05}
+                                         : std::vector<double>{0.95, 0.975, 1.0, 1.025, 1.05};
+    for (const double f : fs) {
+        for (const double q : {0.6, 1.0, 1.4}) {
+            if (f == 1.0 && q == 1.0) {
+                continue;  // the declaration itself
+            }
+            Declaration truth = declared;
+            truth.resonance_hz *= f;
+            truth.q *= q;
+            char label[48];
+            std::snprintf(label, sizeof label, "%gHz Q%g", truth.resonance_hz, truth.q);
+            truths.push_back({label, truth});
+        }
+    }
+    return truths;
+}
+
+std::vector<Truth> erm_truths(const Declaration& declared) {
+    std::vector<Truth> truths;
+    for (const double up : {0.7, 1.0, 1.3}) {
+        for (const double down : {0.7, 1.0, 1.3}) {
+            if (up == 1.0 && down == 1.0) {
+                continue;
+            }
+            Declaration truth = declared;
+            truth.spin_up_s *= up;
+            truth.spin_down_s *= down;
+            char label[48];
+            std::snprintf(label, sizeof label, "%g/%gms", truth.spin_up_s * 1000.0,
+                          truth.spin_down_s * 1000.0);
+            truths.push_back({label, truth});
+        }
+    }
+    return truths;
 }
 
 // ---- the felt latency through the real daemon ----------------------------------------------
@@ -333,12 +587,14 @@ class DaemonUnderTest {
 int main(int argc, char** argv) {
     CLI::App app("bench/feel: what people feel, compensation off and on (issue 22)");
     std::string clefs = VIBSCORE_BENCH_CLEFS;
-    bool quick = false, no_daemon = false;
+    bool quick = false, no_daemon = false, robustness_only = false;
     int rounds = 5;
     app.add_option("--clefs", clefs, "the shipped clefs and scores");
     app.add_option("--rounds", rounds, "Play calls per tacton and daemon for the felt latency");
     app.add_flag("--quick", quick, "one latency round, and a smaller sweep");
     app.add_flag("--no-daemon", no_daemon, "leave out the felt latency through the daemon");
+    app.add_flag("--robustness", robustness_only,
+                 "only the issue's actuators, the artefacts and the wrong declarations (issue 32)");
     CLI11_PARSE(app, argc, argv);
     if (quick) {
         rounds = 1;
@@ -388,6 +644,87 @@ int main(int argc, char** argv) {
             erm_off.scores[i].felt, erm_on.scores[i].felt, erm_on.scores[i].silences,
             lra_off.scores[i].envelope_error, lra_on.scores[i].envelope_error,
             lra_off.scores[i].felt, lra_on.scores[i].felt, lra_on.scores[i].silences);
+    }
+
+    // Artefacts with the declaration right (issue 32): rebound after a note's end, overshoot.
+    // The LRA planned as exact (issue 22) and with the part-to-part margins (issue 32).
+    const render::Uncertainty margins = render::kPartToPart;
+    const Totals lra_margins = run(all, lra, lra, true, margins);
+    print_row("LRA 175 Hz Q 15, on, margins 5 %/40 %", lra_margins);
+    std::printf(
+        "\nartefacts, declaration right: rebound = the strongest a note is after it has fallen "
+        "below 10 %%\n(as %% of its strength), overshoot = above its strength while it sounds "
+        "(%%); off -> on (LRA: -> on with margins)\n");
+    std::string artefact_json;
+    for (std::size_t i = 0; i < all.size(); ++i) {
+        std::printf(
+            "  %-36s ERM rebound %4.1f -> %4.1f overshoot %4.1f -> %4.1f   LRA rebound "
+            "%4.1f -> %4.1f -> %4.1f overshoot %4.1f -> %4.1f -> %4.1f\n",
+            all[i].name.c_str(), 100 * erm_off.scores[i].max_rebound,
+            100 * erm_on.scores[i].max_rebound, 100 * erm_off.scores[i].max_overshoot,
+            100 * erm_on.scores[i].max_overshoot, 100 * lra_off.scores[i].max_rebound,
+            100 * lra_on.scores[i].max_rebound, 100 * lra_margins.scores[i].max_rebound,
+            100 * lra_off.scores[i].max_overshoot, 100 * lra_on.scores[i].max_overshoot,
+            100 * lra_margins.scores[i].max_overshoot);
+    }
+    double exact_rebound = std::max(erm_on.rebound, lra_on.rebound);
+    double exact_overshoot = std::max(erm_on.overshoot, lra_on.overshoot);
+    double margin_rebound = std::max(erm_on.rebound, lra_margins.rebound);
+    double margin_overshoot = std::max(erm_on.overshoot, lra_margins.overshoot);
+    for (const auto& test : test_scores()) {
+        const ScoreFeel off = feel_test(test, false, {}), on = feel_test(test, true, {}),
+                        on_margins = feel_test(test, true, margins);
+        std::printf(
+            "  %-36s rebound %4.1f -> %4.1f -> %4.1f overshoot %4.1f -> %4.1f -> %4.1f   stop "
+            "%s -> %s -> %s\n",
+            test.name.c_str(), 100 * off.max_rebound, 100 * on.max_rebound,
+            100 * on_margins.max_rebound, 100 * off.max_overshoot, 100 * on.max_overshoot,
+            100 * on_margins.max_overshoot, ms_text(bench::median(off.stops_ms)).c_str(),
+            ms_text(bench::median(on.stops_ms)).c_str(),
+            ms_text(bench::median(on_margins.stops_ms)).c_str());
+        exact_rebound = std::max(exact_rebound, on.max_rebound);
+        exact_overshoot = std::max(exact_overshoot, on.max_overshoot);
+        margin_rebound = std::max(margin_rebound, on_margins.max_rebound);
+        margin_overshoot = std::max(margin_overshoot, on_margins.max_overshoot);
+        artefact_json += std::string(artefact_json.empty() ? "" : ",") + "{\"score\":\"" +
+                         bench::json_escape(test.name) +
+                         "\",\"rebound\":" + json_number(on.max_rebound) +
+                         ",\"overshoot\":" + json_number(on.max_overshoot) +
+                         ",\"rebound_margins\":" + json_number(on_margins.max_rebound) +
+                         ",\"overshoot_margins\":" + json_number(on_margins.max_overshoot) + "}";
+    }
+    const auto verdict = [](double rebound, double overshoot) {
+        return rebound <= 0.10 && overshoot <= 0.05 ? "met" : "MISSED";
+    };
+    std::printf(
+        "  all of these, compensation on: max rebound %.1f %%, max overshoot %.1f %%; with "
+        "margins %.1f %%, %.1f %% (bounds 10, 5): %s; with margins %s\n",
+        100 * exact_rebound, 100 * exact_overshoot, 100 * margin_rebound, 100 * margin_overshoot,
+        verdict(exact_rebound, exact_overshoot), verdict(margin_rebound, margin_overshoot));
+    artefact_json = "{\"rebound\":" + json_number(exact_rebound) +
+                    ",\"overshoot\":" + json_number(exact_overshoot) +
+                    ",\"rebound_margins\":" + json_number(margin_rebound) +
+                    ",\"overshoot_margins\":" + json_number(margin_overshoot) +
+                    ",\"lra_margins\":" + json_totals(lra_margins) + ",\"tests\":[" +
+                    artefact_json + "]}";
+
+    // Robustness to a wrong declaration (issue 32): the issue's actuators, built otherwise.
+    const std::string lra_grid =
+        "LRA declared 175 Hz Q 15, built with f0 x 0.95..1.05, Q x 0.6..1.4";
+    const std::string robust_lra_json =
+        robustness(all, lra_grid + ", planned as exact", lra, lra_truths(lra, quick), {});
+    const std::string robust_margins_json = robustness(all, lra_grid + ", planned with the margins",
+                                                       lra, lra_truths(lra, quick), margins);
+    const std::string robust_erm_json =
+        robustness(all, "ERM declared 40/80 ms, built with spin-up and spin-down x 0.7..1.3", erm,
+                   erm_truths(erm), {});
+    if (robustness_only) {
+        std::printf(
+            "\n{\"bench\":\"feel\",\"machine\":\"%s\",\"artefacts\":%s,"
+            "\"robustness\":[%s,%s,%s]}\n",
+            bench::json_escape(bench::cpu_model()).c_str(), artefact_json.c_str(),
+            robust_lra_json.c_str(), robust_margins_json.c_str(), robust_erm_json.c_str());
+        return 0;
     }
 
     // Other constants, each declared as it is.
@@ -502,10 +839,12 @@ int main(int argc, char** argv) {
     std::printf(
         "\n{\"bench\":\"feel\",\"machine\":\"%s\",\"erm\":{\"off\":%s,\"on\":%s},"
         "\"lra\":{\"off\":%s,\"on\":%s},\"targets_met\":{\"erm\":%s,\"lra\":%s},"
+        "\"artefacts\":%s,\"robustness\":[%s,%s,%s],"
         "\"sweep\":[%s],\"mismatch\":[%s],\"latency\":%s}\n",
         bench::json_escape(bench::cpu_model()).c_str(), json_totals(erm_off).c_str(),
         json_totals(erm_on).c_str(), json_totals(lra_off).c_str(), json_totals(lra_on).c_str(),
         met(erm_on, erm_targets) ? "true" : "false", met(lra_on, lra_targets) ? "true" : "false",
-        sweep_json.c_str(), mismatch_json.c_str(), latency_json.c_str());
+        artefact_json.c_str(), robust_lra_json.c_str(), robust_margins_json.c_str(),
+        robust_erm_json.c_str(), sweep_json.c_str(), mismatch_json.c_str(), latency_json.c_str());
     return 0;
 }

@@ -68,6 +68,12 @@ ScoreFeel measure(const std::string& name, const std::vector<NoteSpan>& notes,
         }
         feel.onsets_ms.push_back(onset);
         feel.reached += std::isfinite(onset) ? 1 : 0;
+        if (from < to && note.peak > 0.0 && produced[from] <= note.peak) {
+            const double highest =
+                *std::max_element(produced.begin() + static_cast<std::ptrdiff_t>(from),
+                                  produced.begin() + static_cast<std::ptrdiff_t>(to));
+            feel.max_overshoot = std::max(feel.max_overshoot, highest / note.peak - 1.0);
+        }
 
         if (note.tied_to_next) {
             continue;
@@ -75,13 +81,19 @@ ScoreFeel measure(const std::string& name, const std::vector<NoteSpan>& notes,
         const bool last = i + 1 == notes.size();
         const auto alone = last ? produced : produced_until(notes[i + 1].onset);
         double stop = INFINITY;
-        for (std::size_t k = to; k < std::min(size, alone.size()); ++k) {
+        const std::size_t alone_size = std::min(size, alone.size());
+        std::size_t stopped = alone_size;
+        for (std::size_t k = to; k < alone_size; ++k) {
             if (alone[k] < 0.1 * note.peak) {
                 stop = (static_cast<double>(k) / rate_hz - note.end) * 1000.0;
+                stopped = k;
                 break;
             }
         }
         feel.stops_ms.push_back(std::max(0.0, stop));
+        for (std::size_t k = stopped; k < alone_size && note.peak > 0.0; ++k) {
+            feel.max_rebound = std::max(feel.max_rebound, alone[k] / note.peak);
+        }
 
         if (last) {
             continue;

@@ -34,6 +34,13 @@ struct ScoreFeel {
     int silences = 0, felt = 0;
     // The integral of |produced - written| over that of written, the ringing after the end too.
     double envelope_error = 0.0;
+    // Artefacts (issue 32), as fractions of a note's written peak. Rebound: after a note followed
+    // by silence has fallen below 10 % of its peak, the most its strength rises again (the drives
+    // up to the next note's start only); 0 when it never rises. Overshoot: the most the strength
+    // goes above the peak while the note sounds, for notes that start below their peak (a tied
+    // note after a stronger one starts above it by the score's will).
+    double max_rebound = 0.0;
+    double max_overshoot = 0.0;
 };
 
 // `produced` is what the actuator makes of the score; `produced_until(t)` what it makes of the

@@ -219,7 +219,7 @@ class ActuatorDrives final : public Stage {
           planner_(*adaptation.actuator,
                    {adaptation.scale, adaptation.actuator->compensation,
                     adaptation.reverse && adaptation.actuator->brake == actuator::Brake::reverse,
-                    adaptation.min_drive_pulse_s},
+                    adaptation.min_drive_pulse_s, adaptation.uncertainty},
                    link.carry ? *link.carry : PlannerCarry{}) {}
 
     std::optional<Cue> next() override {

@@ -2,6 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "common/number_text.hpp"
 
 namespace vibscore::render {
 
@@ -13,6 +17,28 @@ using actuator::State;
 using Outcome = Physics::Reach::Outcome;
 
 constexpr int kBisections = 60;
+// An overdrive may take the declared actuator no more than this above the written strength, by
+// the model (the resonator itself goes a little further: within 5 % on bench/feel's plant) ...
+constexpr double kOvershoot = 0.03;
+// ... and a hundredth of rated strength more: the steps of a hairpin are that fine.
+constexpr double kOvershootFloor = 0.01;
+// A held note's beat may top its strength by this, by the model: none, as the resonator itself
+// beats a little higher than the model's envelope says.
+constexpr double kBeatOvershoot = 0.0;
+// (A thousandth of rated strength more: a hairpin's steps start each hold a hair off its phase.)
+constexpr double kBeatFloor = 0.001;
+// The other members may go this far above: a faster actuator than declared overshoots a little
+// under any overdrive that gets the declared one there in time; this keeps it to a little.
+constexpr double kMemberOvershoot = 0.30;
+// A brake may push no member back up, after its lowest point, by more than this of its strength
+// at the brake's start: past rest, a brake adds energy.
+constexpr double kPushBack = 0.30;
+// Where a brake has stopped an actuator: below this of its strength at the brake's start.
+constexpr double kStopped = 0.10;
+// Points per brake, and per held time constant, at which the members are looked at.
+constexpr int kLooks = 32;
+// Brake frequencies tried on either side of the resonance.
+constexpr int kFrequencies = 12;
 
 // Within this of the written strength counts as there: no overdrive or brake for a rounding.
 double tolerance(double strength) {
@@ -27,7 +53,130 @@ DrivePlanner::DrivePlanner(const actuator::Declaration& declaration, const Plann
       options_(options),
       state_(carry.state),
       drive_(carry.drive),
-      last_frequency_hz_(carry.ringing_frequency_hz) {}
+      last_frequency_hz_(carry.ringing_frequency_hz) {
+    const Uncertainty& u = options.uncertainty;
+    if (!(u.resonance >= 0.0 && u.resonance <= 0.5) || !(u.q >= 0.0 && u.q <= 0.9)) {
+        throw std::invalid_argument("drive planner: uncertainty of resonance " +
+                                    number_text(u.resonance) + " (0..0.5) or of q " +
+                                    number_text(u.q) + " (0..0.9) out of range");
+    }
+    if (!physics_.is_lra() || !options.compensation || (u.resonance == 0.0 && u.q == 0.0)) {
+        return;
+    }
+    for (const double f : {1.0 - u.resonance, 1.0, 1.0 + u.resonance}) {
+        for (const double q : {1.0 - u.q, 1.0, 1.0 + u.q}) {
+            if ((f == 1.0 && q == 1.0) || (u.resonance == 0.0 && f != 1.0) ||
+                (u.q == 0.0 && q != 1.0)) {
+                continue;
+            }
+            actuator::Declaration member = declaration;
+            member.resonance_hz *= f;
+            member.q *= q;
+            members_.emplace_back(member);
+        }
+    }
+    member_states_ = carry.members.size() == members_.size()
+                         ? carry.members
+                         : std::vector<State>(members_.size(), carry.state);
+}
+
+std::vector<std::pair<const Physics*, State>> DrivePlanner::ensemble() const {
+    std::vector<std::pair<const Physics*, State>> all{{&physics_, state_}};
+    for (std::size_t i = 0; i < members_.size(); ++i) {
+        all.emplace_back(&members_[i], member_states_[i]);
+    }
+    return all;
+}
+
+double DrivePlanner::overdrive_budget(const Drive& push, const Drive& hold, double needed,
+                                      double span, double strength) const {
+    const auto all = ensemble();
+    // Whether some member, overdriven for `t` and then held, goes above its limit while the
+    // segment lasts (looked at over three of its time constants at most: by then it has settled).
+    const auto overshoots = [&](double t) {
+        for (const auto& [physics, state] : all) {
+            const double allowance = physics == &physics_ ? kOvershoot : kMemberOvershoot;
+            const double limit =
+                (1.0 + allowance) * std::max(strength, physics->steady_strength(hold)) +
+                kOvershootFloor;
+            const State pushed = physics->advance(state, push, t);
+            if (Physics::strength(pushed) > limit) {
+                return true;
+            }
+            const double window = std::min(span - t, 3.0 * physics->time_constant_s(hold));
+            for (int k = 1; k <= 3 * kLooks && window > 0.0; ++k) {
+                const double after = window * k / (3.0 * kLooks);
+                if (Physics::strength(physics->advance(pushed, hold, after)) > limit) {
+                    return true;
+                }
+            }
+        }
+        return false;
+    };
+    if (!overshoots(needed)) {
+        return needed;
+    }
+    double lo = 0.0, hi = needed;
+    for (int i = 0; i < kBisections / 2; ++i) {
+        const double mid = 0.5 * (lo + hi);
+        (overshoots(mid) ? hi : lo) = mid;
+    }
+    return lo;
+}
+
+std::optional<DrivePlanner::Step> DrivePlanner::robust_brake(double frequency_hz) const {
+    const auto all = ensemble();
+    const double level = kStopped * Physics::strength(state_);
+    const double tau = physics_.time_constant_s({});
+    const auto& d = physics_.declaration();
+    // Where each member starts, and how long coasting takes it below `level` (a brake is
+    // measured against that: the declared actuator's).
+    std::vector<double> start, coast;
+    for (const auto& [physics, state] : all) {
+        start.push_back(Physics::strength(state));
+        coast.push_back(start.back() > level
+                            ? physics->time_constant_s({}) * std::log(start.back() / level)
+                            : 0.0);
+    }
+    // The frequencies: around the resonance as far as the members' bands reach, and the note's.
+    std::vector<double> frequencies{frequency_hz > 0.0 ? frequency_hz : d.resonance_hz};
+    const double reach = (options_.uncertainty.resonance + 1.0 / d.q) * d.resonance_hz;
+    for (int k = -kFrequencies; k <= kFrequencies; ++k) {
+        frequencies.push_back(d.resonance_hz + reach * k / kFrequencies);
+    }
+    double best = 1.0;  // coasting
+    std::optional<Step> chosen;
+    std::vector<double> lowest(all.size());
+    for (const double f : frequencies) {
+        lowest = start;
+        for (int k = 1; k <= kLooks; ++k) {
+            const double t = 1.5 * tau * k / kLooks;
+            double nominal = 0.0;
+            bool pushed_back = false;
+            for (std::size_t i = 0; i < all.size(); ++i) {
+                const auto& [physics, state] = all[i];
+                const double left = Physics::strength(physics->advance(state, {-1.0, f}, t));
+                lowest[i] = std::min(lowest[i], left);
+                pushed_back = pushed_back || left > lowest[i] + kPushBack * start[i];
+                if (i == 0) {
+                    // The declared actuator's stop, against its coasting.
+                    const double stop =
+                        left > level ? t + physics->time_constant_s({}) * std::log(left / level)
+                                     : t;
+                    nominal = coast[i] > 1e-4 ? stop / coast[i] : (left > level ? 2.0 : 1.0);
+                }
+            }
+            if (pushed_back) {
+                break;  // longer at this frequency only pushes further
+            }
+            if (nominal < best - 1e-9) {
+                best = nominal;
+                chosen = Step{t, {-1.0, f}};
+            }
+        }
+    }
+    return chosen;
+}
 
 State DrivePlanner::follow(const std::vector<Step>& steps, double t) const {
     State state = state_;
@@ -57,6 +206,18 @@ std::vector<DrivePlanner::Step> DrivePlanner::approach(double at, double until, 
     if (std::abs(now - strength) <= tolerance(strength)) {
         return {{at, hold}};
     }
+    if (strength == 0.0 && options_.reverse && !members_.empty()) {
+        // To rest, whatever the actuator within the uncertainty: the brake (frequency, length)
+        // under which the worst of them stops soonest against coasting; none if none helps.
+        const auto brake = robust_brake(frequency_hz);
+        if (!brake || brake->at < options_.min_pulse_s) {
+            return {{at, hold}};
+        }
+        if (at + brake->at >= until) {
+            return {{at, brake->drive}};
+        }
+        return {{at, brake->drive}, {at + brake->at, hold}};
+    }
     if (strength == 0.0 && options_.reverse && physics_.is_lra() && frequency_hz > 0.0) {
         // To rest off resonance: anti-phase at the frequency that leaves nothing ringing.
         const auto& d = physics_.declaration();
@@ -81,7 +242,17 @@ std::vector<DrivePlanner::Step> DrivePlanner::approach(double at, double until, 
             return {{at, push}};
         }
     }
-    const auto reach = physics_.time_to(state_, push, strength, horizon);
+    auto reach = physics_.time_to(state_, push, strength, horizon);
+    if (!members_.empty() && push.amplitude != 0.0 && std::isfinite(until)) {
+        // Budgeted for every member: an overdrive no faster actuator overshoots with. Ending
+        // early is then a reach of its own.
+        const double needed = reach.outcome == Outcome::horizon ? until - at : reach.after_s;
+        const double budget =
+            now < strength ? overdrive_budget(push, hold, needed, until - at, strength) : needed;
+        if (budget < needed) {
+            reach = {Outcome::reached, budget};
+        }
+    }
     if (reach.outcome == Outcome::horizon) {
         return {{at, push}};  // out of reach within the segment: push all the way
     }
@@ -116,6 +287,43 @@ double DrivePlanner::early_end(const std::vector<Step>& steps, double until,
     return hi;
 }
 
+void DrivePlanner::tame(std::vector<Step>& steps, double until, double strength) const {
+    Step& last = steps.back();
+    if (members_.empty() || strength <= 0.0 || last.drive.amplitude <= 0.0 ||
+        !std::isfinite(until) || until <= last.at) {
+        return;
+    }
+    // Off resonance the resonator beats towards its steady strength (at |f - f0|): the drive
+    // that settles it at the written strength, or full scale where that is out of reach, can
+    // carry it above on the way. Where the model says it would, the drive is lowered until the
+    // beat's top is the written strength.
+    const State from = follow(steps, last.at);
+    const double window = std::min(until - last.at, 3.0 * physics_.time_constant_s(last.drive));
+    const double limit = (1.0 + kBeatOvershoot) * strength + kBeatFloor;
+    if (Physics::strength(from) > limit) {
+        return;  // falling to the hold: what rises above is not the hold's doing
+    }
+    const auto overshoots = [&](double amplitude) {
+        const Drive drive{amplitude, last.drive.frequency_hz};
+        for (int k = 1; k <= 3 * kLooks; ++k) {
+            if (Physics::strength(physics_.advance(from, drive, window * k / (3.0 * kLooks))) >
+                limit) {
+                return true;
+            }
+        }
+        return false;
+    };
+    if (!overshoots(last.drive.amplitude)) {
+        return;
+    }
+    double lo = 0.0, hi = last.drive.amplitude;
+    for (int i = 0; i < kBisections / 2; ++i) {
+        const double mid = 0.5 * (lo + hi);
+        (overshoots(mid) ? hi : lo) = mid;
+    }
+    last.drive.amplitude = lo;
+}
+
 void DrivePlanner::emit(double at, const Drive& drive, std::vector<Cue>& out) {
     if (drive == drive_) {
         return;
@@ -141,6 +349,7 @@ void DrivePlanner::segment(double at, double until, double strength, double freq
         // Silence brakes the vibration that is ringing, at its own frequency.
         const double frequency = written > 0.0 ? frequency_hz : last_frequency_hz_;
         steps = approach(at, until, written, frequency);
+        tame(steps, until, written);
         if (silence_follows && !options_.reverse && written > 0.0 && std::isfinite(until)) {
             const double cut = early_end(steps, until, written);
             if (cut < until) {
@@ -152,7 +361,18 @@ void DrivePlanner::segment(double at, double until, double strength, double freq
     for (const Step& step : steps) {
         emit(step.at, step.drive, out);
     }
-    state_ = follow(steps, std::isfinite(until) ? until : steps.back().at);
+    const double end = std::isfinite(until) ? until : steps.back().at;
+    for (std::size_t m = 0; m < members_.size(); ++m) {
+        for (std::size_t i = 0; i < steps.size(); ++i) {
+            const double from = steps[i].at;
+            const double to = i + 1 < steps.size() ? std::min(steps[i + 1].at, end) : end;
+            if (to > from) {
+                member_states_[m] =
+                    members_[m].advance(member_states_[m], steps[i].drive, to - from);
+            }
+        }
+    }
+    state_ = follow(steps, end);
 }
 
 }  // namespace vibscore::render

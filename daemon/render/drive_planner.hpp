@@ -1,11 +1,33 @@
 #pragma once
 
+#include <optional>
+#include <utility>
 #include <vector>
 
 #include "daemon/actuator/physics.hpp"
 #include "daemon/render/cue_stream.hpp"
 
 namespace vibscore::render {
+
+// How far the actual LRA may be from its declaration (issue 32: part to part, mounting,
+// temperature), as fractions of the declared resonance and Q. With a margin the planner budgets
+// an LRA's plans for every actuator within it, not only the declared one (its "members": the
+// declared one and those at the margins' corners and edges, simulated alongside it): no
+// overdrive takes the declared one more than 3 % or another more than 30 % above the written
+// strength; a brake to rest is the one that stops the declared one soonest without pushing any
+// member back up, after its lowest point, by more than 30 % of where it started (past rest a
+// brake adds energy: a shorter, weaker brake as the margins grow); and a held note whose beat
+// (off resonance) would rise above its strength is driven lower. Both zero (the default): the
+// declaration is taken as exact, issue 22's plans to the microsecond. An ERM's plans are not
+// budgeted: its exact brake and overdrive stay better than none over +-30 % in both time
+// constants (bench/feel, docs/performance.md), as coasting takes it twice as long as braking.
+struct Uncertainty {
+    double resonance = 0.0;  // 0..0.5
+    double q = 0.0;          // 0..0.9
+    bool operator==(const Uncertainty&) const = default;
+};
+// What issue 32 asks to be safe against: an LRA's resonance within 5 % and its Q within 40 %.
+inline constexpr Uncertainty kPartToPart{0.05, 0.4};
 
 struct PlannerOptions {
     // The written strength is multiplied by this (the playback's intensity, and the master
@@ -19,6 +41,7 @@ struct PlannerOptions {
     // An overdrive or brake shorter than this is left out: no backend resolves it, and what it
     // would have added is that small.
     double min_pulse_s = 0.0005;
+    Uncertainty uncertainty{};
 };
 
 // Where the actuator is, and the drive in force, when one pass of a playback hands over to the
@@ -27,6 +50,9 @@ struct PlannerCarry {
     actuator::State state;
     actuator::Drive drive;            // as sent
     double ringing_frequency_hz = 0;  // of the last drive that vibrated, as sent
+    // The same for each actuator within the uncertainty (DrivePlanner's members); empty: as
+    // `state`.
+    std::vector<actuator::State> members;
 };
 
 // Turns a written strength envelope into the drives that make a declared actuator follow it as
@@ -58,7 +84,7 @@ class DrivePlanner {
                  bool silence_follows, std::vector<Cue>& out);
 
     // The actuator's state and the drive in force at the end of the last segment.
-    PlannerCarry carry() const { return {state_, drive_, last_frequency_hz_}; }
+    PlannerCarry carry() const { return {state_, drive_, last_frequency_hz_, member_states_}; }
     const actuator::Physics& physics() const { return physics_; }
 
   private:
@@ -75,12 +101,30 @@ class DrivePlanner {
     // brings the strength to half of `strength` at `until`; `until` itself when it need not.
     double early_end(const std::vector<Step>& steps, double until, double strength) const;
     void emit(double at, const actuator::Drive& drive, std::vector<Cue>& out);
+    // Lowers the last of `steps` (the hold, or a push all the way) where an LRA would beat above
+    // `strength` under it before `until` (by the model; with a margin only).
+    void tame(std::vector<Step>& steps, double until, double strength) const;
+
+    // The actuators within the uncertainty, the declared one first, and where each one is.
+    std::vector<std::pair<const actuator::Physics*, actuator::State>> ensemble() const;
+    // How long an overdrive `push` of `needed` seconds (within `span`) may last so that, once held,
+    // the declared actuator goes no more than 3 % above `strength` (or above what `hold` settles
+    // it at, if more) and no other member more than 30 %.
+    double overdrive_budget(const actuator::Drive& push, const actuator::Drive& hold, double needed,
+                            double span, double strength) const;
+    // The brake to rest when the actuator is uncertain: the full anti-phase drive (frequency, and
+    // its length in `at`) under which the declared actuator stops soonest, as long as no member is
+    // pushed back up, after its lowest point, by more than 30 % of its strength at the brake's
+    // start (past rest a brake adds energy); nothing when coasting does as well.
+    std::optional<Step> robust_brake(double frequency_hz) const;
 
     actuator::Physics physics_;
     PlannerOptions options_;
     actuator::State state_;
     actuator::Drive drive_;
     double last_frequency_hz_ = 0.0;  // of the last drive that vibrated: braking continues it
+    std::vector<actuator::Physics> members_;  // an LRA's neighbours within the uncertainty
+    std::vector<actuator::State> member_states_;
 };
 
 }  // namespace vibscore::render
