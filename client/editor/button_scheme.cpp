@@ -43,23 +43,21 @@ std::string replace_hint(const TakenName& taken) {
     return "\u2191\u2193choose Sel:ok (old one is lost)";
 }
 
-// What Select and Back do while browsing, naming the symbol Select would change.
+// What Select and Back do while browsing, naming the symbol Select would change in words
+// ("dotted 8th, 5, string 3"): the longest wording that fits the narrowest screen.
 std::string browse_hint(const EditorModel& model) {
     const Symbol* symbol = symbol_at(model.score(), model.cursor());
     if (symbol == nullptr) {
         return "S:new note B:play,go to,menu";
     }
-    std::string named;
-    if (const auto* note = std::get_if<Note>(symbol)) {
-        named = std::to_string(note->number) + " " + length_name(note->length) + " s" +
-                std::to_string(note->string);
-    } else if (const auto* rest = std::get_if<Rest>(symbol)) {
-        named = length_name(rest->length) + " rest";
-    } else {
-        named = "blank";
+    const std::string named = symbol_words(*symbol);
+    for (const std::string& hint :
+         {"S:change " + named + " B:play,go to,menu", "S:change " + named + " B:more"}) {
+        if (columns_of(hint) <= kNarrowest) {
+            return hint;
+        }
     }
-    const std::string hint = "S:change " + named + " B:play,go to,menu";
-    return columns_of(hint) <= kNarrowest ? hint : "S:change " + named + " B:more";
+    return "S:" + named + " B:more";
 }
 
 }  // namespace

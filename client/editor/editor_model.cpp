@@ -655,14 +655,14 @@ bool EditorModel::set_length(Length length) {
     length_ = length;
     const auto marked = block();
     if (!marked) {
-        return done("length " + length_name(length));
+        return done("length " + length_words(length));
     }
     const auto symbols = targets();
     Score& score = edit();
     for (const auto at : symbols) {
         set_length_of(*symbol_at(score, at), length);
     }
-    return done("block length " + length_name(length));
+    return done("block length " + length_words(length));
 }
 
 bool EditorModel::set_length_value(int value) {

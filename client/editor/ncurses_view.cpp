@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "client/editor/staff_layout.hpp"
+#include "client/editor/staff_options.hpp"
 #include "client/editor/status_line.hpp"
 
 namespace vibscore::editor {
@@ -144,17 +145,7 @@ void Screen::draw(const EditorModel& model, const ButtonScheme& scheme, const Vi
     getmaxyx(stdscr, rows, cols);
     werase(stdscr);
 
-    LayoutOptions options;
-    options.end_positions = true;
-    options.cursor = model.cursor();
-    options.cursor_string = model.string();
-    options.block = model.block();
-    options.playing = status.playing;
-    if (scheme.mode() == ButtonScheme::Mode::entry) {
-        options.entering = model.cursor();
-        // Changing runs on from symbol to symbol: the staff says which kind is open.
-        options.cursor_label = model.changing() ? "change" : "new";
-    }
+    const LayoutOptions options = staff_options(model, scheme, status.playing);
     const auto layout = layout_staff(model.score(), options);
 
     // 40x12: eleven staff rows and a status line; taller screens get a title and a hint line.

@@ -357,6 +357,14 @@ std::string length_name(Length length) {
     return length == Length::thirty_second ? "32nd" : std::string(to_string(length));
 }
 
+std::string length_words(Length length) {
+    std::string name = length_name(length);
+    if (name.ends_with("_dot")) {
+        return "dotted " + name.substr(0, name.size() - 4);
+    }
+    return name;
+}
+
 Length shorter(Length length) {
     if (const int i = index_in(kPlain, length); i >= 0) {
         return kPlain[std::max(i - 1, 0)];

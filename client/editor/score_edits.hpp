@@ -85,6 +85,9 @@ Position paste_bars(Score& score, Position at, const Clip& clip);
 Length shorter(Length length);
 // A length as the editor's screens name it: the document spelling, but "32nd" for "32th".
 std::string length_name(Length length);
+// A length as a person says it: "dotted 8th", "quarter", "32nd" (never the document's
+// "8th_dot").
+std::string length_words(Length length);
 Length longer(Length length);
 // `steps` lengths longer (> 0) or shorter (< 0), stopping at whole and 32nd.
 Length stepped(Length length, int steps);

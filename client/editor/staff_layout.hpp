@@ -78,8 +78,9 @@ struct LayoutOptions {
     int cursor_string = 1;
     std::optional<Block> block;
     std::optional<Position> playing;
-    // The symbol still being entered: drawn, but not counted in its bar's beats until it is
-    // entered (a newcomer read a full bar while the last note was only proposed).
+    // The proposal still being entered: drawn, but not counted in its bar's beats until it is
+    // entered (a newcomer read a full bar while the last note was only proposed). Not set for
+    // a symbol being changed, which the bar holds (staff_options.hpp).
     std::optional<Position> entering;
     // Written after the cursor's ▲: what the open symbol is ("new", "change").
     std::string cursor_label;

@@ -5,6 +5,7 @@
 
 #include "client/editor/button_scheme.hpp"
 #include "client/editor/editor_model.hpp"
+#include "client/editor/score_edits.hpp"
 
 namespace vibscore::editor {
 
@@ -61,6 +62,17 @@ std::string shouted(std::string text, bool shout) {
 
 }  // namespace
 
+std::string symbol_words(const Symbol& symbol) {
+    if (const auto* note = std::get_if<Note>(&symbol)) {
+        return length_words(note->length) + ", " + std::to_string(note->number) + ", string " +
+               std::to_string(note->string);
+    }
+    if (const auto* rest = std::get_if<Rest>(&symbol)) {
+        return length_words(rest->length) + " rest";
+    }
+    return "blank";
+}
+
 std::string symbol_entered(const EditorModel& model) {
     const Symbol* symbol = symbol_at(model.score(), model.cursor());
     if (symbol == nullptr) {
@@ -69,11 +81,11 @@ std::string symbol_entered(const EditorModel& model) {
     const auto unlike = model.unlike_last_entered();
     if (const auto* note = std::get_if<Note>(symbol)) {
         return std::to_string(note->number) + " " +
-               shouted(length_name(note->length), unlike.length) + " " +
+               shouted(length_words(note->length), unlike.length) + " " +
                shouted("s" + std::to_string(note->string), unlike.string);
     }
     if (const auto* rest = std::get_if<Rest>(symbol)) {
-        return "rest " + shouted(length_name(rest->length), unlike.length);
+        return "rest " + shouted(length_words(rest->length), unlike.length);
     }
     return "";
 }

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "client/editor/position.hpp"
+#include "score/score.hpp"
 
 namespace vibscore::editor {
 
@@ -36,6 +37,10 @@ StatusParts status_of(const EditorModel& model, const ButtonScheme& scheme, cons
 // The keyboard's number keys in one line for a full keyboard's screen (80 columns): the keys a
 // newcomer cannot guess from the buttons' hints.
 std::string keyboard_hint();
+
+// A symbol as a person names it: "dotted 8th, 5, string 3", "8th rest" (never the document's
+// tokens, "8th_dot", "s3").
+std::string symbol_words(const Symbol& symbol);
 
 // The note or rest under the cursor while entering ("5 quarter s3", "rest 8th"), or "".
 std::string symbol_entered(const EditorModel& model);

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include "client/editor/staff_layout.hpp"
+#include "client/editor/staff_options.hpp"
 #include "client/staff_text.hpp"
 #include "tests/support/editor_support.hpp"
 
@@ -281,6 +282,32 @@ TEST(StaffText, BeatLabels) {
     EXPECT_EQ(editor::beat_label(3.5), "3.5");
     EXPECT_EQ(editor::beat_label(0.375), "0.375");
     EXPECT_EQ(editor::beat_label(0.0), "0");
+}
+
+// The bar box of the bar being entered, "[clef beats]".
+std::string bar_box(const editor::Editor& editor) {
+    const auto options = editor::staff_options(editor.model, editor.scheme, std::nullopt);
+    const auto clefs = row_text(layout_staff(editor.model.score(), options), editor::row_clef);
+    return clefs.substr(clefs.find('['), clefs.find(']') - clefs.find('[') + 1);
+}
+
+TEST(StaffLayout, ABarBoxCountsTheSymbolBeingChangedButNotAProposal) {
+    // Changing the first of three quarters, the box read 2 beats: the note was still there.
+    auto editor = testing::fresh_editor();
+    testing::type(editor, "555");
+    const std::string clef = editor.model.score().bars[0].clef;
+    ASSERT_EQ(bar_box(editor), "[" + clef + " 3]");
+    testing::press(editor, {testing::buttons::L, testing::buttons::L, testing::buttons::L,
+                            testing::buttons::S});
+    ASSERT_TRUE(editor.model.changing());
+    EXPECT_EQ(bar_box(editor), "[" + clef + " 3]");
+    // A proposal at the end of the bar is not the bar's until it is entered.
+    auto proposing = testing::fresh_editor();
+    testing::type(proposing, "555");
+    testing::press(proposing, {testing::buttons::S});
+    ASSERT_EQ(proposing.scheme.mode(), editor::ButtonScheme::Mode::entry);
+    ASSERT_FALSE(proposing.model.changing());
+    EXPECT_EQ(bar_box(proposing), "[" + clef + " 3]");
 }
 
 }  // namespace

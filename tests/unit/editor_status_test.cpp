@@ -170,21 +170,45 @@ TEST(StatusLine, AfterAMenuActionBackShowsTheChoicesNotTheOldNews) {
     EXPECT_TRUE(browsing.starts_with("*S:new note")) << browsing;
 }
 
-TEST(StatusLine, BrowsingNamesTheSymbolSelectWouldChange) {
+TEST(StatusLine, BrowsingNamesTheSymbolSelectWouldChangeInWords) {
+    // A newcomer read "S:change 5 8th_dot s3": the score's XML tokens, not words.
     auto editor = fresh_editor();
     testing::type(editor, "5");
     testing::type(editor, "&0");  // an 8th rest
     press(editor, {L});
     EXPECT_EQ(editor.scheme.hint(editor.model), "S:change 8th rest B:play,go to,menu");
     press(editor, {L});
-    EXPECT_EQ(editor.scheme.hint(editor.model), "S:change 5 quarter s3 B:play,go to,menu");
-    // Where the whole name does not fit 40 columns, Back's choices are named shorter.
+    EXPECT_EQ(editor.scheme.hint(editor.model), "S:change quarter, 5, string 3 B:more");
+    editor.model.set_length(Length::eighth_dot);
+    testing::type(editor, "5");
+    press(editor, {L});
+    EXPECT_EQ(editor.scheme.hint(editor.model), "S:change dotted 8th, 5, string 3 B:more");
+    // The longest name (a dotted quarter) leaves out "change" rather than Back.
     editor.model.set_length(Length::quarter_dot);
     testing::type(editor, "9");
     press(editor, {L});
     const auto hint = editor.scheme.hint(editor.model);
-    EXPECT_EQ(hint, "S:change 9 quarter_dot s3 B:more");
+    EXPECT_EQ(hint, "S:dotted quarter, 9, string 3 B:more");
     EXPECT_LE(columns_of(hint), kSmallWidth);
+}
+
+TEST(StatusLine, SymbolsAreNamedInWordsNeverInTheDocumentsTokens) {
+    EXPECT_EQ(editor::symbol_words(Note{Length::eighth_dot, 5, 3}), "dotted 8th, 5, string 3");
+    EXPECT_EQ(editor::symbol_words(Rest{Length::half_dot}), "dotted half rest");
+    EXPECT_EQ(editor::symbol_words(Rest{Length::thirty_second}), "32nd rest");
+    for (int longer = 0; longer < 10; ++longer) {
+        const auto length = editor::stepped(Length::thirty_second, longer);
+        EXPECT_EQ(editor::length_words(length).find('_'), std::string::npos);
+        EXPECT_EQ(editor::length_words(editor::stepped(Length::sixteenth_dot, longer)).find('_'),
+                  std::string::npos);
+    }
+    // While entering, the length in words too (the string stays "s3", as the hint's "↑s4").
+    auto editor = fresh_editor();
+    editor.model.set_length(Length::eighth_dot);
+    press(editor, {S});
+    const auto entered = editor::symbol_entered(editor.model);
+    EXPECT_EQ(entered.find('_'), std::string::npos) << entered;
+    EXPECT_NE(entered.find("dotted 8th"), std::string::npos) << entered;
 }
 
 TEST(StatusLine, TheNumberStepNamesEveryNumberOnTheScreen) {
