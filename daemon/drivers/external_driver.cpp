@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cstring>
+#include <mutex>
 #include <stdexcept>
 #include <utility>
 
@@ -118,12 +119,21 @@ bool valid_name(const char* name) {
 
 }  // namespace
 
-DriverModule::DriverModule(Loaded, std::filesystem::path path, void* handle,
-                           const vibscore_driver* entry)
-    : path_(std::move(path)), handle_(handle), entry_(entry) {}
+DriverModule::DriverModule(Loaded, TrustedFile file, void* handle, const vibscore_driver* entry)
+    : file_(std::move(file)), handle_(handle), entry_(entry) {}
 
 DriverModule::~DriverModule() {
     ::dlclose(handle_);
+    // A module the loader keeps (RTLD_NODELETE, a C++ module's unique symbols) keeps its name:
+    // its descriptor is kept open for good, so the number is never another file's.
+    const std::string name = descriptor_path(*file_.fd);
+    if (void* kept = ::dlopen(name.c_str(), RTLD_NOW | RTLD_LOCAL | RTLD_NOLOAD)) {
+        ::dlclose(kept);
+        static std::mutex mutex;
+        static std::vector<std::shared_ptr<const UniqueFd>> kept_open;
+        const std::lock_guard lock(mutex);
+        kept_open.push_back(file_.fd);
+    }
 }
 
 std::string entry_problem(void* handle, const vibscore_driver*& entry) {
@@ -152,18 +162,36 @@ std::string entry_problem(void* handle, const vibscore_driver*& entry) {
     return {};
 }
 
-std::shared_ptr<DriverModule> DriverModule::load(const std::filesystem::path& path) {
+std::shared_ptr<DriverModule> DriverModule::load(const TrustedFile& module, uid_t daemon_uid) {
+    const std::string shown = "driver module " + module.path.string() + ": ";
+    if (auto changed = changed_since_checked(module, daemon_uid)) {
+        throw std::runtime_error(shown + *changed);
+    }
     // RTLD_LOCAL keeps one module's symbols from resolving another's.
-    void* handle = ::dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+    const std::string name = descriptor_path(*module.fd);
+    void* handle = ::dlopen(name.c_str(), RTLD_NOW | RTLD_LOCAL);
     if (handle == nullptr) {
-        throw std::runtime_error("driver module " + path.string() + ": " + ::dlerror());
+        std::string why = ::dlerror();  // names /proc/self/fd/N, which means nothing in a log
+        if (why.starts_with(name)) {
+            why.replace(0, name.size(), module.path.string());
+        }
+        throw std::runtime_error(shown + why);
     }
     const vibscore_driver* entry = nullptr;
     if (const std::string wrong = entry_problem(handle, entry); !wrong.empty()) {
         ::dlclose(handle);
-        throw std::runtime_error("driver module " + path.string() + ": " + wrong);
+        throw std::runtime_error(shown + wrong);
     }
-    return std::make_shared<DriverModule>(Loaded{}, path, handle, entry);
+    return std::make_shared<DriverModule>(Loaded{}, module, handle, entry);
+}
+
+std::shared_ptr<DriverModule> DriverModule::load(const std::filesystem::path& path,
+                                                 uid_t daemon_uid) {
+    auto opened = open_trusted_module(path, daemon_uid);
+    if (!opened.file) {
+        throw std::runtime_error("driver module " + path.string() + ": " + opened.refusal);
+    }
+    return load(*opened.file, daemon_uid);
 }
 
 std::unique_ptr<Actuator> open_external_actuator(

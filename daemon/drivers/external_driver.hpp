@@ -1,12 +1,15 @@
 #pragma once
 
+#include <unistd.h>
 #include <filesystem>
+
 #include <map>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "daemon/drivers/actuator.hpp"
+#include "daemon/drivers/module_trust.hpp"
 
 struct vibscore_driver;
 
@@ -15,25 +18,32 @@ namespace vibscore::drivers {
 // One loaded driver module (include/vibscore/driver.h); unloaded when the last user goes.
 class DriverModule {
   public:
-    // Loads `path` and checks its entry point and ABI version. Throws std::runtime_error
-    // naming the file and what is wrong with it.
-    static std::shared_ptr<DriverModule> load(const std::filesystem::path& path);
+    // Loads the file open at `module.fd` (/proc/self/fd/N: never what its name names now) when
+    // it is still the file that was checked (changed_since_checked), and checks its entry point
+    // and ABI version. Throws std::runtime_error naming the file and what is wrong with it.
+    static std::shared_ptr<DriverModule> load(const TrustedFile& module,
+                                              uid_t daemon_uid = ::geteuid());
+    // Opens `path` as the scan does (open_trusted_module), then loads that.
+    static std::shared_ptr<DriverModule> load(const std::filesystem::path& path,
+                                              uid_t daemon_uid = ::geteuid());
 
     struct Loaded {  // only load() can make one: a module is always a checked one
       private:
         friend class DriverModule;
         Loaded() = default;
     };
-    DriverModule(Loaded, std::filesystem::path path, void* handle, const vibscore_driver* entry);
+    DriverModule(Loaded, TrustedFile file, void* handle, const vibscore_driver* entry);
     ~DriverModule();
     DriverModule(const DriverModule&) = delete;
     DriverModule& operator=(const DriverModule&) = delete;
 
     const vibscore_driver& entry() const { return *entry_; }
-    const std::filesystem::path& path() const { return path_; }
+    const std::filesystem::path& path() const { return file_.path; }
 
   private:
-    std::filesystem::path path_;
+    // Open while the loader may know the module by "/proc/self/fd/N", so that no other file
+    // gets that number and, by that name, this module's handle.
+    TrustedFile file_;
     void* handle_;
     const vibscore_driver* entry_;
 };

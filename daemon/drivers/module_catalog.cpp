@@ -1,5 +1,9 @@
 #include "daemon/drivers/module_catalog.hpp"
 
+#include <dirent.h>
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <utility>
 
@@ -12,6 +16,29 @@ namespace vibscore::drivers {
 
 namespace {
 
+// The "*.so" names of the directory open at `fd`, in order.
+std::vector<std::string> module_names(int fd) {
+    std::vector<std::string> names;
+    const int listed = ::openat(fd, ".", O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    DIR* directory = listed < 0 ? nullptr : ::fdopendir(listed);
+    if (directory == nullptr) {
+        if (listed >= 0) {
+            ::close(listed);
+        }
+        return names;
+    }
+    while (const dirent* entry = ::readdir(directory)) {
+        const std::string name = entry->d_name;
+        if (name.size() > 3 && name.ends_with(".so")) {
+            names.push_back(name);
+        }
+    }
+    ::closedir(directory);
+    std::sort(names.begin(), names.end());
+    return names;
+}
+
+// The "*.so" of a directory that is not used, to name each in the log.
 std::vector<std::filesystem::path> module_files(const std::filesystem::path& directory) {
     std::vector<std::filesystem::path> files;
     std::error_code error;
@@ -43,24 +70,30 @@ std::shared_ptr<const ModuleCatalog> ModuleCatalog::scan(const std::filesystem::
         log::warning("driver module " + path.string() + " is not loaded: " + reason);
         catalog->refused_.push_back({path, reason});
     };
-    if (auto reason = untrusted_directory(directory, daemon_uid)) {
+    catalog->daemon_uid_ = daemon_uid;
+    const auto opened = open_trusted_directory(directory, daemon_uid);
+    if (!opened.file) {
         for (const auto& file : module_files(directory)) {
-            refuse(file, "its directory is not safe: " + *reason);
+            refuse(file, "its directory is not safe: " + opened.refusal);
         }
         if (catalog->refused_.empty()) {
-            log::warning("drivers directory " + directory.string() + " is not used: " + *reason);
+            log::warning("drivers directory " + directory.string() +
+                         " is not used: " + opened.refusal);
         }
         return catalog;
     }
-    std::vector<std::filesystem::path> trusted;
-    for (const auto& file : module_files(directory)) {
-        if (auto reason = untrusted_module(file, daemon_uid)) {
-            refuse(file, *reason);
+    std::vector<TrustedFile> trusted;
+    for (const auto& name : module_names(opened.file->fd->get())) {
+        auto module = open_trusted_module(opened.file->fd->get(), directory, name, daemon_uid);
+        if (module.file) {
+            trusted.push_back(std::move(*module.file));
         } else {
-            trusted.push_back(file);
+            refuse(directory / name, module.refusal);
         }
     }
-    for (const auto& probed : probe_modules(trusted)) {
+    const auto probes = probe_modules(trusted);
+    for (std::size_t index = 0; index < probes.size(); ++index) {
+        const auto& probed = probes[index];
         if (!probed.loaded()) {
             refuse(probed.path, probed.error);
             continue;
@@ -73,14 +106,10 @@ std::shared_ptr<const ModuleCatalog> ModuleCatalog::scan(const std::filesystem::
             refuse(probed.path, "\"" + probed.name + "\" is the name of " + taken->path.string());
             continue;
         }
-        ModuleEntry entry{probed.name, probed.description, probed.path};
-        struct stat status {};
-        if (::stat(probed.path.c_str(), &status) == 0) {
-            entry.device = status.st_dev;
-            entry.inode = status.st_ino;
-            entry.modified = status.st_mtim;
-        }
-        catalog->modules_.push_back(std::move(entry));
+        const auto& file = trusted[index];
+        catalog->modules_.push_back({probed.name, probed.description, probed.path,
+                                     file.status.st_dev, file.status.st_ino, file.status.st_mtim,
+                                     file});
     }
     std::sort(catalog->modules_.begin(), catalog->modules_.end(),
               [](const auto& a, const auto& b) { return a.name < b.name; });
@@ -118,7 +147,7 @@ std::unique_ptr<Actuator> ModuleCatalog::open(
         const std::lock_guard lock(mutex_);
         auto& loaded = loaded_[name];
         if (!loaded) {
-            loaded = DriverModule::load(entry->path);
+            loaded = DriverModule::load(entry->file, daemon_uid_);
         }
         module = loaded;
     }

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "daemon/drivers/actuator.hpp"
+#include "daemon/drivers/module_trust.hpp"
 
 namespace vibscore::drivers {
 
@@ -27,6 +28,9 @@ struct ModuleEntry {
     dev_t device = 0;
     ino_t inode = 0;
     timespec modified{};
+    // Open from the scan to the load: the daemon loads this descriptor, the file that was
+    // checked and tried, whatever is renamed into its place since (module_trust.hpp).
+    TrustedFile file;
 };
 
 // A file or directory that is not loaded, and why ("... is writable by group or others (mode
@@ -43,11 +47,12 @@ class ModuleCatalog {
   public:
     ModuleCatalog() = default;  // no modules
 
-    // Finds the "*.so" of `directory`. Refuses, with a warning in the log that names the file
-    // and why: a directory or file that someone other than root or `daemon_uid` owns or may
-    // write (module_trust.hpp), a module that does not load within kModuleProbeTimeout in its
-    // trial or crashes or fails the entry checks, one named as a `reserved` (built-in) driver,
-    // and a second module of a name already taken. A missing directory has no modules.
+    // Finds the "*.so" of `directory`, each opened once (module_trust.hpp). Refuses, with a
+    // warning in the log that names the file and why: a directory or file that someone other
+    // than root or `daemon_uid` owns or may write, a link that leads out of `directory`, a module
+    // that does not load within kModuleProbeTimeout in its trial or crashes or fails the entry
+    // checks, one named as a `reserved` (built-in) driver, and a second module of a name already
+    // taken. A missing directory has no modules.
     static std::shared_ptr<const ModuleCatalog> scan(const std::filesystem::path& directory,
                                                      const std::vector<std::string>& reserved,
                                                      uid_t daemon_uid = ::geteuid());
@@ -67,12 +72,13 @@ class ModuleCatalog {
     // Opens driver `name` with its settings: its module is loaded into the daemon the first
     // time (then kept while this catalog or an actuator of it lives). nullptr when no module
     // here has that name. Throws DeviceError with the module's message when its open() fails,
-    // std::runtime_error when it no longer loads.
+    // std::runtime_error when it no longer loads or its file changed since the scan.
     std::unique_ptr<Actuator> open(const std::string& name,
                                    const std::map<std::string, std::string>& settings) const;
 
   private:
     std::filesystem::path directory_;
+    uid_t daemon_uid_ = 0;
     std::vector<ModuleEntry> modules_;
     std::vector<RefusedModule> refused_;
     mutable std::mutex mutex_;

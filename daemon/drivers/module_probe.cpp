@@ -15,6 +15,7 @@
 #include "common/monotonic_clock.hpp"
 #include "common/unique_fd.hpp"
 #include "daemon/drivers/external_driver.hpp"
+#include "daemon/drivers/module_confinement.hpp"
 #include "include/vibscore/driver.h"
 
 namespace vibscore::drivers {
@@ -40,12 +41,22 @@ void write_all(int fd, std::string_view text) {
 // In the child: never returns. After fork() in a process that may have other threads, it only
 // loads the module and writes to the pipe: glibc makes malloc and the dynamic loader usable in
 // the child of a fork, and the module's own constructors are what is being tried out.
-[[noreturn]] void probe_in_child(const std::filesystem::path& path, int report) {
-    ::prctl(PR_SET_PDEATHSIG, SIGKILL);  // a daemon that dies takes its probes along
+[[noreturn]] void probe_in_child(const TrustedFile& module, pid_t daemon, int report) {
     std::string message;
-    void* handle = ::dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+    if (const std::string unconfined = confine_trial_child(daemon, report); !unconfined.empty()) {
+        write_all(report,
+                  std::string("error") + '\0' + "cannot confine its trial: " + unconfined + '\0');
+        ::_exit(0);
+    }
+    const std::string name = descriptor_path(*module.fd);
+    void* handle = ::dlopen(name.c_str(), RTLD_NOW | RTLD_LOCAL);
     if (handle == nullptr) {
-        message = std::string("error") + '\0' + ::dlerror() + '\0';
+        // The loader names what it opened: /proc/self/fd/N, which means nothing in a log.
+        std::string why = ::dlerror();
+        if (why.starts_with(name)) {
+            why.replace(0, name.size(), module.path.string());
+        }
+        message = std::string("error") + '\0' + why + '\0';
     } else {
         const vibscore_driver* entry = nullptr;
         const std::string wrong = entry_problem(handle, entry);
@@ -130,6 +141,10 @@ void conclude(Child& child, ProbedModule& probed, std::chrono::milliseconds time
     } else if (!child.done) {
         probed.error = "did not finish loading within " + std::to_string(timeout.count()) +
                        " ms (a constructor that hangs?)";
+    } else if (WIFSIGNALED(status) && WTERMSIG(status) == SIGSYS) {
+        probed.error =
+            "was stopped by SIGSYS while loading: it made a system call a module's "
+            "trial may not make, or hid the report of one";
     } else if (WIFSIGNALED(status)) {
         probed.error = "crashed while loading (" + signal_name(WTERMSIG(status)) + ")";
     } else {
@@ -140,14 +155,15 @@ void conclude(Child& child, ProbedModule& probed, std::chrono::milliseconds time
 
 }  // namespace
 
-std::vector<ProbedModule> probe_modules(const std::vector<std::filesystem::path>& paths,
+std::vector<ProbedModule> probe_modules(const std::vector<TrustedFile>& modules,
                                         std::chrono::milliseconds timeout) {
-    std::vector<ProbedModule> probed(paths.size());
-    std::vector<Child> children(paths.size());
+    const pid_t daemon = ::getpid();
+    std::vector<ProbedModule> probed(modules.size());
+    std::vector<Child> children(modules.size());
     const std::uint64_t deadline_us =
         monotonic_now_us() + static_cast<std::uint64_t>(timeout.count()) * 1000;
-    for (std::size_t i = 0; i < paths.size(); ++i) {
-        probed[i].path = paths[i];
+    for (std::size_t i = 0; i < modules.size(); ++i) {
+        probed[i].path = modules[i].path;
         int pipe[2];
         if (::pipe2(pipe, O_CLOEXEC) != 0) {
             probed[i].error = std::string("cannot make a pipe to try it: ") + std::strerror(errno);
@@ -163,13 +179,13 @@ std::vector<ProbedModule> probe_modules(const std::vector<std::filesystem::path>
             continue;
         }
         if (pid == 0) {
-            probe_in_child(paths[i], write_end.get());
+            probe_in_child(modules[i], daemon, write_end.get());
         }
         children[i].pid = pid;
         children[i].report = std::move(read_end);
     }
     read_reports(children, deadline_us);
-    for (std::size_t i = 0; i < paths.size(); ++i) {
+    for (std::size_t i = 0; i < modules.size(); ++i) {
         if (children[i].pid > 0) {
             conclude(children[i], probed[i], timeout);
         }

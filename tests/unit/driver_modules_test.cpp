@@ -5,6 +5,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <fcntl.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -32,6 +33,19 @@ using testing::TempDir;
 constexpr uid_t kNobody = 65534;
 
 using testing::ModulesDir;
+
+// The modules at `paths`, opened as the scan opens them.
+std::vector<TrustedFile> opened(const std::vector<std::filesystem::path>& paths) {
+    std::vector<TrustedFile> files;
+    for (const auto& path : paths) {
+        auto file = open_trusted_module(path, ::geteuid());
+        EXPECT_TRUE(file.file) << file.refusal;
+        if (file.file) {
+            files.push_back(std::move(*file.file));
+        }
+    }
+    return files;
+}
 
 bool running_as_root() {
     return ::geteuid() == 0;
@@ -112,23 +126,81 @@ TEST(ModuleTrust, ADirectoryAboveThatOthersMayWriteIsRefusedUnlessSticky) {
     std::filesystem::permissions(dir.path(), std::filesystem::perms(0755));
 }
 
-TEST(ModuleTrust, ASymlinkIsJudgedByTheFileAndDirectoryItLeadsTo) {
+TEST(ModuleTrust, AGroupWritableDirectoryOnTheWayIsRefusedAndOneThatIsNotIsTrusted) {
+    ModulesDir dir;
+    const auto inner = dir.path() / "drivers";
+    std::filesystem::create_directory(inner);
+    std::filesystem::permissions(inner, std::filesystem::perms(0755));
+    std::filesystem::permissions(dir.path(), std::filesystem::perms(0775));
+    EXPECT_EQ(untrusted_directory(inner, ::geteuid()),
+              dir.path().string() + " is writable by group or others (mode 0775)");
+    std::filesystem::permissions(dir.path(), std::filesystem::perms(0755));
+    EXPECT_EQ(untrusted_directory(inner, ::geteuid()), std::nullopt);
+}
+
+TEST(ModuleTrust, ASymlinkThatLeavesTheDriversDirectoryIsRefusedNamingTheLink) {
     ModulesDir dir;
     ModulesDir elsewhere;
     const auto real = elsewhere.add("counted");
-    std::filesystem::create_symlink(real, dir.path() / "link.so");
-    EXPECT_EQ(untrusted_module(dir.path() / "link.so", ::geteuid()), std::nullopt);
-    std::filesystem::permissions(elsewhere.path(), std::filesystem::perms(0777));
-    EXPECT_EQ(untrusted_module(dir.path() / "link.so", ::geteuid()),
-              elsewhere.path().string() + " is writable by group or others (mode 0777)");
-    std::filesystem::permissions(elsewhere.path(), std::filesystem::perms(0755));
+    std::filesystem::create_symlink(real, dir.path() / "good.so");
+    EXPECT_EQ(untrusted_module(dir.path() / "good.so", ::geteuid()),
+              (dir.path() / "good.so").string() + " -> " + real.string() +
+                  " leads out of the drivers directory " + dir.path().string() +
+                  " (a link there may only name a file below it)")
+        << "even to a file that would be trusted: what it names can be re-pointed";
+    std::filesystem::create_symlink("../" + elsewhere.path().filename().string() + "/counted.so",
+                                    dir.path() / "up.so");
+    EXPECT_THAT(untrusted_module(dir.path() / "up.so", ::geteuid()).value_or(""),
+                HasSubstr("up.so -> ../"));
+}
+
+TEST(ModuleTrust, ASymlinkToAFileBelowTheDriversDirectoryIsFollowedOnce) {
+    ModulesDir dir;
+    dir.add("counted", "counted.so.2");
+    std::filesystem::create_symlink("counted.so.2", dir.path() / "counted.so");
+    EXPECT_EQ(untrusted_module(dir.path() / "counted.so", ::geteuid()), std::nullopt);
+    std::filesystem::create_directory(dir.path() / "v2");
+    std::filesystem::permissions(dir.path() / "v2", std::filesystem::perms(0755));
+    std::filesystem::copy_file(dir.path() / "counted.so.2", dir.path() / "v2" / "counted.so");
+    std::filesystem::create_symlink("v2/counted.so", dir.path() / "sub.so");
+    EXPECT_EQ(untrusted_module(dir.path() / "sub.so", ::geteuid()), std::nullopt);
+    // The last mode allowed and the first refused of a directory below.
+    std::filesystem::permissions(dir.path() / "v2", std::filesystem::perms(0775));
+    EXPECT_EQ(untrusted_module(dir.path() / "sub.so", ::geteuid()),
+              (dir.path() / "sub.so").string() + " -> v2/counted.so: " +
+                  (dir.path() / "v2").string() + " is writable by group or others (mode 0775)");
+    std::filesystem::permissions(dir.path() / "v2", std::filesystem::perms(0755));
+    // A link to a link is not followed: the second could lead anywhere.
+    std::filesystem::create_symlink("counted.so", dir.path() / "twice.so");
+    EXPECT_EQ(untrusted_module(dir.path() / "twice.so", ::geteuid()),
+              (dir.path() / "twice.so").string() +
+                  " -> counted.so: " + (dir.path() / "counted.so").string() +
+                  " is a symbolic link too (one link is followed, and only to a file)");
+}
+
+TEST(ModuleTrust, TheOpenFileIsTheOneCheckedAndAChangeSinceIsRefused) {
+    ModulesDir dir;
+    const auto module = dir.add("counted");
+    auto opened = open_trusted_module(module, ::geteuid());
+    ASSERT_TRUE(opened.file) << opened.refusal;
+    EXPECT_EQ(changed_since_checked(*opened.file, ::geteuid()), std::nullopt);
+    std::filesystem::permissions(module, std::filesystem::perms(0775));
+    EXPECT_EQ(changed_since_checked(*opened.file, ::geteuid()),
+              module.string() + " is writable by group or others (mode 0775)")
+        << "someone else may have written it since";
+    std::filesystem::permissions(module, std::filesystem::perms(0755));
+    const timespec times[2] = {{0, UTIME_OMIT}, {12345, 0}};
+    ASSERT_EQ(::utimensat(AT_FDCWD, module.c_str(), times, 0), 0);
+    EXPECT_EQ(
+        changed_since_checked(*opened.file, ::geteuid()),
+        module.string() + " changed since it was checked and tried (a reload tries it again)");
 }
 
 // ---- what a module does while loading
 
 TEST(ModuleProbe, AModuleThatLoadsTellsItsNameAndDescription) {
     ModulesDir dir;
-    const auto probed = probe_modules({dir.add("counted"), dir.add_example()});
+    const auto probed = probe_modules(opened({dir.add("counted"), dir.add_example()}));
     ASSERT_EQ(probed.size(), 2u);
     EXPECT_TRUE(probed[0].loaded()) << probed[0].error;
     EXPECT_EQ(probed[0].name, "counted");
@@ -139,8 +211,8 @@ TEST(ModuleProbe, AModuleThatLoadsTellsItsNameAndDescription) {
 TEST(ModuleProbe, AConstructorThatHangsIsGivenUpOnAtTheTimeLimitWithoutHoldingUpTheOthers) {
     ModulesDir dir;
     const auto started = monotonic_now_us();
-    const auto probed =
-        probe_modules({dir.add("hang"), dir.add("counted")}, std::chrono::milliseconds(300));
+    const auto probed = probe_modules(opened({dir.add("hang"), dir.add("counted")}),
+                                      std::chrono::milliseconds(300));
     const auto took_us = monotonic_now_us() - started;
     EXPECT_GE(took_us, 300'000u);
     EXPECT_LT(took_us, 2'000'000u);
@@ -153,7 +225,7 @@ TEST(ModuleProbe, AConstructorThatCrashesOrExitsIsToldApart) {
         GTEST_SKIP() << "AddressSanitizer's handler decides how a crashing module's process ends";
     }
     ModulesDir dir;
-    const auto probed = probe_modules({dir.add("crash-at-load"), dir.add("exit-at-load")});
+    const auto probed = probe_modules(opened({dir.add("crash-at-load"), dir.add("exit-at-load")}));
     EXPECT_EQ(probed[0].error,
               std::string("crashed while loading (") + testing::kCrashSignalName + ")");
     EXPECT_EQ(probed[1].error,
@@ -163,11 +235,29 @@ TEST(ModuleProbe, AConstructorThatCrashesOrExitsIsToldApart) {
 TEST(ModuleProbe, AFileThatIsNotADriverIsRefusedWithTheLoadersReason) {
     TempDir dir;
     const auto garbage = dir.write("garbage.so", "not an ELF file");
-    const auto probed = probe_modules({garbage, "/lib/x86_64-linux-gnu/libc.so.6"});
-    EXPECT_THAT(probed[0].error, HasSubstr(garbage.string()));
+    const auto probed = probe_modules(opened({garbage}));
+    ASSERT_EQ(probed.size(), 1u);
+    EXPECT_THAT(probed[0].error, HasSubstr(garbage.string()))
+        << "the file's name, not the /proc/self/fd/N the loader opened";
     if (std::filesystem::exists("/lib/x86_64-linux-gnu/libc.so.6")) {
-        EXPECT_EQ(probed[1].error, "has no vibscore_driver_entry symbol");
+        EXPECT_EQ(probe_modules(opened({"/lib/x86_64-linux-gnu/libc.so.6"}))[0].error,
+                  "has no vibscore_driver_entry symbol");
     }
+}
+
+TEST(ModuleProbe, AConstructorThatKillsItsParentOrForksIsRefusedAndThisProcessLivesOn) {
+    ModulesDir dir;
+    const auto probed =
+        probe_modules(opened({dir.add("kill-parent"), dir.add("fork"), dir.add("threads")}));
+    ASSERT_EQ(probed.size(), 3u);
+    EXPECT_EQ(probed[0].error,
+              "tried to signal another process (kill) while loading; a module's constructors may "
+              "not start processes, signal or trace other processes");
+    EXPECT_EQ(probed[1].error,
+              "tried to start a process (clone, fork) while loading; a module's constructors may "
+              "not start processes, signal or trace other processes");
+    EXPECT_TRUE(probed[2].loaded()) << "threads are allowed: " << probed[2].error;
+    EXPECT_EQ(::kill(::getpid(), 0), 0) << "the parent the module tried to kill: this test";
 }
 
 // ---- the catalog
@@ -195,6 +285,65 @@ TEST(ModuleCatalog, ScanningRefusesEachUnsafeOrMisbehavingModuleWithALogLineNami
                                writable.string() + " is writable by group or others (mode 0777)"));
     EXPECT_EQ(catalog->refused().size(), 3u);
     EXPECT_THAT(refusal_of(*catalog, hang), HasSubstr("did not finish loading"));
+}
+
+TEST(ModuleCatalog, AModuleThatKillsItsParentOrForksIsRefusedWithALogLineAndTheOthersLoad) {
+    ModulesDir dir;
+    dir.add_example();
+    const auto killer = dir.add("kill-parent");
+    const auto forker = dir.add("fork");
+    ::testing::internal::CaptureStderr();
+    const auto catalog = scan_driver_modules(dir.path());
+    const std::string log = ::testing::internal::GetCapturedStderr();
+    EXPECT_EQ(names_of(*catalog), std::vector<std::string>{"trace"});
+    EXPECT_THAT(log, HasSubstr("driver module " + killer.string() +
+                               " is not loaded: tried to signal another process (kill)"));
+    EXPECT_THAT(log, HasSubstr("driver module " + forker.string() +
+                               " is not loaded: tried to start a process (clone, fork)"));
+}
+
+TEST(ModuleCatalog, ALinkOutOfTheDirectoryIsRefusedAndALinkInsideIsListed) {
+    ModulesDir dir;
+    ModulesDir elsewhere;
+    const auto outside = elsewhere.add_example();
+    std::filesystem::create_symlink(outside, dir.path() / "good.so");
+    dir.add("counted", "counted.so.2");
+    std::filesystem::create_symlink("counted.so.2", dir.path() / "counted.so");
+    const auto catalog = scan_driver_modules(dir.path());
+    EXPECT_EQ(names_of(*catalog), std::vector<std::string>{"counted"});
+    EXPECT_EQ(refusal_of(*catalog, dir.path() / "good.so"),
+              (dir.path() / "good.so").string() + " -> " + outside.string() +
+                  " leads out of the drivers directory " + dir.path().string() +
+                  " (a link there may only name a file below it)");
+}
+
+TEST(ModuleCatalog, AFileRenamedIntoPlaceAfterTheScanIsNotWhatLoads) {
+    ModulesDir dir;
+    const auto module = dir.add("counted", "mod.so");
+    const auto catalog = scan_driver_modules(dir.path());
+    ASSERT_EQ(names_of(*catalog), std::vector<std::string>{"counted"});
+    // Another module, put in the scanned one's place by rename (as an attacker with write
+    // access to the directory, or a careless upgrade, would).
+    const auto other = dir.path() / "staged";
+    std::filesystem::copy_file(
+        std::filesystem::path(testing::required_env("VIBSCORE_EXAMPLE_DRIVERS")) / "trace.so",
+        other);
+    std::filesystem::rename(other, module);
+    const auto actuator = catalog->open("counted", {});
+    ASSERT_NE(actuator, nullptr);
+    EXPECT_EQ(actuator->driver_name(), "counted") << "the scanned file, not the one renamed in";
+}
+
+TEST(ModuleCatalog, AModuleChangedInPlaceAfterTheScanLoadsNothing) {
+    ModulesDir dir;
+    const auto module = dir.add("counted");
+    const auto catalog = scan_driver_modules(dir.path());
+    ASSERT_EQ(names_of(*catalog), std::vector<std::string>{"counted"});
+    const timespec times[2] = {{0, UTIME_OMIT}, {12345, 0}};
+    ASSERT_EQ(::utimensat(AT_FDCWD, module.c_str(), times, 0), 0);
+    EXPECT_THAT([&] { catalog->open("counted", {}); },
+                ::testing::ThrowsMessage<std::runtime_error>(
+                    HasSubstr(module.string() + " changed since it was checked and tried")));
 }
 
 TEST(ModuleCatalog, AModuleOwnedByAnotherUserIsRefused) {

@@ -8,13 +8,22 @@
  *   HANG_IN_APPLY   an apply() that never returns (a driver stuck in a kernel call)
  *   COUNT_LOADS     well behaved; each load appends the loading process's id to the file
  *                   $VIBSCORE_TEST_LOAD_LOG, so a test can count the loads and tell where
+ *   KILL_PARENT_AT_LOAD  a constructor that calls kill(getppid(), SIGKILL): the process that
+ *                   loaded it is a child of the daemon only while it is tried
+ *   FORK_AT_LOAD    a constructor that forks, and the copy lives on (pause())
+ *   THREAD_AT_LOAD  well behaved, but its constructor starts and joins a thread, which the
+ *                   trial must still allow
  * DRIVER_NAME is the driver's name.
  */
 #include <vibscore/driver.h>
 
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <unistd.h>
+#if defined(THREAD_AT_LOAD)
+#include <pthread.h>
+#endif
 
 #ifndef DRIVER_NAME
 #error "DRIVER_NAME must be defined"
@@ -24,8 +33,27 @@
  * a trap, or drop). */
 static int* volatile nowhere = NULL;
 
+#if defined(THREAD_AT_LOAD)
+static void* in_thread(void* argument) {
+    return argument;
+}
+#endif
+
 __attribute__((constructor)) static void at_load(void) {
-#if defined(HANG_AT_LOAD)
+#if defined(KILL_PARENT_AT_LOAD)
+    kill(getppid(), SIGKILL);
+#elif defined(FORK_AT_LOAD)
+    if (fork() == 0) {
+        for (;;) {
+            pause();
+        }
+    }
+#elif defined(THREAD_AT_LOAD)
+    pthread_t thread;
+    if (pthread_create(&thread, NULL, in_thread, NULL) != 0 || pthread_join(thread, NULL) != 0) {
+        abort();
+    }
+#elif defined(HANG_AT_LOAD)
     for (;;) {
         pause();
     }
