@@ -242,6 +242,27 @@ GridPlacement place_on_grid(std::vector<SoundEvent> events, double total, const 
         // A hairpin goes on only through notes tied into this one: after a gap, a rise that
         // glides in pitch is the glide's own, whatever the note before did.
         const Dynamics before = i > 0 && tied[i - 1] ? previous : Dynamics::none;
+        // On one pitch, a straight ramp between two sounding levels is no hairpin: a crescendo
+        // would rise from silence, a decrescendo fall to it. Into the next note at the level it
+        // reaches, it is a glide (portamento); a fall that the next note goes on with (however
+        // little) is a decrescendo on into it; otherwise it is a glide that reaches its level a
+        // 32nd early.
+        const bool next_falls = tied[i] && !changes(to, events[i + 1].strength_start) &&
+                                events[i + 1].strength_end < to - 1e-9;
+        const bool rise_between =
+            to > from && changes(from, to) && changes(from, 0.0) && before != Dynamics::crescendo;
+        const bool fall_between = to < from && changes(from, to) && changes(to, 0.0) && !next_falls;
+        if (!glides_pitch && !glides_strength && (rise_between || fall_between) &&
+            note.length >= 2) {
+            const auto tie_out = tied[i] ? GridNote::Tie::legato : GridNote::Tie::none;
+            auto shaped = notes_for_envelope({{note.start, from}, {note.start + note.length, to}},
+                                             note.string, clef, false, tie_out);
+            placement.shaped.push_back(
+                {event.onset, shaped.pieces, shaped.worst_level_error, shaped.early_ramps});
+            previous = shaped.notes.empty() ? Dynamics::none : shaped.notes.back().dynamics;
+            placement.notes.insert(placement.notes.end(), shaped.notes.begin(), shaped.notes.end());
+            continue;
+        }
         double own = from;
         if (!changes(from, to)) {
             note.dynamics = Dynamics::none;
@@ -250,12 +271,13 @@ GridPlacement place_on_grid(std::vector<SoundEvent> events, double total, const 
             // one from a sounding strength that glides in pitch into the next note is part of
             // that glide. On one pitch a ramp is a hairpin: it sounds the same, and reads as
             // the score most likely wrote it.
-            const bool crescendo =
-                !glides_pitch || !changes(from, 0.0) || before == Dynamics::crescendo;
+            const bool crescendo = (!glides_pitch && !rise_between) || !changes(from, 0.0) ||
+                                   before == Dynamics::crescendo;
             note.dynamics = crescendo ? Dynamics::crescendo : Dynamics::none;
             own = crescendo ? to : from;
         } else {
-            note.dynamics = glides_pitch && changes(to, 0.0) && before != Dynamics::decrescendo
+            note.dynamics = (glides_pitch && changes(to, 0.0) && before != Dynamics::decrescendo) ||
+                                    (!glides_pitch && fall_between)
                                 ? Dynamics::none
                                 : Dynamics::decrescendo;
         }

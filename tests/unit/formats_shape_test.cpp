@@ -8,6 +8,7 @@
 #include <functional>
 
 #include "client/formats/ahap.hpp"
+#include "client/formats/android.hpp"
 #include "client/formats/score_builder.hpp"
 #include "client/formats/sound_events.hpp"
 #include "daemon/render/performance.hpp"
@@ -176,6 +177,35 @@ TEST(AhapShape, AStraightCurveStaysOneNoteWithAHairpinAndSaysNothing) {
     ASSERT_EQ(imported.score.bars[0].symbols.size(), 1u);
     EXPECT_EQ(std::get<Note>(imported.score.bars[0].symbols[0]).dynamics, Dynamics::crescendo);
     EXPECT_TRUE(imported.warnings.empty());
+}
+
+// Android's envelope: ramps 0.2 -> 1.0 -> 0.3 between sounding levels, after a 1 ms attack and
+// before a 1 ms release, are no hairpins (a crescendo rises from silence, a decrescendo falls
+// to it): they come back as glides that start and end at those levels.
+TEST(AndroidShape, RampsBetweenSoundingLevelsPlayFromAndToThoseLevels) {
+    const std::string text = R"(<vibration-effect>
+  <waveform-envelope-effect initialFrequencyHz="155">
+    <control-point amplitude="0.2" frequencyHz="155" durationMs="1"/>
+    <control-point amplitude="1.0" frequencyHz="155" durationMs="250"/>
+    <control-point amplitude="0.3" frequencyHz="155" durationMs="250"/>
+    <control-point amplitude="0.0" frequencyHz="155" durationMs="1"/>
+  </waveform-envelope-effect>
+</vibration-effect>)";
+    const auto imported = formats::read_android_xml(text, "ramps.xml", lra_phone());
+    // Whole milliseconds choose a grid of 1 ms (a tempo of 8 ms), where the last part of the
+    // glide up, 3 ms long, already has the top number (0.976 of full is nearest 1.0): a 32nd or
+    // the 5 ms of a 32nd at a tempo a person would write, whichever is longer.
+    const double thirty_second = std::max(imported.clefs.front().clef.tempo / 8, 0.005);
+    const auto envelope = rendered(imported);
+    // The curve the file asks for, from the end of its attack to the start of its release.
+    const std::vector<std::pair<double, double>> curve{{0.0, 0.2}, {0.251, 1.0}, {0.501, 0.3}};
+    EXPECT_NEAR(envelope.peak_time(), 0.251, thirty_second);
+    EXPECT_NEAR(envelope.peak(), 1.0, kLevelTolerance);
+    for (double t = 0.005; t < 0.501 - thirty_second; t += 0.005) {
+        if (std::abs(t - 0.251) > thirty_second) {
+            EXPECT_NEAR(envelope.at(t), curve_at(curve, t), kLevelTolerance) << "at " << t << " s";
+        }
+    }
 }
 
 // An export of a score ending in a rest lasts as long as the score: Core Haptics counts a
