@@ -101,6 +101,7 @@ class EventTable {
     // quiet, Haptic.Vibrate patterns end too.
     bool set_profile(Profile profile);
     const FeedbackSettings& settings() const { return settings_; }
+    const Theme& theme() const { return theme_; }
     void set_max_haptic_strength(double strength);
     void set_allow_important(std::vector<std::string> app_ids);
 

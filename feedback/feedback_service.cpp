@@ -1,6 +1,8 @@
 #include "feedback/feedback_service.hpp"
 
 #include <algorithm>
+#include <exception>
+#include <memory>
 #include <stdexcept>
 
 #include "common/monotonic_clock.hpp"
@@ -16,6 +18,8 @@ namespace {
 constexpr const char* kObjectPath = "/org/sigxcpu/Feedback";
 constexpr const char* kInvalidArgs = "org.freedesktop.DBus.Error.InvalidArgs";
 constexpr const char* kFailed = "org.freedesktop.DBus.Error.Failed";
+constexpr const char* kLimitExceeded = "org.vibscore.Feedback1.Error.LimitExceeded";
+constexpr const char* kBusy = "org.vibscore.Feedback1.Error.Busy";
 
 sdbus::Error invalid_args(const std::string& message) {
     return dbus::bus_error(kInvalidArgs, message);
@@ -77,7 +81,16 @@ FeedbackService::FeedbackService(sdbus::IConnection& session_bus, sdbus::IConnec
             log::warning(std::string(error.what()) + ": changes to " + user_scores_->string() +
                          " are not seen until a restart");
         }
+        // What a store killed half-way left (SIGKILL, a crash): no one else writes them.
+        try {
+            for (const auto& stale : remove_stale_temporaries_of(*user_scores_)) {
+                log::info("removed " + stale.string() + ", left by a store that was interrupted");
+            }
+        } catch (const std::exception& error) {
+            log::warning(error.what());
+        }
         load_user_scores();
+        writer_ = std::make_unique<UserScoresWriter>(loop, *user_scores_);
     }
     registerAdaptor();
 }
@@ -100,8 +113,17 @@ void FeedbackService::load_user_scores() {
             emitEventScoresChanged();
         }
     } catch (const std::exception& error) {
-        log::warning(std::string(error.what()) + " (the scores read before stay)");
+        if (user_scores_read_) {
+            log::warning(std::string(error.what()) + " (the scores read before stay)");
+        } else {
+            // At start nothing was read before: say it so that it is not taken for "none".
+            log::error(std::string(error.what()) +
+                       ": none of your own scores for events are used until this file is "
+                       "mended, and it is never written over (AssignScore refuses)");
+        }
+        return;
     }
+    user_scores_read_ = true;
 }
 
 std::vector<sdbus::Struct<std::string, std::string, std::string, bool>>
@@ -113,27 +135,70 @@ FeedbackService::EventScores() {
     return list;
 }
 
-void FeedbackService::AssignScore(const std::string& event, const std::string& score) {
+void FeedbackService::check_assignment(const std::string& event, const std::string& score) const {
     try {
         check_event_and_score(event, score);
     } catch (const std::invalid_argument& error) {
         throw invalid_args(error.what());
     }
-    if (!user_scores_) {
-        throw dbus::bus_error(kFailed,
-                              "vibscore-feedback has no config directory (neither "
-                              "XDG_CONFIG_HOME nor HOME is set)");
+    // Giving back takes any name the file holds, so that a name read past can be taken out.
+    if (!score.empty() && !table_.theme().events().contains(event) && !is_event_name(event)) {
+        throw invalid_args("event " + quoted_text(event) + " is not in the theme \"" +
+                           table_.theme().name + "\" and is not an event name (" +
+                           std::string(kEventNameRule) + ")");
     }
+}
+
+void FeedbackService::AssignScore(sdbus::Result<>&& result, std::string event, std::string score) {
     try {
-        store_user_score(*user_scores_, event, score);
-    } catch (const std::exception& error) {
-        throw dbus::bus_error(
-            kFailed, "cannot store the score for " + quoted_text(event) + ": " + error.what());
+        check_assignment(event, score);
+    } catch (const sdbus::Error& error) {
+        result.returnError(error);
+        return;
+    }
+    if (!writer_) {
+        result.returnError(dbus::bus_error(kFailed,
+                                           "vibscore-feedback has no config directory (neither "
+                                           "XDG_CONFIG_HOME nor HOME is set)"));
+        return;
+    }
+    // std::function copies what it holds; a reply can be sent once only.
+    auto reply = std::make_shared<sdbus::Result<>>(std::move(result));
+    const std::string caller = sender();
+    const bool queued = writer_->submit(
+        event, score, [this, reply, event, score, caller](std::exception_ptr error) {
+            assigned(*reply, event, score, caller, error);
+        });
+    if (!queued) {
+        reply->returnError(dbus::bus_error(
+            kBusy, std::to_string(UserScoresWriter::kMaxWaiting) +
+                       " choices wait to be stored already: try again when they are"));
+    }
+}
+
+void FeedbackService::assigned(sdbus::Result<>& result, const std::string& event,
+                               const std::string& score, const std::string& caller,
+                               std::exception_ptr error) {
+    if (error) {
+        try {
+            std::rethrow_exception(error);
+        } catch (const std::invalid_argument& refused) {
+            result.returnError(invalid_args(refused.what()));
+        } catch (const AssignmentLimit& limit) {
+            result.returnError(dbus::bus_error(kLimitExceeded, limit.what()));
+        } catch (const std::exception& failed) {
+            result.returnError(dbus::bus_error(
+                kFailed,
+                "cannot store the score for " + quoted_text(event) + ": " + failed.what()));
+        }
+        return;
     }
     log::info("event " + quoted_text(event) + " plays " +
               (score.empty() ? std::string("the theme's score") : quoted_text(score)) +
-              " from now on (" + sender() + ")");
+              " from now on (" + caller + ")");
+    // Before the reply: the caller's next trigger plays its choice.
     load_user_scores();
+    result.returnResults();
 }
 
 std::string FeedbackService::sender() const {

@@ -16,6 +16,7 @@
 #include "feedback/haptics_link.hpp"
 #include "feedback/theme.hpp"
 #include "feedback/user_scores_watch.hpp"
+#include "feedback/user_scores_writer.hpp"
 #include "feedback1-adaptor.h"
 
 namespace vibscore::feedback {
@@ -23,7 +24,8 @@ namespace vibscore::feedback {
 // The org.sigxcpu.Feedback object (feedback/org.sigxcpu.Feedback.xml and
 // org.vibscore.Feedback1.xml document each member): it translates between the bus and the
 // event table, which holds every rule, and plays through vibscored. One thread: the loop
-// serving both buses calls everything here.
+// serving both buses calls everything here; only the user's file is written on a thread of its
+// own (UserScoresWriter), whose outcome comes back to the loop.
 class FeedbackService final
     : public sdbus::AdaptorInterfaces<org::sigxcpu::Feedback_adaptor,
                                       org::sigxcpu::Feedback::Haptic_adaptor,
@@ -48,7 +50,11 @@ class FeedbackService final
                  const std::vector<sdbus::Struct<double, std::uint32_t>>& pattern) override;
 
     std::vector<sdbus::Struct<std::string, std::string, std::string, bool>> EventScores() override;
-    void AssignScore(const std::string& event, const std::string& score) override;
+    void AssignScore(sdbus::Result<>&& result, std::string event, std::string score) override;
+    // Throws sdbus::Error (InvalidArgs) for an event or score AssignScore does not take.
+    void check_assignment(const std::string& event, const std::string& score) const;
+    void assigned(sdbus::Result<>& result, const std::string& event, const std::string& score,
+                  const std::string& caller, std::exception_ptr error);
 
     std::string sender() const;
     // Reads the user's scores into the table; a file that does not read leaves them as they
@@ -61,6 +67,9 @@ class FeedbackService final
     sdbus::Slot vanish_watch_;         // NameOwnerChanged: a client left the bus
     std::optional<std::filesystem::path> user_scores_;
     std::unique_ptr<FileWatch> user_scores_watch_;
+    bool user_scores_read_ = false;  // the file read once at least
+    // Last: destroyed first, it finishes the queued stores before anything they report to.
+    std::unique_ptr<UserScoresWriter> writer_;
 };
 
 }  // namespace vibscore::feedback

@@ -94,12 +94,26 @@ void check_event_and_score(const std::string& event, const std::string& score) {
     }
 }
 
-UserScores read_user_scores(const std::filesystem::path& file, std::vector<Diagnostic>& warnings) {
-    UserScores scores;
-    if (!file_exists(file)) {
-        return scores;
+bool is_event_name(std::string_view name) {
+    if (name.empty() || name.size() > kMaxEventNameLength || name.front() == '-' ||
+        name.back() == '-') {
+        return false;
     }
-    const JsonDocument document = read_json_file(file.string());
+    char previous = '\0';
+    for (const char c : name) {
+        const bool word = (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9');
+        if (!word && !(c == '-' && previous != '-')) {
+            return false;
+        }
+        previous = c;
+    }
+    return true;
+}
+
+namespace {
+
+UserScores scores_in(const JsonDocument& document, std::vector<Diagnostic>& warnings) {
+    UserScores scores;
     const JsonFields json(document);
     const JsonValue& root = json.object(document.root());
     for (const auto& member : root.members) {
@@ -112,21 +126,52 @@ UserScores read_user_scores(const std::filesystem::path& file, std::vector<Diagn
     if (events == nullptr) {
         return scores;
     }
+    // Entry by entry: one the user mistyped must not cost them all the others.
     for (const auto& member : json.object(*events).members) {
-        const std::string score = json.string(member.value);
+        const std::string ignored = ": the entry is ignored";
+        if (member.value.kind != JsonValue::Kind::string) {
+            warnings.push_back({document.where(member.value),
+                                "expected a string, found " + describe(member.value) + ignored});
+            continue;
+        }
+        const std::string& score = member.value.text;
         if (!is_valid_name(member.key)) {
-            throw DocumentError(document.where(member.key_offset),
+            warnings.push_back({document.where(member.key_offset),
                                 "event " + quoted_text(member.key) + " is not an event name (" +
-                                    std::string(kNameRule) + ")");
+                                    std::string(kNameRule) + ")" + ignored});
+            continue;
         }
         if (!is_valid_name(score)) {
-            throw json.error(member.value, "score " + quoted_text(score) +
-                                               " is not a score name (" + std::string(kNameRule) +
-                                               ")");
+            warnings.push_back({document.where(member.value),
+                                "score " + quoted_text(score) + " is not a score name (" +
+                                    std::string(kNameRule) + ")" + ignored});
+            continue;
+        }
+        if (scores.size() == kMaxAssignments) {
+            warnings.push_back(
+                {document.where(member.key_offset),
+                 "more than " + std::to_string(kMaxAssignments) +
+                     " events have a score of your own: this one and those after it are "
+                     "ignored (the limit, docs/feedbackd.md)"});
+            break;
         }
         scores[member.key] = score;
     }
     return scores;
+}
+
+}  // namespace
+
+UserScores read_user_scores(const std::filesystem::path& file, std::vector<Diagnostic>& warnings) {
+    if (!file_exists(file)) {
+        return {};
+    }
+    // The bus thread reads it: a FIFO or a device there could hold it without end.
+    std::error_code error;
+    if (std::filesystem::status(file, error).type() != std::filesystem::file_type::regular) {
+        throw DocumentError({file.string()}, "not a regular file, not read");
+    }
+    return scores_in(read_json_file(file.string()), warnings);
 }
 
 void store_user_score(const std::filesystem::path& file, const std::string& event,
@@ -138,9 +183,11 @@ void store_user_score(const std::filesystem::path& file, const std::string& even
     auto root = nlohmann::ordered_json::object();
     if (file_exists(file)) {
         // Read strictly: a file that does not read is the user's to mend, not ours to replace.
+        // Read once: what is checked is what is kept.
+        const JsonDocument document = read_json_file(file.string());
         std::vector<Diagnostic> warnings;
-        read_user_scores(file, warnings);
-        root = to_json(read_json_file(file.string()).root());
+        scores_in(document, warnings);
+        root = to_json(document.root());
     }
     auto& events = root[kEvents];
     if (!events.is_object()) {
@@ -149,10 +196,52 @@ void store_user_score(const std::filesystem::path& file, const std::string& even
     if (score.empty()) {
         events.erase(event);
     } else {
+        if (!events.contains(event) && events.size() >= kMaxAssignments) {
+            throw AssignmentLimit(std::to_string(events.size()) +
+                                  " events already have a score of your own in " + file.string() +
+                                  ", the limit is " + std::to_string(kMaxAssignments) +
+                                  ": give one back to the theme first (vibscore assign EVENT "
+                                  "--default)");
+        }
         events[event] = score;
     }
+    const std::string text = root.dump(2) + "\n";
+    // Never write what the reader would refuse as a whole at the next start.
+    if (text.size() > max_json_file_bytes) {
+        throw AssignmentLimit(file.string() + " would be " + std::to_string(text.size()) +
+                              " bytes, above the reader's limit of " +
+                              std::to_string(max_json_file_bytes) +
+                              " (members other than \"events\" take the room): not written");
+    }
     make_user_directory(file.parent_path());
-    daemon::write_file_atomically(file, root.dump(2) + "\n", 0600);
+    daemon::write_file_atomically(file, text, 0600);
+}
+
+std::vector<std::filesystem::path> remove_stale_temporaries_of(const std::filesystem::path& file) {
+    // write_file_atomically's names: "." + file name + ".tmp-" + six characters of mkostemp.
+    const std::string prefix = "." + file.filename().string() + ".tmp-";
+    std::vector<std::filesystem::path> removed;
+    std::error_code error;
+    std::filesystem::directory_iterator entries(file.parent_path(), error);
+    if (error) {
+        if (error == std::errc::no_such_file_or_directory) {
+            return removed;
+        }
+        throw std::system_error(error, "cannot list " + file.parent_path().string());
+    }
+    for (const auto& entry : entries) {
+        const std::string name = entry.path().filename().string();
+        if (!name.starts_with(prefix)) {
+            continue;
+        }
+        std::filesystem::remove(entry.path(), error);
+        if (error) {
+            throw std::system_error(
+                error, "cannot remove the stale temporary file " + entry.path().string());
+        }
+        removed.push_back(entry.path());
+    }
+    return removed;
 }
 
 }  // namespace vibscore::feedback
