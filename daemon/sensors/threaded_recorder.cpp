@@ -33,10 +33,12 @@ void ThreadedRecorder::start() {
     begun_ = true;
     thread_ = std::thread([this] {
         try {
-            // At least once, so that what arrived before a quick stop() is taken too.
-            do {
+            while (!stopping_) {
                 read_some(readings_);
-            } while (!stopping_);
+            }
+            // Once more after stop() was asked: what the device had taken by then, still on its
+            // way (a scan in the buffer, an event not yet read), belongs to the recording.
+            read_some(readings_);
         } catch (...) {
             failure_ = std::current_exception();
         }
