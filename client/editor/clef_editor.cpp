@@ -32,6 +32,24 @@ std::string number_text(double value, const char* format) {
     return text;
 }
 
+// Number `number` (1-based) against its neighbours: a number is meant to play at least as
+// strong as the one below it.
+std::string out_of_order(const std::vector<double>& numbers, int number) {
+    const auto at = [&](int n) { return numbers[static_cast<std::size_t>(n - 1)]; };
+    const auto named = [&](int n) {
+        return "n" + std::to_string(n) + " " + number_text(at(n), "%.2f");
+    };
+    // Steps of 0.01 are exact only to rounding: equal numbers are in order.
+    constexpr double kSame = 1e-9;
+    if (number < static_cast<int>(numbers.size()) && at(number) > at(number + 1) + kSame) {
+        return named(number) + " is above " + named(number + 1);
+    }
+    if (number > 1 && at(number) < at(number - 1) - kSame) {
+        return named(number) + " is below " + named(number - 1);
+    }
+    return "";
+}
+
 }  // namespace
 
 ClefEditor::ClefEditor(std::string id, Clef clef)
@@ -58,14 +76,17 @@ ClefEditor::Outcome ClefEditor::change(int direction) {
         if (waveform()) {
             return Outcome::editing;  // a waveform changes by its points
         }
+        string_ = string;  // heard on it, and the numbers after it are heard on it
         auto& frequency = clef_.strings[static_cast<std::size_t>(string - 1)].frequency;
         frequency = stepped_value(frequency, direction * (fine_ ? kFineHz : kHz), kFineHz, kFineHz,
                                   limits::max_frequency_hz);
         return Outcome::hear;
     }
-    auto& amplitude = clef_.numbers[static_cast<std::size_t>(number_of_field(field_) - 1)];
+    number_ = number_of_field(field_);
+    auto& amplitude = clef_.numbers[static_cast<std::size_t>(number_ - 1)];
     amplitude = stepped_value(amplitude, direction * (fine_ ? kFineAmplitude : kAmplitude),
                               kFineAmplitude, 0.0, limits::max_amplitude);
+    notice_ = out_of_order(clef_.numbers, number_);
     return Outcome::hear;
 }
 
@@ -92,9 +113,7 @@ ClefEditor::Outcome ClefEditor::press(Button button) {
                 case Button::down:
                     field_ = ((field_ + (button == Button::up ? -1 : 1)) % fields() + fields()) %
                              fields();
-                    if (const int string = string_of_field(field_); string > 0) {
-                        string_ = string;
-                    } else if (const int number = number_of_field(field_); number > 0) {
+                    if (const int number = number_of_field(field_); number > 0) {
                         number_ = number;
                     }
                     return Outcome::editing;
@@ -102,6 +121,9 @@ ClefEditor::Outcome ClefEditor::press(Button button) {
                 case Button::left:
                     return change(button == Button::right ? +1 : -1);
                 case Button::select:
+                    if (const int string = string_of_field(field_); string > 0) {
+                        string_ = string;  // heard, or its points edited
+                    }
                     if (waveform() && string_of_field(field_) > 0 && !points().empty()) {
                         level_ = Level::points;
                         point_ = 0;
@@ -262,7 +284,13 @@ std::vector<std::string> ClefEditor::lines(int width, int height,
             }
         }
     }
-    // Keep the field under the cursor in sight when the window is short.
+    // Keep the field under the cursor in sight when the window is short (and the notice's
+    // line, the last).
+    const bool noticed =
+        !notice_.empty() && (level_ == Level::fields || level_ == Level::fields_more);
+    if (noticed) {
+        --height;
+    }
     if (static_cast<int>(rows.size()) > height && height > 0) {
         int at = 0;
         for (int i = 0; i < static_cast<int>(rows.size()); ++i) {
@@ -272,6 +300,9 @@ std::vector<std::string> ClefEditor::lines(int width, int height,
         }
         const int first = std::clamp(at - height / 2, 0, static_cast<int>(rows.size()) - height);
         rows = std::vector<std::string>(rows.begin() + first, rows.begin() + first + height);
+    }
+    if (noticed) {
+        rows.push_back(fit("!" + notice_, width));
     }
     return rows;
 }

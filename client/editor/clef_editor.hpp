@@ -42,17 +42,24 @@ class ClefEditor {
     bool modified() const { return clef_ != original_; }
     Level level() const { return level_; }
     bool fine() const { return fine_; }
-    // What plays when heard: a string (1-based) at a number (1-based).
+    // What plays when heard: a string (1-based) at a number (1-based). The string is the one
+    // last changed or heard (Select) — moving the cursor past the strings to reach the numbers
+    // does not change it — so a number changed is heard on the string just edited; the number
+    // is the one under the cursor or last changed.
     int string() const { return string_; }
     int number() const { return number_; }
+    // Said after a number's amplitude is set above the next number's (or below the one before):
+    // allowed, since a clef may want it, but a stronger number that plays weaker surprises
+    // ("n5 0.80 is above n6 0.70"). "" when the numbers rise.
+    const std::string& notice() const { return notice_; }
     // The field under the cursor: 0 the tempo, then strings from the highest down, then the
     // numbers from 1.
     int field() const { return field_; }
     int point() const { return point_; }
 
     // The window: `height` lines of at most `width` columns, the field under the cursor marked
-    // '>' (a glyph: no colour needed). `feel`, where the actuator's response is known, is
-    // written beside each string (string 1 first).
+    // '>' (a glyph: no colour needed), the notice (if any) on the last line. `feel`, where the
+    // actuator's response is known, is written beside each string (string 1 first).
     std::vector<std::string> lines(int width, int height,
                                    const std::vector<std::string>& feel = {}) const;
     // What the buttons do now (fits 40 columns).
@@ -85,6 +92,7 @@ class ClefEditor {
     int string_ = 1;
     int number_ = 5;
     bool fine_ = false;
+    std::string notice_;
 };
 
 // A waveform as a row of block characters, `width` columns over one quarter note, as the clef

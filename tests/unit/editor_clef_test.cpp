@@ -94,6 +94,46 @@ TEST(ClefEditor, AStringsFrequencyStepsBy5HzThen1HzFineAndEachStepIsHeard) {
     EXPECT_EQ(editor.number(), 5);  // heard at the number under the cursor (5 by default)
 }
 
+TEST(ClefEditor, ANumberChangedIsHeardOnTheStringJustEditedNotTheLastOneTheCursorPassed) {
+    // n5 0.60 -> 0.70 played on s1, the last string passed on the way down to the numbers.
+    ClefEditor editor("lra-phone", lra_phone());
+    press_all(editor, {D, D, D});  // tempo, s6, s5, s4
+    EXPECT_EQ(editor.press(R), Outcome::hear);
+    EXPECT_EQ(editor.string(), 4);
+    press_all(editor, {D, D, D, D, D, D, D, D});  // s3, s2, s1, n1 .. n5
+    EXPECT_EQ(editor.string(), 4);
+    EXPECT_EQ(editor.press(R), Outcome::hear);
+    EXPECT_EQ(editor.string(), 4);
+    EXPECT_EQ(editor.number(), 5);
+    EXPECT_DOUBLE_EQ(editor.clef().numbers[4], 0.7);
+    // Select on a string is hearing that string: the numbers are heard on it from then on.
+    press_all(editor, {U, U, U, U, U, U, S});  // n4 .. n1, s1, s2: heard
+    EXPECT_EQ(editor.string(), 2);
+}
+
+TEST(ClefEditor, ANumberSetAboveTheNextNumbersAmplitudeIsAllowedButSaid) {
+    ClefEditor editor("lra-phone", lra_phone());
+    press_all(editor, {U, U, U, U, U});  // from the tempo up: n9 .. n5
+    ASSERT_EQ(editor.number(), 5);
+    press_all(editor, {R});  // 0.70: as strong as n6, the last value said nothing of
+    EXPECT_EQ(editor.notice(), "");
+    press_all(editor, {R});  // 0.80: above n6's 0.70, the first value said
+    EXPECT_DOUBLE_EQ(editor.clef().numbers[4], 0.8);
+    EXPECT_EQ(editor.notice(), "n5 0.80 is above n6 0.70");
+    const auto lines = editor.lines(40, 11);
+    ASSERT_EQ(lines.size(), 11u);
+    EXPECT_EQ(lines.back(), "!n5 0.80 is above n6 0.70");
+    EXPECT_NE(std::find(lines.begin(), lines.end(), ">n5 0.80  n6 0.70  n7 0.80  n8 0.90 "),
+              lines.end())
+        << "the field under the cursor in sight";
+    press_all(editor, {L, L});  // back to 0.60: in order again, nothing said
+    EXPECT_EQ(editor.notice(), "");
+    EXPECT_EQ(editor.lines(40, 11).back(), " n9 1.00 ");
+    // Lowered below the number before: said too.
+    press_all(editor, {U, L, L, L});  // n4 0.50 -> 0.20, below n3's 0.40
+    EXPECT_EQ(editor.notice(), "n4 0.20 is below n3 0.40");
+}
+
 TEST(ClefEditor, ValuesStopAtTheirLimitsOnBothSides) {
     Clef clef = lra_phone();
     clef.strings[0].frequency = 2.0;
