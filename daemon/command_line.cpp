@@ -52,7 +52,9 @@ std::variant<CommandLine, int> parse_command_line(int argc, const char* const* a
     return command_line;
 }
 
-DaemonConfig read_config(const CommandLine& command_line) {
+DaemonConfig read_config(
+    const CommandLine& command_line,
+    const std::function<bool(const std::filesystem::path& store)>& may_try_modules) {
     DaemonConfig defaults;
     // From a build tree, its checkout's clefs/ (build_tree.hpp); else the installed folder.
     defaults.shipped = shipped_clefs_folder();
@@ -62,18 +64,28 @@ DaemonConfig read_config(const CommandLine& command_line) {
     }
     // The modules are tried here, once for this reading of the file (on the bus thread when the
     // daemon reloads), and listed from then on without loading them again.
-    config.modules = drivers::scan_driver_modules(config.drivers_dir);
+    const bool try_modules =
+        !may_try_modules ||
+        may_try_modules(command_line.store.empty() ? config.store
+                                                   : std::filesystem::path(command_line.store));
+    config.modules = try_modules ? drivers::scan_driver_modules(config.drivers_dir)
+                                 : std::make_shared<const drivers::ModuleCatalog>();
     std::vector<std::string> drivers;
     for (const auto& driver : drivers::available_drivers(*config.modules)) {
         drivers.push_back(driver.name);
     }
-    for (const auto& warning : unknown_sections(config, drivers)) {
+    for (const auto& warning :
+         try_modules ? unknown_sections(config, drivers) : std::vector<std::string>{}) {
         log::warning(warning);
     }
     // A value from the command line has no line in the file for messages to point at.
     auto& daemon_lines = config.setting_lines["daemon"];
     if (!command_line.driver.empty()) {
         config.driver = command_line.driver;
+        daemon_lines.erase("driver");
+    }
+    if (!try_modules) {
+        config.driver = "sim";
         daemon_lines.erase("driver");
     }
     if (!command_line.store.empty()) {

@@ -1,5 +1,7 @@
 #pragma once
 
+#include <filesystem>
+#include <functional>
 #include <string>
 #include <variant>
 
@@ -31,6 +33,12 @@ std::variant<CommandLine, int> parse_command_line(int argc, const char* const* a
 // drivers directory tried out (logging each one refused) and, unless for --safe-off, the record
 // of the module in use kept in the store. Throws ConfigError. Logs a warning for each section
 // that names no driver.
-DaemonConfig read_config(const CommandLine& command_line);
+//
+// `may_try_modules`, when given, is asked with the store (the command line's or the file's)
+// before any module is tried: false (the daemon's restart guard, StartRecord) tries none and runs
+// driver sim, without warnings about the sections of modules it did not try.
+DaemonConfig read_config(
+    const CommandLine& command_line,
+    const std::function<bool(const std::filesystem::path& store)>& may_try_modules = {});
 
 }  // namespace vibscore::daemon

@@ -6,6 +6,7 @@
 
 #include <csignal>
 #include <iostream>
+#include <optional>
 
 #include "config.h"
 #include "daemon/actuator_host.hpp"
@@ -18,6 +19,7 @@
 #include "daemon/event_loop.hpp"
 #include "daemon/haptics_service.hpp"
 #include "daemon/log.hpp"
+#include "daemon/module_record.hpp"
 #include "daemon/playback_ids.hpp"
 #include "daemon/playback_thread.hpp"
 #include "daemon/polkit_authority.hpp"
@@ -86,7 +88,17 @@ void block_handled_signals() {
 
 int serve(const CommandLine& command_line) {
     block_handled_signals();
-    DaemonConfig config = read_config(command_line);
+    // Noted in the store until the daemon is ready: a start after too many that never were runs
+    // sim without trying any module (module_record.hpp).
+    std::optional<StartRecord> start;
+    DaemonConfig config = read_config(command_line, [&start](const std::filesystem::path& store) {
+        start.emplace(store / kStartRecordFile);
+        const std::string why = start->safe_start_reason();
+        if (!why.empty()) {
+            log::error(why);
+        }
+        return why.empty();
+    });
     EventLoop loop;
     ActuatorHost host(config);
     Registry registry(config.shipped, config.store);
@@ -168,6 +180,9 @@ int serve(const CommandLine& command_line) {
     log::info("vibscored " VIBSCORE_VERSION " ready on " + std::string(haptics1::kBusName) +
               ", driver " + host.driver());
     sd_notify(0, "READY=1\nSTATUS=serving");
+    if (start) {
+        start->ready();
+    }
     const int code = loop.run();
     stop_playback();
     dbus::release_name(*connection, haptics1::kBusName);

@@ -1,9 +1,11 @@
 #pragma once
 
+#include <chrono>
 #include <filesystem>
 #include <optional>
 #include <string>
 #include <utility>
+#include <vector>
 
 // A driver module that crashes must not crash the daemon on every start (Restart=on-failure):
 // while one drives the actuator, a file in the store names it, and only a clean close removes
@@ -40,6 +42,42 @@ class ModuleRecord {
 
   private:
     std::filesystem::path file_;
+};
+
+// The crash record above names a module that was driving; a module (or anything else) that
+// ends the daemon before it is ready, at every start, is a restart loop it cannot see: a
+// constructor that kills the daemon, a scan that crashes it, with driver = sim too. So each start
+// is noted in the store until the daemon is ready; a start that finds kFailedStartsForSafeStart
+// earlier starts noted within kFailedStartWindow runs driver sim without trying any driver module,
+// and logs why. A reload (SIGHUP) tries the configuration again.
+inline constexpr const char* kStartRecordFile = ".starts";
+inline constexpr int kFailedStartsForSafeStart = 3;
+// Above systemd's default restart rate (5 in 10 s) and a slow board's start with a 2 s trial.
+inline constexpr std::chrono::seconds kFailedStartWindow{600};
+
+class StartRecord {
+  public:
+    using Clock = std::chrono::system_clock;
+
+    // Reads `file` (the times of earlier starts that did not become ready) and notes this start
+    // at `now`, crash-safely. An empty `file` keeps none; a record that cannot be written is a
+    // warning (this start runs unguarded).
+    explicit StartRecord(std::filesystem::path file, Clock::time_point now = Clock::now());
+    StartRecord(const StartRecord&) = delete;
+    StartRecord& operator=(const StartRecord&) = delete;
+
+    // How many earlier starts did not become ready within kFailedStartWindow before now.
+    int failed_starts() const { return failed_; }
+    // Why this start must run sim without trying the driver modules ("" when it need not).
+    std::string safe_start_reason() const;
+    // This start is ready (serving): the record goes, and the next start is an ordinary one.
+    void ready();
+
+  private:
+    std::filesystem::path file_;
+    int failed_ = 0;
+    Clock::time_point first_{};  // the earliest of those failed starts
+    Clock::time_point now_{};
 };
 
 }  // namespace vibscore::daemon
