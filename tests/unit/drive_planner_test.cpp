@@ -288,6 +288,33 @@ TEST(DrivePlanner, ABrakeForAnUncertainLraPushesNoneWithinTheUncertaintyBackUpPa
     }
 }
 
+TEST(DrivePlanner, AnErmsExactPlansStopEveryMotorWithinThirtyPercentSoonerThanNone) {
+    // Why an ERM's plans are not budgeted: planned for 40/80 ms, a motor with either time
+    // constant 30 % off either way (the edges of issue 32's grid) still stops sooner after a
+    // strong note than with compensation off, by the plant.
+    const Declaration declared = example_erm();
+    const auto stop_after = [](const Played& played, double end) {
+        for (auto k = static_cast<std::size_t>(end * kPlantRate); k < played.strength.size(); ++k) {
+            if (played.strength[k] < 0.1) {
+                return static_cast<double>(k) / kPlantRate - end;
+            }
+        }
+        return static_cast<double>(INFINITY);
+    };
+    for (const double up : {0.7, 1.0, 1.3}) {
+        for (const double down : {0.7, 1.0, 1.3}) {
+            Declaration truth = declared;
+            truth.spin_up_s *= up;
+            truth.spin_down_s *= down;
+            const auto on = play_notes(declared, truth, {.reverse = true}, {{1.0, 0.0}}, 0.4);
+            const auto off =
+                play_notes(declared, truth, {.compensation = false}, {{1.0, 0.0}}, 0.4);
+            EXPECT_LT(stop_after(on, 0.4), stop_after(off, 0.4))
+                << truth.spin_up_s << " s / " << truth.spin_down_s << " s";
+        }
+    }
+}
+
 TEST(DrivePlanner, TheBrakeGetsShorterAsTheUncertaintyGrows) {
     std::vector<double> lengths;
     for (const Uncertainty u : {Uncertainty{0.0, 0.0}, Uncertainty{0.01, 0.1},
