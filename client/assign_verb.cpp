@@ -4,13 +4,18 @@
 
 #include <algorithm>
 #include <iomanip>
+#include <optional>
 #include <stdexcept>
 #include <vector>
 
 #include "client/offline_verbs.hpp"
+#include "common/closest_name.hpp"
+#include "common/quoted_text.hpp"
+#include "dbus/haptics1_names.hpp"
 #include "dbus/sdbus_compat.hpp"
 #include "feedback/user_scores.hpp"
 #include "feedback1-proxy.h"
+#include "haptics1-proxy.h"
 
 namespace vibscore::client {
 
@@ -33,6 +38,54 @@ class FeedbackLink : public sdbus::ProxyInterfaces<org::vibscore::Feedback1_prox
     void onEventScoresChanged() override {}
     std::unique_ptr<sdbus::IConnection> connection_;
 };
+
+// vibscored's registry, asked which scores it holds.
+class Registry : public sdbus::ProxyInterfaces<org::vibscore::Haptics1_proxy> {
+  public:
+    explicit Registry(std::unique_ptr<sdbus::IConnection> connection)
+        : ProxyInterfaces(*connection, dbus::service_name(haptics1::kBusName),
+                          dbus::object_path(haptics1::kObjectPath)),
+          connection_(std::move(connection)) {
+        registerProxy();
+    }
+    ~Registry() { unregisterProxy(); }
+
+  private:
+    void onPlaybackStarted(const uint64_t&, const std::string&) override {}
+    void onPlaybackPosition(const uint64_t&, const uint32_t&, const uint32_t&) override {}
+    void onPlaybackFinished(const uint64_t&, const std::string&) override {}
+    void onRegistryChanged(const std::string&, const std::string&) override {}
+    std::unique_ptr<sdbus::IConnection> connection_;
+};
+
+// " (did you mean NAME?)" when one of `names` is near `word`, else "".
+std::string did_you_mean(const std::string& word, const std::vector<std::string>& names) {
+    const auto meant = closest_name(word, names);
+    return meant ? " (did you mean " + *meant + "?)" : "";
+}
+
+// Whether vibscored has the score: a refusal (exit_failed) when it has not, with the nearest
+// name; nothing when it has or cannot be asked (then a warning says the score is not checked:
+// the choice is stored, and the event plays the theme's until the score is there).
+std::optional<int> refuse_unknown_score(const std::string& score, std::ostream& err) {
+    std::vector<std::string> names;
+    try {
+        Registry registry(sdbus::createSystemBusConnection());
+        for (const auto& entry : registry.List("score")) {
+            names.push_back(entry.get<0>());
+        }
+    } catch (const sdbus::Error& error) {
+        err << "vibscore: warning: vibscored cannot be asked whether it has the score "
+            << quoted_text(score) << " (" << error.getMessage() << "): not checked\n";
+        return std::nullopt;
+    }
+    if (std::find(names.begin(), names.end(), score) != names.end()) {
+        return std::nullopt;
+    }
+    err << "vibscore: vibscored has no score " << quoted_text(score) << did_you_mean(score, names)
+        << "; 'vibscore list' shows the scores, 'vibscore compose' stores one\n";
+    return exit_failed;
+}
 
 // The errors that mean "vibscore-feedback is not there": no session bus, no one (and nothing
 // activatable) owns the name, or another program (feedbackd) does.
@@ -96,17 +149,28 @@ int list_live(FeedbackLink& link, std::ostream& out) {
 int assign(const AssignRequest& request, std::ostream& out, std::ostream& err) {
     if (request.list != request.event.empty() ||
         (!request.list && request.to_default != request.score.empty()) ||
-        (request.list && (request.to_default || !request.score.empty()))) {
+        (request.list && (request.to_default || !request.score.empty() || request.force))) {
         err << "vibscore: assign takes EVENT SCORE, EVENT --default or --list\n"
                "Run 'vibscore assign --help' for usage.\n";
         return exit_usage;
     }
+    const bool choosing = !request.list && !request.score.empty();
     if (!request.list) {
         try {
             feedback::check_event_and_score(request.event, request.score);
         } catch (const std::invalid_argument& error) {
             err << "vibscore: " << error.what() << "\n";
             return exit_usage;
+        }
+    }
+    if (choosing && request.force && !feedback::is_event_name(request.event)) {
+        err << "vibscore: event " << quoted_text(request.event)
+            << " is not an event name, even with --force (" << feedback::kEventNameRule << ")\n";
+        return exit_usage;
+    }
+    if (choosing) {
+        if (const auto refused = refuse_unknown_score(request.score, err)) {
+            return *refused;
         }
     }
     std::string reason;
@@ -122,6 +186,21 @@ int assign(const AssignRequest& request, std::ostream& out, std::ostream& err) {
             if (request.list) {
                 return list_live(link, out);
             }
+            if (choosing && !request.force) {
+                // The theme's events and those already chosen: a typo is caught here, not
+                // found out when the phone rings without the chosen score.
+                std::vector<std::string> known;
+                for (const auto& entry : link.EventScores()) {
+                    known.push_back(entry.get<0>());
+                }
+                if (std::find(known.begin(), known.end(), request.event) == known.end()) {
+                    err << "vibscore: event " << quoted_text(request.event)
+                        << " is not in the theme" << did_you_mean(request.event, known)
+                        << "; --force assigns it all the same, for an event the theme does not "
+                           "know yet\n";
+                    return exit_failed;
+                }
+            }
             link.AssignScore(request.event, request.score);
             out << request.event << " plays "
                 << (request.score.empty() ? "the theme's score" : request.score)
@@ -136,7 +215,14 @@ int assign(const AssignRequest& request, std::ostream& out, std::ostream& err) {
             reason = why(error);
         }
     }
-    // Without vibscore-feedback: its file, which it reads when it starts.
+    // Without vibscore-feedback: its file, which it reads when it starts. The theme it will
+    // use is not known here, so the event naming rule stands in for it.
+    if (choosing && !feedback::is_event_name(request.event)) {
+        err << "vibscore: event " << quoted_text(request.event)
+            << " is not an event name, and without vibscore-feedback the theme cannot be asked ("
+            << feedback::kEventNameRule << ")\n";
+        return exit_usage;
+    }
     try {
         const auto file = feedback::user_scores_path();
         if (request.list) {

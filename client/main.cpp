@@ -316,6 +316,9 @@ int main(int argc, char** argv) {
                           "play the theme's score for EVENT again");
     assign_verb->add_flag("--list", assign_request.list,
                           "list the events and the score each plays");
+    assign_verb->add_flag("--force", assign_request.force,
+                          "assign an event the theme does not know (yet); its name must still "
+                          "be lower-case words and hyphens, at most 64 characters");
 
     CalibrateRequest calibrate_request;
     auto* calibrate_verb = app.add_subcommand(

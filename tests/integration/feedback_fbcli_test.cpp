@@ -3,9 +3,14 @@
 // feedbackd API for what fbcli cannot show (ids, end reasons, Haptic.Vibrate).
 #include <gtest/gtest.h>
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <future>
 #include <thread>
 
 #include "daemon/render/cue_adaptation.hpp"
@@ -42,6 +47,21 @@ std::vector<render::Cue> expected_drives_of(const std::string& score) {
 
 double ms_between(std::int64_t from_ns, std::int64_t to_ns) {
     return static_cast<double>(to_ns - from_ns) / 1e6;
+}
+
+// AssignScore on a connection of its own: "" when stored, else the error's name and message.
+std::string assign_score(const SessionBus& session, const std::string& event,
+                         const std::string& score) {
+    auto connection = sdbus::createSessionBusConnectionWithAddress(session.address());
+    auto proxy = dbus::create_proxy(*connection, testing::kFeedbackName, testing::kFeedbackPath);
+    try {
+        proxy->callMethod("AssignScore")
+            .onInterface("org.vibscore.Feedback1")
+            .withArguments(event, score);
+    } catch (const sdbus::Error& error) {
+        return error.getName() + ": " + error.getMessage();
+    }
+    return "";
 }
 
 std::string error_of(const std::function<void()>& call) {
@@ -488,8 +508,9 @@ TEST_F(FeedbackApi, AScoreTheUserAssignsToAnEventPlaysForItUntilTakenBack) {
     std::this_thread::sleep_for(300ms);
     plays("touch-tick", "edited");
 
-    // A score vibscored does not have: the theme's plays, and the log says why.
-    EXPECT_EQ(assign({"message-new-sms", "no-such-score"}).exit_code, 0);
+    // A score vibscored does not have (stored past `vibscore assign`, which refuses it): the
+    // theme's plays, and the log says why.
+    EXPECT_EQ(assign_score(session, "message-new-sms", "no-such-score"), "");
     plays("message-new-sms", "unknown score");
     EXPECT_NE(server->log().find("the score \"no-such-score\" chosen for \"message-new-sms\" is "
                                  "not in vibscored's registry: the theme's plays instead"),
@@ -506,6 +527,136 @@ TEST_F(FeedbackApi, AScoreTheUserAssignsToAnEventPlaysForItUntilTakenBack) {
     EXPECT_EQ(result.err,
               "vibscore: score \"Touch\" is not a score name (a name is 1 to 64 of a-z 0-9 . _ "
               "-, starting with a letter or a digit)\n");
+}
+
+// issue 31: every "done" is true. A score that is not there and an event the theme does not
+// know are refused with the nearest names; --force takes an event the theme does not know yet.
+TEST_F(FeedbackApi, AssignRefusesAScoreOrAnEventThatIsNotThereAndSaysWhatWasMeant) {
+    const auto assign = [&](std::vector<std::string> args) {
+        args.insert(args.begin(), {testing::required_env("VIBSCORE"), "assign"});
+        return testing::run_command(session.on_this_bus(args));
+    };
+    auto result = assign({"phone-incoming-call", "ringtne"});
+    EXPECT_EQ(result.exit_code, 1);
+    EXPECT_EQ(result.out, "");
+    EXPECT_EQ(result.err,
+              "vibscore: vibscored has no score \"ringtne\" (did you mean ringtone?); 'vibscore "
+              "list' shows the scores, 'vibscore compose' stores one\n");
+    result = assign({"phone-incomming-call", "ringtone"});
+    EXPECT_EQ(result.exit_code, 1);
+    EXPECT_EQ(result.err,
+              "vibscore: event \"phone-incomming-call\" is not in the theme (did you mean "
+              "phone-incoming-call?); --force assigns it all the same, for an event the theme "
+              "does not know yet\n");
+    const auto file = session.config_home() / "vibscore" / "feedback.json";
+    EXPECT_FALSE(std::filesystem::exists(file));
+
+    // --force: the naming rule still holds, at its edge.
+    const std::string longest = std::string(31, 'e') + "-" + std::string(32, 'e');
+    result = assign({longest, "ringtone", "--force"});
+    EXPECT_EQ(result.exit_code, 0) << result.err;
+    EXPECT_EQ(result.out, longest + " plays ringtone from now on\n");
+    result = assign({longest + "e", "ringtone", "--force"});
+    EXPECT_EQ(result.exit_code, 2);
+    result = assign({"Phone-ring", "ringtone", "--force"});
+    EXPECT_EQ(result.exit_code, 2);
+    result = assign({"phone_ring", "ringtone", "--force"});
+    EXPECT_EQ(result.exit_code, 2);
+    EXPECT_EQ(result.err,
+              "vibscore: event \"phone_ring\" is not an event name, even with --force (an "
+              "event name is 1 to 64 characters: lower-case words of a-z and 0-9 joined by "
+              "single hyphens, as phone-incoming-call)\n");
+    // Once assigned, the event is known: no --force needed to change its score.
+    result = assign({longest, "alarm"});
+    EXPECT_EQ(result.exit_code, 0) << result.err;
+    std::vector<Diagnostic> warnings;
+    EXPECT_EQ(feedback::read_user_scores(file, warnings),
+              (feedback::UserScores{{longest, "alarm"}}));
+}
+
+// issue 33 row 9: the store is bounded, its refusals named, and what it holds is never lost.
+TEST_F(FeedbackApi, AssignScoreTakesTheTwoHundredFiftySixthEventAndRefusesTheNextByName) {
+    // The bus's own rule: an event the theme has, or a name that follows the naming rule.
+    EXPECT_EQ(assign_score(session, "Phone-incoming-call", "ringtone").substr(0, 45),
+              std::string(kInvalidArgs) + ": event");
+    EXPECT_EQ(assign_score(session, "phone_incoming", "ringtone"),
+              std::string(kInvalidArgs) +
+                  ": event \"phone_incoming\" is not in the theme \"vibscore-default\" and is "
+                  "not an event name (an event name is 1 to 64 characters: lower-case words of "
+                  "a-z and 0-9 joined by single hyphens, as phone-incoming-call)");
+    const auto file = session.config_home() / "vibscore" / "feedback.json";
+    std::string text = "{\"events\": {";
+    for (int n = 1; n <= 255; ++n) {
+        text += "\"event-" + std::to_string(n) + "\": \"touch-tick\", ";
+    }
+    std::ofstream(file) << text << "\"event-0\": \"touch-tick\"}}";
+    EXPECT_EQ(assign_score(session, "message-new-sms", "touch-click"),
+              "org.vibscore.Feedback1.Error.LimitExceeded: 256 events already have a score of "
+              "your own in " +
+                  file.string() +
+                  ", the limit is 256: give one back to the theme first (vibscore assign EVENT "
+                  "--default)");
+    EXPECT_EQ(assign_score(session, "event-0", ""), "");
+    EXPECT_EQ(assign_score(session, "message-new-sms", "touch-click"), "");
+    std::vector<Diagnostic> warnings;
+    const auto scores = feedback::read_user_scores(file, warnings);
+    EXPECT_EQ(scores.size(), 256u);
+    EXPECT_EQ(scores.at("message-new-sms"), "touch-click");
+    // The reply came after the choice was in use.
+    const auto first = daemon.trace_rows().size();
+    EXPECT_EQ(fbcli({"-E", "message-new-sms"}), 0);
+    expect_plays(rows_from(first), expected_drives_of("touch-click"), "the 256th");
+}
+
+TEST_F(FeedbackApi, AtStartStaleTemporariesGoAndAFileThatDoesNotReadIsSaidAndKept) {
+    const auto directory = session.config_home() / "vibscore";
+    const auto stale = directory / ".feedback.json.tmp-Xy12ab";
+    std::ofstream(stale) << "{\"events\": {\"message-new-sms\": \"touch";
+    const auto file = directory / "feedback.json";
+    const std::string too_large(max_json_file_bytes + 1, ' ');
+    std::ofstream(file) << too_large;
+    server.reset();
+    client.reset();
+    serve();
+    EXPECT_FALSE(std::filesystem::exists(stale));
+    EXPECT_NE(
+        server->log().find("removed " + stale.string() + ", left by a store that was interrupted"),
+        std::string::npos)
+        << server->log();
+    EXPECT_NE(server->log().find(file.string() +
+                                 ": larger than 1048576 bytes, the limit for a JSON file: none "
+                                 "of your own scores for events are used until this file is "
+                                 "mended, and it is never written over (AssignScore refuses)"),
+              std::string::npos)
+        << server->log();
+    EXPECT_EQ(assign_score(session, "message-new-sms", "touch-click").substr(0, 33),
+              "org.freedesktop.DBus.Error.Failed");
+    EXPECT_EQ(std::filesystem::file_size(file), too_large.size());
+}
+
+// A store held where a slow disk would hold it (the file is a FIFO the test holds open; the bus
+// thread's own reads refuse what is not a regular file): another app's TriggerFeedback is
+// answered meanwhile, and the store ends when the file reads.
+TEST_F(FeedbackApi, ATriggerIsAnsweredWhileAnotherAppsAssignIsBeingStored) {
+    const auto file = session.config_home() / "vibscore" / "feedback.json";
+    ASSERT_EQ(::mkfifo(file.c_str(), 0600), 0);  // made: not a change the service reloads on
+    auto assigning = std::async(std::launch::async, [&] {
+        return assign_score(session, "message-new-sms", "touch-click");
+    });
+    // Opening for writing waits until the store opens the file to read it.
+    const int held = ::open(file.c_str(), O_WRONLY | O_CLOEXEC);
+    ASSERT_GE(held, 0);
+    std::uint32_t id = 0;
+    EXPECT_NO_THROW(id = client->TriggerFeedback("org.example.other", "button-pressed", {}, -1));
+    EXPECT_NE(id, 0u);
+    EXPECT_TRUE(client->wait_ended(id));
+    const std::string text = "{\"events\": {}}";
+    EXPECT_EQ(::write(held, text.data(), text.size()), static_cast<ssize_t>(text.size()));
+    ::close(held);
+    EXPECT_EQ(assigning.get(), "");
+    std::vector<Diagnostic> warnings;
+    EXPECT_EQ(feedback::read_user_scores(file, warnings),
+              (feedback::UserScores{{"message-new-sms", "touch-click"}}));
 }
 
 TEST(FeedbackAssign, WithoutVibscoreFeedbackStoresTheChoiceForWhenItStarts) {
