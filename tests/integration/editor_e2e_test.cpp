@@ -430,6 +430,8 @@ TEST_F(EditorEndToEnd, ARhythmTappedOnEnterBecomesNotesOnTheGridAndIsSaved) {
         pane.key("Enter");
         copy.press_at(Button::select, std::chrono::milliseconds(400 * k));
     }
+    // Counted on the line as they come.
+    ASSERT_TRUE(pane.wait_for_text("8 taps S:note")) << pane.screen();
     std::this_thread::sleep_until(began + std::chrono::milliseconds(400 * 8));
     send(pane, {Button::back});
     copy.press_at(Button::back, std::chrono::milliseconds(400 * 8));
