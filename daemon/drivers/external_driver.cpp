@@ -1,6 +1,7 @@
 #include "daemon/drivers/external_driver.hpp"
 
 #include <dlfcn.h>
+#include <link.h>
 
 #include <algorithm>
 #include <array>
@@ -128,7 +129,15 @@ DriverModule::~DriverModule() {
     // its descriptor is kept open for good, so the number is never another file's.
     const std::string name = descriptor_path(*file_.fd);
     if (void* kept = ::dlopen(name.c_str(), RTLD_NOW | RTLD_LOCAL | RTLD_NOLOAD)) {
+        // Found by name, or only as the same file loaded under another name (which holds no
+        // name of this descriptor's).
+        link_map* map = nullptr;
+        const bool named = ::dlinfo(kept, RTLD_DI_LINKMAP, &map) == 0 && map != nullptr &&
+                           map->l_name != nullptr && name == map->l_name;
         ::dlclose(kept);
+        if (!named) {
+            return;
+        }
         static std::mutex mutex;
         static std::vector<std::shared_ptr<const UniqueFd>> kept_open;
         const std::lock_guard lock(mutex);

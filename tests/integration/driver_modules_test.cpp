@@ -13,6 +13,7 @@
 #include "tests/support/crash_signal.hpp"
 #include "tests/support/daemon_fixture.hpp"
 #include "tests/support/test_modules.hpp"
+#include "tests/support/wait_until.hpp"
 
 namespace vibscore {
 namespace {
@@ -95,6 +96,53 @@ TEST(DriverModules, AModuleThatCrashesInApplyKillsTheDaemonOnceAndTheRestartRuns
     EXPECT_EQ(daemon.stop_daemon(), 0);
     daemon.start_daemon();
     EXPECT_EQ(property(daemon, "Driver"), "s \"segv\"\n");
+}
+
+TEST(DriverModules, AConstructorThatKillsTheDaemonOrForksIsRefusedAndTheDaemonServes) {
+    ModulesDir modules;
+    const auto killer = modules.add("kill-parent");
+    const auto forker = modules.add("fork");
+    modules.add_example();
+    DaemonFixture daemon{drivers_dir_line(modules)};  // throws unless it takes its name
+    EXPECT_THAT(daemon.daemon_log(),
+                HasSubstr("driver module " + killer.string() +
+                          " is not loaded: tried to signal another process (kill) while loading"));
+    EXPECT_THAT(daemon.daemon_log(),
+                HasSubstr("driver module " + forker.string() +
+                          " is not loaded: tried to start a process (clone, fork) while loading"));
+    const auto listed = daemon.call({"ListDrivers"});
+    EXPECT_THAT(listed.out, HasSubstr("\"trace\""));
+    EXPECT_THAT(listed.out, Not(HasSubstr("\"kill-parent\"")));
+    const auto played = daemon.call({"Play", "sa{sv}", "touch-click", "0"});
+    EXPECT_EQ(played.exit_code, 0) << played.err;
+}
+
+TEST(DriverModules, AfterThreeStartsThatNeverBecameReadyTheNextRunsSimWithoutTryingModules) {
+    ModulesDir modules;
+    modules.add("counted");
+    LoadLog log;
+    DaemonFixture daemon{drivers_dir_line(modules)};  // a first run makes the store
+    daemon.write_config(drivers_dir_line(modules) + "driver = counted",
+                        "trace = " + daemon.trace().string());
+    EXPECT_EQ(daemon.stop_daemon(), 0);
+    // What three starts killed before they were ready leave behind (module_record.hpp).
+    const auto now = std::chrono::duration_cast<std::chrono::seconds>(
+                         std::chrono::system_clock::now().time_since_epoch())
+                         .count();
+    const auto starts = daemon.store() / ".starts";
+    std::ofstream(starts) << now - 3 << "\n" << now - 2 << "\n" << now - 1 << "\n";
+    const auto tried = log.loads();
+    daemon.start_daemon();
+    EXPECT_EQ(property(daemon, "Driver"), "s \"sim\"\n");
+    EXPECT_THAT(daemon.daemon_log(),
+                HasSubstr("vibscored's last 3 starts ended before it was ready"));
+    EXPECT_EQ(log.loads(), tried) << "no module tried, not even in a child";
+    EXPECT_TRUE(testing::wait_until([&] { return !std::filesystem::exists(starts); }))
+        << "a start that became ready clears the count";
+    // A reload tries the configuration again.
+    daemon.signal_daemon(SIGHUP);
+    EXPECT_TRUE(
+        testing::wait_until([&] { return property(daemon, "Driver") == "s \"counted\"\n"; }));
 }
 
 TEST(DriverModules, AModuleStuckInApplyCostsCallersTheDeviceErrorNotTheBus) {
