@@ -214,5 +214,49 @@ TEST(DriverModules, ModulesOthersCouldHavePutThereAreRefusedWithALogLineNamingTh
     }
 }
 
+TEST(DriverModules, ALinkThroughAStrangersDirectoryIsRefusedNamingTheLink) {
+    // The path: drivers/good.so -> STRANGER/l.so -> trusted/good.so. Re-pointing l.so
+    // would load the stranger's code, so the first link out is refused whatever it leads to.
+    ModulesDir modules;
+    ModulesDir trusted;
+    const auto real = trusted.add_example();
+    testing::TempDir stranger;
+    std::filesystem::permissions(stranger.path(), std::filesystem::perms(0755));
+    std::filesystem::create_symlink(real, stranger.path() / "l.so");
+    if (::geteuid() == 0) {
+        ASSERT_EQ(::lchown((stranger.path() / "l.so").c_str(), kNobody, kNobody), 0);
+        ASSERT_EQ(::chown(stranger.path().c_str(), kNobody, kNobody), 0);
+    }
+    const auto link = modules.path() / "good.so";
+    std::filesystem::create_symlink(stranger.path() / "l.so", link);
+    DaemonFixture daemon{drivers_dir_line(modules)};
+    EXPECT_THAT(
+        daemon.daemon_log(),
+        HasSubstr("driver module " + link.string() + " is not loaded: " + link.string() + " -> " +
+                  (stranger.path() / "l.so").string() + " leads out of the drivers directory"));
+    EXPECT_THAT(daemon.call({"ListDrivers"}).out, Not(HasSubstr("\"trace\"")));
+    const auto switched = daemon.call({"SwitchDriver", "s", "trace"});
+    EXPECT_NE(switched.exit_code, 0);
+    EXPECT_EQ(property(daemon, "Driver"), "s \"sim\"\n");
+}
+
+TEST(DriverModules, AFileRenamedIntoAModulesPlaceAfterTheScanIsNotWhatSwitchDriverLoads) {
+    ModulesDir modules;
+    const auto module = modules.add("counted", "mod.so");
+    LoadLog log;
+    DaemonFixture daemon{drivers_dir_line(modules)};
+    ASSERT_EQ(log.loads(), 1u) << "tried once, in a child";
+    // Another module renamed into the scanned one's place.
+    const auto staged = modules.path() / "staged";
+    std::filesystem::copy_file(
+        std::filesystem::path(testing::required_env("VIBSCORE_EXAMPLE_DRIVERS")) / "trace.so",
+        staged);
+    std::filesystem::rename(staged, module);
+    const auto switched = daemon.call({"SwitchDriver", "s", "counted"});
+    EXPECT_EQ(switched.exit_code, 0) << switched.err;
+    EXPECT_EQ(property(daemon, "Driver"), "s \"counted\"\n");
+    EXPECT_EQ(log.loads(), 2u) << "the scanned module loaded into the daemon, not the new file";
+}
+
 }  // namespace
 }  // namespace vibscore
