@@ -379,6 +379,7 @@ bool worse(double on, double off, double resolution) {
 struct Truth {
     std::string label;
     Declaration declaration;
+    double group = 1.0;  // the factor of the resonance (LRA) or of spin-up (ERM) it is built with
 };
 
 // The worst on/off ratio of one figure of one piece over the truths, and where.
@@ -414,6 +415,7 @@ std::string robustness(const std::vector<Piece>& all, const std::string& title,
                        const render::Uncertainty& uncertainty) {
     std::vector<Worst> onset(all.size()), stop(all.size()), error(all.size());
     int cells = 0, cells_worse = 0;
+    std::map<double, std::pair<int, int>> by_group;  // worse, all
     for (const auto& truth : truths) {
         const Totals off = run(all, declared, truth.declaration, false);
         const Totals on = run(all, declared, truth.declaration, true, uncertainty);
@@ -423,10 +425,13 @@ std::string robustness(const std::vector<Piece>& all, const std::string& title,
             stop[p].take(a.stop, b.stop, 0.5, truth.label);
             error[p].take(a.error, b.error, 0.005, truth.label);
             ++cells;
-            cells_worse += worse(a.onset, b.onset, 0.5) || worse(a.stop, b.stop, 0.5) ||
-                                   worse(a.error, b.error, 0.005)
-                               ? 1
-                               : 0;
+            const int pair_worse = worse(a.onset, b.onset, 0.5) || worse(a.stop, b.stop, 0.5) ||
+                                           worse(a.error, b.error, 0.005)
+                                       ? 1
+                                       : 0;
+            cells_worse += pair_worse;
+            by_group[truth.group].first += pair_worse;
+            ++by_group[truth.group].second;
         }
     }
     std::printf(
@@ -464,7 +469,18 @@ std::string robustness(const std::vector<Piece>& all, const std::string& title,
         "(piece, truth) pairs\n",
         ratio_text(worst_onset).c_str(), ratio_text(worst_stop).c_str(),
         ratio_text(worst_error).c_str(), cells_worse, cells);
-    json += "],\"worst\":{\"onset\":" + json_number(worst_onset) +
+    std::printf("  on worse than off, by the factor it is built with (resonance; ERM: spin-up):");
+    std::string groups_json;
+    for (const auto& [group, counts] : by_group) {
+        std::printf(" x%g %d of %d;", group, counts.first, counts.second);
+        groups_json += std::string(groups_json.empty() ? "" : ",") +
+                       "{\"factor\":" + json_number(group) +
+                       ",\"worse\":" + std::to_string(counts.first) +
+                       ",\"pairs\":" + std::to_string(counts.second) + "}";
+    }
+    std::printf("\n");
+    json += "],\"by_factor\":[" + groups_json +
+            "],\"worst\":{\"onset\":" + json_number(worst_onset) +
             ",\"stop\":" + json_number(worst_stop) + ",\"error\":" + json_number(worst_error) +
             "},\"worse_pairs\":" + std::to_string(cells_worse) +
             ",\"pairs\":" + std::to_string(cells) + "}";
@@ -485,7 +501,7 @@ std::vector<Truth> lra_truths(const Declaration& declared, bool quick) {
             truth.q *= q;
             char label[48];
             std::snprintf(label, sizeof label, "%gHz Q%g", truth.resonance_hz, truth.q);
-            truths.push_back({label, truth});
+            truths.push_back({label, truth, f});
         }
     }
     return truths;
@@ -504,7 +520,7 @@ std::vector<Truth> erm_truths(const Declaration& declared) {
             char label[48];
             std::snprintf(label, sizeof label, "%g/%gms", truth.spin_up_s * 1000.0,
                           truth.spin_down_s * 1000.0);
-            truths.push_back({label, truth});
+            truths.push_back({label, truth, up});
         }
     }
     return truths;
