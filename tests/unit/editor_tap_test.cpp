@@ -302,6 +302,33 @@ TEST_F(TapEntry, TwelveTapsAreFigure75AtTheProposedNoteAndSelectThenChangesThem)
     // One undo step takes the whole rhythm back.
     ASSERT_TRUE(editor.model.undo());
     EXPECT_TRUE(editor.model.score().bars[0].symbols.empty());
+    EXPECT_EQ(editor.model.score().find_clef("lra-75bpm"), nullptr);  // undone with the bars
+}
+
+TEST_F(TapEntry, AClefOfTheTempoClefsNameThatIsNotSuchACopyIsLeftAloneAndTheCopyTakesAFreeName) {
+    Clef other = editor.scheme.clef_book().find("lra")->clef;
+    other.tempo = 0.4;
+    other.numbers.back() = 0.9;  // lra-150bpm, but not lra at 0.4 s
+    editor.scheme.add_clef({{"lra-150bpm", "lra-150bpm.clef.xml"}, other, false});
+    for (int k = 0; k < 4; ++k) {
+        tap(1.0 + 0.4 * k);
+    }
+    const auto request = editor.press_at(editor::Button::back, at(2.6));
+    EXPECT_EQ(request.kind, editor::Request::Kind::store_clef);
+    EXPECT_EQ(request.name, "lra-150bpm-2");
+    EXPECT_EQ(editor.model.message(), "4 notes, clef lra-150bpm-2 (0.40 s)");
+    EXPECT_EQ(editor.scheme.clef_book().find("lra-150bpm")->clef, other);
+    // Tapped again at that tempo after the tapped bar: that bar's clef plays it already.
+    testing::to_menu_entry(editor, "tap a rhythm");
+    editor.press(editor::Button::select);
+    for (int k = 0; k < 4; ++k) {
+        tap(10.0 + 0.4 * k);
+    }
+    EXPECT_EQ(editor.press_at(editor::Button::back, at(11.6)).kind, editor::Request::Kind::none);
+    EXPECT_EQ(editor.model.message(), "4 notes at 0.40 s a beat: S changes");
+    for (const auto& bar : editor.model.score().bars) {
+        EXPECT_EQ(bar.clef, "lra-150bpm-2");
+    }
 }
 
 TEST_F(TapEntry, TheTempoClefIsMadeOnceAndFoundAgainAndTapsAtTheClefsPaceNeedNone) {
