@@ -29,6 +29,7 @@ struct SessionActions {
         return {Request::Kind::play, {}, 0};
     }
     static Request save(ButtonScheme& scheme, EditorModel&) {
+        scheme.asked_for_event_ = false;
         // A new score's first save asks what it is for, as save as does.
         if (scheme.never_saved_ && !scheme.events_->empty()) {
             scheme.open_use_for(false);
@@ -38,6 +39,7 @@ struct SessionActions {
         return scheme.save_under(scheme.destination_, false);
     }
     static Request save_as(ButtonScheme& scheme, EditorModel& model) {
+        scheme.asked_for_event_ = false;
         if (!scheme.events_->empty()) {
             scheme.open_use_for(true);
             return {};
@@ -45,6 +47,10 @@ struct SessionActions {
         scheme.pending_event_.clear();
         scheme.pending_save_as_ = true;
         scheme.begin_name_entry(model, false);
+        return {};
+    }
+    static Request use_for_event(ButtonScheme& scheme, EditorModel&) {
+        scheme.open_event_choice();
         return {};
     }
     static Request open(ButtonScheme& scheme, EditorModel&) {
@@ -225,6 +231,8 @@ constexpr ActionRecord kActions[] = {
 
     session(Action::save, "save", key(ctrl('S')), file, "save", &SessionActions::save),
     session(Action::save_as, "save as", no_keys, file, "save as...", &SessionActions::save_as),
+    session(Action::use_for_event, "use for event", key('u'), file, "use for event...",
+            &SessionActions::use_for_event),
     session(Action::open, "open", key(ctrl('O')), file, "open...", &SessionActions::open),
     session(Action::new_score, "new", key(ctrl('N')), file, "new score",
             &SessionActions::new_score),

@@ -101,7 +101,12 @@ Request ButtonScheme::press(Button button, EditorModel& model, std::optional<Tim
         case Mode::clef_close:
             return clef_close_press(button);
         case Mode::assigned:
-            return assigned_press(button);
+            return assigned_press(button, model);
+        case Mode::no_events:
+            if (button == Button::select || button == Button::back) {
+                mode_ = Mode::browse;
+            }
+            return {};
         case Mode::playing:
             return {Request::Kind::stop};
     }
@@ -459,9 +464,35 @@ Request ButtonScheme::save_under(const std::string& name, bool then_quit) {
 // what each plays now, and last, none.
 void ButtonScheme::open_use_for(bool save_as) {
     pending_save_as_ = save_as;
+    assign_only_ = false;
+    asked_for_event_ = true;
     pending_event_.clear();
     list_.set(0, static_cast<int>(events_->size()) + 1);
     mode_ = Mode::use_for;
+}
+
+void ButtonScheme::open_event_choice() {
+    if (events_->empty()) {
+        list_.set(0, 1);
+        mode_ = Mode::no_events;
+        return;
+    }
+    pending_save_as_ = false;
+    assign_only_ = true;
+    pending_event_.clear();
+    list_.set(0, static_cast<int>(events_->size()) + 1);
+    mode_ = Mode::use_for;
+}
+
+void ButtonScheme::after_save(const std::string& event) {
+    const bool asked = asked_for_event_;
+    asked_for_event_ = false;
+    if (!event.empty() || asked || events_->empty() || mode_ != Mode::browse) {
+        return;
+    }
+    open_event_choice();
+    // The offer comes unasked: Select on the line already chosen ("no event") goes on.
+    list_.set(static_cast<int>(events_->size()), static_cast<int>(events_->size()) + 1);
 }
 
 Request ButtonScheme::use_for_press(Button button, EditorModel& model) {
@@ -470,6 +501,20 @@ Request ButtonScheme::use_for_press(Button button, EditorModel& model) {
         return {};
     }
     const auto chosen = static_cast<std::size_t>(list_.index());
+    if (assign_only_) {
+        mode_ = Mode::browse;
+        if (chosen >= events_->size()) {
+            return {};
+        }
+        const std::string& event = (*events_)[chosen].event;
+        if (model.modified() || never_saved_) {
+            // What the event plays is what is stored: the changes are saved to the score's own
+            // name first (a shipped one asks, as save does), never to a copy.
+            pending_event_ = event;
+            return save_under(destination_, false);
+        }
+        return {Request::Kind::assign_event, {}, 0, false, event};
+    }
     if (chosen < events_->size()) {
         pending_event_ = (*events_)[chosen].event;  // a name proposed from it, one Select
         begin_name_entry(model, false);
@@ -609,12 +654,16 @@ void ButtonScheme::show_assigned(const std::string& event, const std::string& sc
     mode_ = Mode::assigned;
 }
 
-Request ButtonScheme::assigned_press(Button button) {
+Request ButtonScheme::assigned_press(Button button, EditorModel& model) {
     if (!choosing(button, 2, Mode::browse)) {
         return {};
     }
     mode_ = Mode::browse;
-    if (list_.index() == 1) {
+    if (list_.index() == 0) {
+        // Said after the question closes, by the event's own name (the one fbcli and the theme
+        // use), so the line confirms what was done.
+        model.say(assigned_before_.event + " plays " + assigned_score_);
+    } else {
         return {Request::Kind::keep_event, score_before(assigned_before_), 0, false,
                 assigned_before_.event};
     }
@@ -768,14 +817,31 @@ ButtonScheme::MenuView ButtonScheme::menu_view(const EditorModel& model) const {
             view.highlighted = list_.index();
             break;
         case Mode::use_for:
-            view.title = "use for ...";
+            view.title = assign_only_ ? "use " + destination_ + " for" : "use for ...";
             for (const auto& event : *events_) {
                 view.lines.push_back(event_label(event.event) + ": " +
                                      (event.score.empty() ? "-" : event.score));
             }
-            view.lines.push_back(pending_save_as_ ? "no event: a name..." : "no event: just save");
+            view.lines.push_back(assign_only_       ? "no event"
+                                 : pending_save_as_ ? "no event: a name..."
+                                                    : "no event: just save");
             view.highlighted = list_.index();
             break;
+        case Mode::no_events: {
+            view.title = "use for event";
+            // One line per sentence: the menu wraps them at the screen's width.
+            std::string line;
+            for (const char c : why_no_events_) {
+                if (c == '\n') {
+                    view.lines.push_back(line);
+                    line.clear();
+                } else {
+                    line += c;
+                }
+            }
+            view.lines.push_back(line);
+            view.highlighted = -1;
+        } break;
         case Mode::assigned:
             // Narrow screens: the title holds the event, the lines the two scores.
             view.title = event_label(assigned_before_.event) + " plays:";
@@ -825,7 +891,10 @@ std::string ButtonScheme::hint(const EditorModel& model) const {
             return count + " S:note \u2193rest \u2191 B:done \u2190drop";
         }
         case Mode::use_for:
-            return "\u2191\u2193choose Sel:save for it Back:close";
+            return assign_only_ ? "\u2191\u2193choose Sel:use for it Back:close"
+                                : "\u2191\u2193choose Sel:save for it Back:close";
+        case Mode::no_events:
+            return "Sel/Back:close";
         case Mode::clef_list:
             return "\u2191\u2193choose Sel:edit Back:close";
         case Mode::clef_edit:

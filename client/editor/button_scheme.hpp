@@ -33,10 +33,11 @@ struct Request {
         new_score,
         quit,
         save_and_quit,
-        keep_event,  // "keep as it was": give `event` back the score `name` ("" the theme's)
-        hear_clef,   // play string `string` at number `number` through the clef `document`
-        save_clef,   // store the clef `document` as `name` and use it for the cursor's bar
-        store_clef,  // store the clef `document` as `name`: bars already use it (a tempo clef)
+        keep_event,    // "keep as it was": give `event` back the score `name` ("" the theme's)
+        hear_clef,     // play string `string` at number `number` through the clef `document`
+        save_clef,     // store the clef `document` as `name` and use it for the cursor's bar
+        store_clef,    // store the clef `document` as `name`: bars already use it (a tempo clef)
+        assign_event,  // the score as saved plays for `event` from now on (no save, no copy)
     };
     Kind kind = Kind::none;
     std::string name;        // open: the registry name or file; save_as: the name to save under
@@ -95,6 +96,7 @@ class ButtonScheme {
         tapping,       // a rhythm tapped on Select (tap_rhythm.hpp)
         use_for,       // saving: which event the score is for, or none
         assigned,      // saved for an event: ok, or keep the event as it was
+        no_events,     // "use for event...": why there are none (the service not running)
         clef_list,     // "edit clefs...": which clef
         clef_edit,     // a clef's window (clef_editor.hpp)
         clef_name,     // saving the clef: its new name
@@ -134,7 +136,18 @@ class ButtonScheme {
     }
     // The events of the feedback theme in use with what each plays now: saving offers them
     // first ("use for ..."). None (vibscore-feedback out of reach) offers none.
-    void set_events(std::vector<EventScore> events) { events_ = in_offer_order(std::move(events)); }
+    // `why_none`: why events cannot be chosen ("" when they can): "use for event..." says it,
+    // with how to start the feedback service, instead of a list.
+    void set_events(std::vector<EventScore> events, std::string why_none = "") {
+        events_ = in_offer_order(std::move(events));
+        why_no_events_ = std::move(why_none);
+    }
+    // "use for event..." (the menu's file group): the events, and Select assigns the open score
+    // itself (saved first to its own name when it has unsaved changes): never a copy.
+    void open_event_choice();
+    // A save is done (`event`: the event it was for, or ""): a save that did not ask what the
+    // score is for offers the events now (its last line, highlighted, dismisses the offer).
+    void after_save(const std::string& event);
     // Saved, and `event` plays `score` now: asks "ok" or "keep as it was".
     void show_assigned(const std::string& event, const std::string& score);
     // The clefs the session could read, by id: a rhythm tapped at a clef's own pace is
@@ -198,7 +211,7 @@ class ButtonScheme {
     Request clef_close_press(Button button);
     void begin_clef_name();
     Request use_for_press(Button button, EditorModel& model);
-    Request assigned_press(Button button);
+    Request assigned_press(Button button, EditorModel& model);
     Request end_tapping(EditorModel& model);
 
     Mode mode_ = Mode::browse;
@@ -218,7 +231,10 @@ class ButtonScheme {
     bool never_saved_ = false;
     std::string pending_event_;     // the event the score being saved is for
     bool pending_save_as_ = false;  // "use for" was opened by save as (else by save)
-    EventScore assigned_before_;    // the event as it was before the score was saved for it
+    bool assign_only_ = false;      // "use for" assigns the score as it is (use for event...)
+    bool asked_for_event_ = false;  // this save asked what the score is for
+    std::string why_no_events_;
+    EventScore assigned_before_;  // the event as it was before the score was saved for it
     std::string assigned_score_;
     Shared<ClefBook> clef_book_;
     ClefEditor clef_editor_;

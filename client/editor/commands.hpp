@@ -50,6 +50,7 @@ enum class Action {
     redo,
     save,
     save_as,
+    use_for_event,  // the open score plays for an event of the feedback theme (no copy)
     open,
     new_score,
     quit,

@@ -150,7 +150,8 @@ class Session {
         const bool registry = source.kind == ScoreSource::Kind::registry;
         editor->scheme.set_destination(name_of(source), is_new || !registry, is_new && registry);
         // The feedback theme's events play registry scores: saving one offers them.
-        editor->scheme.set_events(registry ? event_scores() : std::vector<EventScore>{});
+        auto events = registry ? event_scores() : std::vector<EventScore>{};
+        editor->scheme.set_events(std::move(events), why_no_events(registry));
         if (editor_) {
             editor->model.carry_over(editor_->model);
         }
@@ -365,6 +366,7 @@ class Session {
             case Request::Kind::save:
                 if (save()) {
                     use_for(request.event, true);
+                    editor_->scheme.after_save(request.event);
                 }
                 return;
             case Request::Kind::save_and_quit:
@@ -378,8 +380,13 @@ class Session {
                     use_for(request.event, !request.then_quit);
                     if (request.then_quit) {
                         running_ = false;
+                    } else {
+                        editor_->scheme.after_save(request.event);
                     }
                 }
+                return;
+            case Request::Kind::assign_event:
+                use_for(request.event, true);
                 return;
             case Request::Kind::keep_event:
                 keep_event(request.event, request.name);
@@ -405,9 +412,34 @@ class Session {
         }
     }
 
-    // What each event of the feedback theme plays now; none when it cannot be read (the editor
-    // then saves as it did, and says why once).
+    // Why "use for event..." has no events to offer, with how to start the feedback service
+    // (docs/feedbackd.md); "" when vibscore-feedback answers. One sentence a line: the menu
+    // wraps them.
+    std::string why_no_events(bool registry) {
+        if (!registry) {
+            return "Events play registry scores, and this is a file.\n"
+                   "Save it under a name with vibscore edit NAME, then use it for an event.";
+        }
+        if (!daemon_) {
+            return "No vibscored: " + daemon_problem_;
+        }
+        if (events_ && events_->live()) {
+            return "";
+        }
+        return "The feedback service (vibscore-feedback) is not running on the session bus.\n"
+               "From a checkout: ./dev daemon starts it; run vibscore edit after the "
+               "export DBUS_SESSION_BUS_ADDRESS=... line it prints.\n"
+               "Installed: the vibscore-feedback package; D-Bus starts it when asked.";
+    }
+
+    // What each event of the feedback theme plays now: from vibscore-feedback (asked again
+    // while it does not answer, so a service started since is found), else from the theme and
+    // the user's file it reads when it starts; none when neither can be read (the editor then
+    // saves as it did, and "use for event..." says why).
     std::vector<EventScore> event_scores() {
+        if (daemon_ && (!events_ || !events_->live())) {
+            events_ = std::make_unique<EventLink>();
+        }
         if (!events_) {
             return {};
         }
@@ -427,11 +459,15 @@ class Session {
         }
         try {
             events_->assign(event, source_.name);
-            message_ = event_label(event) + " plays " + source_.name;
+            // Without the service the choice is in the user's file, which it reads when it
+            // starts: true, but not yet heard.
+            message_ = event + " plays " + source_.name +
+                       (events_->live() ? "" : " once vibscore-feedback runs");
             if (ask) {
                 editor_->scheme.show_assigned(event, source_.name);
             }
-            editor_->scheme.set_events(event_scores());
+            auto events = event_scores();
+            editor_->scheme.set_events(std::move(events), why_no_events(true));
         } catch (const std::exception& error) {
             message_ = "saved; not used for " + event_label(event) + ": " + error.what();
         }
@@ -442,7 +478,8 @@ class Session {
             events_->assign(event, score);
             message_ = event_label(event) + " plays " +
                        (score.empty() ? std::string("the theme's score") : score) + " again";
-            editor_->scheme.set_events(event_scores());
+            auto events = event_scores();
+            editor_->scheme.set_events(std::move(events), why_no_events(true));
         } catch (const std::exception& error) {
             message_ = event_label(event) + ": " + error.what();
         }

@@ -1,6 +1,9 @@
 #include "client/editor/menu.hpp"
 
+#include <algorithm>
+
 #include "client/editor/editor_model.hpp"
+#include "client/editor/status_line.hpp"
 
 namespace vibscore::editor {
 
@@ -47,6 +50,35 @@ void MenuCursor::jump_group(int delta, const std::vector<MenuEntry>& entries) {
         }
     }
     set(i, size);
+}
+
+std::vector<MenuRow> menu_rows(const std::vector<std::string>& lines, int width) {
+    std::vector<MenuRow> rows;
+    const int room = std::max(2, width);
+    for (std::size_t index = 0; index < lines.size(); ++index) {
+        const int line = static_cast<int>(index);
+        std::string rest = lines[index];
+        std::string indent;
+        while (true) {
+            const int columns = room - columns_of(indent);
+            if (columns_of(rest) <= columns) {
+                rows.push_back({indent + rest, line});
+                break;
+            }
+            const std::size_t fits = fit(rest, columns).size();
+            // Break at the last space that leaves something on this row, else within the word.
+            const std::size_t space = rest.rfind(' ', fits);
+            const std::size_t cut = space != std::string::npos && space > 0 ? space : fits;
+            rows.push_back({indent + rest.substr(0, cut), line});
+            rest.erase(0, cut);
+            rest.erase(0, std::min(rest.find_first_not_of(' '), rest.size()));
+            indent = " ";
+            if (rest.empty()) {
+                break;
+            }
+        }
+    }
+    return rows;
 }
 
 }  // namespace vibscore::editor

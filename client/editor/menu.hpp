@@ -21,6 +21,16 @@ struct MenuEntry {
 // Most used first, so few presses reach them.
 std::vector<MenuEntry> main_menu(const EditorModel& model);
 
+// A menu line as drawn: lines longer than the menu is wide are wrapped at spaces (a word
+// longer than the width is broken), their continuations indented one column, so an event's
+// name and what it plays show whole at 40 columns. `line`: the menu line a row belongs to.
+struct MenuRow {
+    std::string text;
+    int line = 0;
+    bool operator==(const MenuRow&) const = default;
+};
+std::vector<MenuRow> menu_rows(const std::vector<std::string>& lines, int width);
+
 // A highlighted line in a list that wraps around at both ends.
 class MenuCursor {
   public:

@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <stdexcept>
 
+#include "client/editor/menu.hpp"
 #include "client/editor/staff_layout.hpp"
 #include "client/editor/staff_options.hpp"
 #include "client/editor/status_line.hpp"
@@ -209,38 +210,47 @@ void Screen::draw(const EditorModel& model, const ButtonScheme& scheme, const Vi
 }
 
 void Screen::draw_menu(const ButtonScheme::MenuView& menu, int rows, int cols) {
-    int widest = static_cast<int>(menu.title.size());
+    int widest = columns_of(menu.title);
     for (const auto& line : menu.lines) {
-        widest = std::max(widest, static_cast<int>(line.size()));
+        widest = std::max(widest, columns_of(line));
     }
     const int width = std::min(widest + 4, cols);
-    const int visible = std::max(1, std::min(static_cast<int>(menu.lines.size()), rows - 3));
+    // Lines wider than the screen are wrapped, never cut: an event's name shows whole.
+    const auto drawn = menu_rows(menu.lines, width - 3);
+    const int count = static_cast<int>(drawn.size());
+    const int visible = std::max(1, std::min(count, rows - 3));
     const int height = visible + 2;
     const int left = std::max(0, cols - width);
     const int top = std::max(0, (rows - 1 - height) / 2);
-    // The lines around the highlighted one.
-    const int first = std::clamp(menu.highlighted - visible / 2, 0,
-                                 static_cast<int>(menu.lines.size()) - visible);
+    // The rows around the highlighted line's first row.
+    int at = 0;
+    for (int row = 0; row < count; ++row) {
+        if (drawn[static_cast<std::size_t>(row)].line == menu.highlighted) {
+            at = row;
+            break;
+        }
+    }
+    const int first = std::clamp(at - visible / 2, 0, count - visible);
     for (int row = 0; row < height; ++row) {
         mvaddstr(top + row, left, std::string(static_cast<std::size_t>(width), ' ').c_str());
     }
     attrset(A_BOLD);
-    mvaddstr(top, left,
-             ("+" + fit(" " + menu.title + " ", width - 2) +
-              std::string(static_cast<std::size_t>(
-                              std::max(0, width - 2 - static_cast<int>(menu.title.size() + 2))),
-                          '-') +
-              "+")
-                 .c_str());
+    mvaddstr(
+        top, left,
+        ("+" + fit(" " + menu.title + " ", width - 2) +
+         std::string(static_cast<std::size_t>(std::max(0, width - 2 - columns_of(menu.title) - 2)),
+                     '-') +
+         "+")
+            .c_str());
     attrset(A_NORMAL);
     for (int i = 0; i < visible; ++i) {
-        const int index = first + i;
-        const bool chosen = index == menu.highlighted;
+        const auto& row = drawn[static_cast<std::size_t>(first + i)];
+        const bool chosen = row.line == menu.highlighted;
+        const bool starts =
+            first + i == 0 || drawn[static_cast<std::size_t>(first + i - 1)].line != row.line;
         attrset(chosen ? A_REVERSE : A_NORMAL);
         mvaddstr(top + 1 + i, left,
-                 ("|" + std::string(chosen ? ">" : " ") +
-                  fit(menu.lines[static_cast<std::size_t>(index)], width - 3))
-                     .c_str());
+                 ("|" + std::string(chosen && starts ? ">" : " ") + row.text).c_str());
         attrset(A_NORMAL);
     }
     mvaddstr(
