@@ -245,6 +245,25 @@ TEST(ModuleProbe, AFileThatIsNotADriverIsRefusedWithTheLoadersReason) {
     }
 }
 
+TEST(ModuleProbe, TheTrialRunsInASessionOfItsOwnThatDiesWithTheDaemonUnderAFilter) {
+    ModulesDir dir;
+    TempDir logs;
+    const auto log = logs.path() / "process";
+    ::setenv("VIBSCORE_TEST_PROCESS_LOG", log.c_str(), 1);
+    const auto probed = probe_modules(opened({dir.add("describe-trial")}));
+    ::unsetenv("VIBSCORE_TEST_PROCESS_LOG");
+    ASSERT_TRUE(probed[0].loaded()) << probed[0].error;
+    std::ifstream in(log);
+    long pid = 0, session = 0;
+    int death_signal = 0, seccomp = 0;
+    ASSERT_TRUE(in >> pid >> session >> death_signal >> seccomp);
+    EXPECT_NE(pid, static_cast<long>(::getpid()));
+    EXPECT_EQ(session, pid) << "the leader of a session of its own";
+    EXPECT_NE(session, static_cast<long>(::getsid(0)));
+    EXPECT_EQ(death_signal, SIGKILL);
+    EXPECT_EQ(seccomp, 2) << "SECCOMP_MODE_FILTER";
+}
+
 TEST(ModuleProbe, AConstructorThatKillsItsParentOrForksIsRefusedAndThisProcessLivesOn) {
     ModulesDir dir;
     const auto probed =

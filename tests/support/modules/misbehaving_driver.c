@@ -13,6 +13,9 @@
  *   FORK_AT_LOAD    a constructor that forks, and the copy lives on (pause())
  *   THREAD_AT_LOAD  well behaved, but its constructor starts and joins a thread, which the
  *                   trial must still allow
+ *   DESCRIBE_PROCESS_AT_LOAD  well behaved; each load writes "PID SID PDEATHSIG SECCOMP" of the
+ *                   loading process to $VIBSCORE_TEST_PROCESS_LOG (SECCOMP: /proc/self/status's
+ *                   Seccomp field, 2 under a filter), so a test can see how the trial is confined
  * DRIVER_NAME is the driver's name.
  */
 #include <vibscore/driver.h>
@@ -23,6 +26,10 @@
 #include <unistd.h>
 #if defined(THREAD_AT_LOAD)
 #include <pthread.h>
+#endif
+#if defined(DESCRIBE_PROCESS_AT_LOAD)
+#include <string.h>
+#include <sys/prctl.h>
 #endif
 
 #ifndef DRIVER_NAME
@@ -47,6 +54,26 @@ __attribute__((constructor)) static void at_load(void) {
         for (;;) {
             pause();
         }
+    }
+#elif defined(DESCRIBE_PROCESS_AT_LOAD)
+    int deathsig = 0;
+    prctl(PR_GET_PDEATHSIG, &deathsig);
+    int seccomp = -1;
+    FILE* status = fopen("/proc/self/status", "r");
+    char line[256];
+    while (status && fgets(line, sizeof line, status)) {
+        if (strncmp(line, "Seccomp:", 8) == 0) {
+            seccomp = atoi(line + 8);
+        }
+    }
+    if (status) {
+        fclose(status);
+    }
+    const char* log = getenv("VIBSCORE_TEST_PROCESS_LOG");
+    FILE* out = log ? fopen(log, "a") : NULL;
+    if (out) {
+        fprintf(out, "%ld %ld %d %d\n", (long)getpid(), (long)getsid(0), deathsig, seccomp);
+        fclose(out);
     }
 #elif defined(THREAD_AT_LOAD)
     pthread_t thread;
