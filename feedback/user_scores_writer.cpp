@@ -5,9 +5,11 @@
 
 #include <cerrno>
 #include <cstdint>
+#include <string>
 #include <system_error>
 #include <utility>
 
+#include "daemon/log.hpp"
 #include "feedback/user_scores.hpp"
 
 namespace vibscore::feedback {
@@ -84,7 +86,13 @@ int UserScoresWriter::on_wake(sd_event_source*, int fd, std::uint32_t, void* sel
         outcomes.swap(writer->finished_);
     }
     for (auto& outcome : outcomes) {
-        outcome.done(outcome.error);
+        // Nothing may leave through sd-event's C frames; a reply that cannot be sent (the
+        // caller left) must not cost the others theirs.
+        try {
+            outcome.done(outcome.error);
+        } catch (const std::exception& error) {
+            log::warning(std::string("after storing a choice: ") + error.what());
+        }
     }
     return 0;
 }
