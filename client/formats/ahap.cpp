@@ -376,12 +376,17 @@ class AhapReader {
 template <typename StrengthAt>
 std::vector<std::pair<double, double>> bends_within(const std::vector<double>& bends, double from,
                                                     double to, double start, double end,
-                                                    const StrengthAt& strength_at) {
+                                                    const StrengthAt& strength_at,
+                                                    std::size_t& looked_at) {
     constexpr double kStraight = 0.004;  // as grid_fit's slack for 8-bit and float noise
     std::vector<std::pair<double, double>> points;
     bool bent = false;
     for (auto it = std::upper_bound(bends.begin(), bends.end(), from);
          it != bends.end() && *it < to; ++it) {
+        ++looked_at;
+        if (looked_at > limits::symbols) {
+            return {};  // the caller refuses the file
+        }
         const double before = strength_at(*it, false), after = strength_at(*it, true);
         const double straight = start + (end - start) * (*it - from) / (to - from);
         bent = bent || std::abs(before - straight) > kStraight ||
@@ -488,6 +493,13 @@ ImportedScore read_ahap(std::string_view text, const std::string& file, const Ch
     std::sort(bends.begin(), bends.end());
     bends.erase(std::unique(bends.begin(), bends.end()), bends.end());
 
+    std::vector<double> onsets;
+    for (const auto& haptic : reader.events) {
+        onsets.push_back(haptic.time);
+    }
+    std::sort(onsets.begin(), onsets.end());
+    std::size_t bent = 0;
+
     std::vector<SoundEvent> events;
     for (const auto& haptic : reader.events) {
         const auto at = [&](double t, bool at_start) {
@@ -504,9 +516,25 @@ ImportedScore read_ahap(std::string_view text, const std::string& file, const Ch
         std::tie(event.strength_end, event.pitch_end) =
             haptic.duration > 0.0 ? at(haptic.time + haptic.duration, false)
                                   : std::make_pair(event.strength_start, event.pitch_start);
+        // Only while it sounds: one voice, so a later onset ends it (as place_on_grid has it).
+        const auto later = std::upper_bound(onsets.begin(), onsets.end(), haptic.time);
+        const double sounds_until = later == onsets.end()
+                                        ? haptic.time + haptic.duration
+                                        : std::min(haptic.time + haptic.duration, *later);
         event.strength_points = bends_within(
-            bends, haptic.time, haptic.time + haptic.duration, event.strength_start,
-            event.strength_end, [&](double t, bool at_start) { return at(t, at_start).first; });
+            bends, haptic.time, sounds_until, event.strength_start, at(sounds_until, false).first,
+            [&](double t, bool at_start) { return at(t, at_start).first; }, bent);
+        // Each bend is a note at least: past a score's symbols, refused before any layout (and
+        // before events sounding together cost a look at every bend each).
+        if (bent > limits::symbols) {
+            throw DocumentError({file},
+                                "too long for a score: its intensity curves bend more "
+                                "than " +
+                                    std::to_string(limits::symbols) +
+                                    " times within events, each a note; a score holds at "
+                                    "most " +
+                                    std::to_string(limits::symbols) + " symbols");
+        }
         events.push_back(event);
     }
     double total = reader.last_parameter;

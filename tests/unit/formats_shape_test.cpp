@@ -14,6 +14,7 @@
 #include "daemon/render/performance.hpp"
 #include "score/bundle.hpp"
 #include "score/clef_xml.hpp"
+#include "score/limits.hpp"
 #include "tests/support/run_command.hpp"
 
 namespace vibscore {
@@ -177,6 +178,38 @@ TEST(AhapShape, AStraightCurveStaysOneNoteWithAHairpinAndSaysNothing) {
     ASSERT_EQ(imported.score.bars[0].symbols.size(), 1u);
     EXPECT_EQ(std::get<Note>(imported.score.bars[0].symbols[0]).dynamics, Dynamics::crescendo);
     EXPECT_TRUE(imported.warnings.empty());
+}
+
+// Looking at each bend inside each event costs events x bends: events sounding together (a few
+// bytes each) could make that years. A score holds at most limits::symbols symbols, and each
+// bend is one note at least, so the reader looks at that many bends and refuses the next.
+TEST(AhapShape, ReadsAHundredThousandBendsWithinEventsAndRefusesOneMore) {
+    const auto pattern = [](int events, bool one_more) {
+        std::string text = R"({"Pattern": [)";
+        for (int e = 0; e < events; ++e) {
+            text +=
+                R"({"Event": {"Time": 0, "EventType": "HapticContinuous", "EventDuration": 1}},)";
+        }
+        if (one_more) {  // over the first bend only
+            text +=
+                R"({"Event": {"Time": 0, "EventType": "HapticContinuous", "EventDuration": 0.06}},)";
+        }
+        text += R"({"ParameterCurve": {"ParameterID": "HapticIntensityControl", "Time": 0,
+                   "ParameterCurveControlPoints": [)";
+        for (int k = 1; k <= 10; ++k) {  // ten bends, at 0.05 s to 0.5 s
+            text += std::string(k > 1 ? "," : "") + R"({"Time": )" + std::to_string(0.05 * k) +
+                    R"(, "ParameterValue": )" + (k % 2 == 0 ? "1.0" : "0.2") + "}";
+        }
+        return text + "]}}]}";
+    };
+    static_assert(limits::symbols == 100000);
+    EXPECT_NO_THROW(formats::read_ahap(pattern(10000, false), "many.ahap", lra_phone()));
+    try {
+        formats::read_ahap(pattern(10000, true), "many.ahap", lra_phone());
+        ADD_FAILURE() << "a hundred thousand and one bends were read";
+    } catch (const DocumentError& error) {
+        EXPECT_THAT(error.what(), HasSubstr("bend more than 100000 times within events"));
+    }
 }
 
 // Android's envelope: ramps 0.2 -> 1.0 -> 0.3 between sounding levels, after a 1 ms attack and
