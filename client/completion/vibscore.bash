@@ -110,7 +110,7 @@ _vibscore() {
             show) options+=" --width --colour --color --svg --png --clefs --actuator" ;;
             convert) options+=" --from --to --clef --clefs --track --loop" ;;
             edit) options+=" --buttons --keymap --button-map --grab --clef" ;;
-            assign) options+=" --default --list" ;;
+            assign) options+=" --default --list --force" ;;
             clef) options+=" --actuator -o --output --clefs" ;;
             calibrate) options+=" --apply --plan --estimate --kind --actuator -o --output --png --svg" ;;
         esac

@@ -64,6 +64,7 @@ TEST_F(Completion, OffersAssignItsOptionsTheUsersEventsAndTheRegistrysScores) {
     ::setenv("DBUS_SESSION_BUS_ADDRESS", "unix:path=/nonexistent", 1);
     EXPECT_EQ(complete("vibscore ass"), "assign\n");
     EXPECT_EQ(complete("vibscore assign --d"), "--default\n");
+    EXPECT_EQ(complete("vibscore assign --f"), "--force\n");
     EXPECT_EQ(complete("vibscore assign phone-"), "phone-incoming-call\n");
     EXPECT_THAT(complete("vibscore assign phone-incoming-call ring"), HasSubstr("ringtone\n"));
     for (const auto& [name, value] : {std::pair{"XDG_CONFIG_HOME", config_home},
