@@ -11,7 +11,7 @@ namespace vibscore::client {
 actuator::Declaration load_actuator(const std::string& file) {
     std::ifstream in(file);
     if (!in) {
-        throw std::runtime_error(file + ": cannot open: " + std::strerror(errno));
+        throw ActuatorFileUnreadable(file + ": cannot open: " + std::strerror(errno));
     }
     std::ostringstream text;
     text << in.rdbuf();

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <stdexcept>
 #include <string>
 
 #include "daemon/actuator/declaration.hpp"
@@ -10,5 +11,12 @@ namespace vibscore::client {
 // daemon's vibscored.conf will do; other sections are skipped). Throws std::runtime_error naming
 // the file and, for a bad section, its line, key and value.
 actuator::Declaration load_actuator(const std::string& file);
+
+// load_actuator's error for a file it cannot open: a failed operation (exit 1), as a missing
+// score is, where a file with a bad section is a usage error.
+class ActuatorFileUnreadable : public std::runtime_error {
+  public:
+    using std::runtime_error::runtime_error;
+};
 
 }  // namespace vibscore::client

@@ -19,6 +19,7 @@
 #include "client/daemon_watch.hpp"
 #include "client/editor/documents.hpp"
 #include "client/offline_verbs.hpp"
+#include "common/number_text.hpp"
 #include "dbus/haptics1_names.hpp"
 #include "dbus/sdbus_compat.hpp"
 #include "haptics1-proxy.h"
@@ -451,8 +452,21 @@ int driver(const std::string& name, std::ostream& out, std::ostream& err) {
             out << " " << capability;
         }
         out << "\n" << haptics.DriverReason() << "\n";
-        out << "actuator: " << actuator_line(haptics.Actuator()) << "\n"
-            << actuator_source_line(haptics);
+        const auto declared = haptics.Actuator();
+        if (haptics.Driver() == "sim") {
+            // The sim follows [actuator] when one is declared (drivers::make_sim_actuator);
+            // else its own [sim] model, an LRA at the declaration's defaults unless set there.
+            actuator::Declaration defaults;
+            out << "sim: "
+                << (declared.empty()
+                        ? "simulates the model of its [sim] section (model, resonance-hz, q, "
+                          "spin-up-ms, spin-down-ms in vibscored.conf; unset: lra " +
+                              number_text(defaults.resonance_hz) + " Hz q " +
+                              number_text(defaults.q) + "), no actuator being declared"
+                        : "simulates the declared actuator: " + actuator_line(declared))
+                << "\n";
+        }
+        out << "actuator: " << actuator_line(declared) << "\n" << actuator_source_line(haptics);
         return exit_ok;
     });
 }

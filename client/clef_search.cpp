@@ -7,6 +7,7 @@
 #include "config.h"
 #include "score/clef_xml.hpp"
 #include "score/registry_names.hpp"
+#include "score/score_xml.hpp"
 
 namespace vibscore::client {
 
@@ -87,6 +88,62 @@ LoadedScore load_score(const std::filesystem::path& path, const ClefSearch& sear
     LoadedScore loaded;
     loaded.bundle = load_score_file(path, search.lookup(), &loaded.clef_origins);
     return loaded;
+}
+
+bool names_a_file(const std::string& argument) {
+    std::error_code ignored;
+    return argument.find('/') != std::string::npos || argument.ends_with(".xml") ||
+           std::filesystem::is_regular_file(argument, ignored);
+}
+
+namespace {
+
+// vibscored's score NAME bound to its clefs: each href a registry clef name, found by the rule.
+LoadedScore registry_score(const std::string& name, const std::string& text,
+                           const ClefSearch& search) {
+    const std::string label = "registry score \"" + name + "\"";
+    const auto lookup = search.lookup();
+    LoadedScore loaded;
+    loaded.bundle = bind_clefs(
+        read_score(text, label), label,
+        [&](const ClefDeclaration& declaration, const SourceLocation& where) {
+            const auto clef = clef_name_in_href(declaration.href);
+            if (!clef) {
+                throw DocumentError(where,
+                                    "href \"" + declaration.href + "\" names no registry clef");
+            }
+            auto found = lookup.find(*clef);
+            if (!found) {
+                throw DocumentError(where, "no clef \"" + *clef + "\" in " + lookup.places);
+            }
+            loaded.clef_origins[declaration.id] = found->origin;
+            return std::move(found->clef);
+        });
+    return loaded;
+}
+
+}  // namespace
+
+RegistryDocument load_registry_document(const std::string& name, const ClefSearch& search) {
+    std::string why = "there is no vibscored to ask";
+    if (search.registry_score) {
+        std::optional<std::string> text;
+        try {
+            text = search.registry_score(name);
+        } catch (const std::runtime_error& error) {
+            why = error.what();
+        }
+        if (text) {
+            return {registry_score(name, *text, search), std::nullopt};
+        }
+    }
+    // Not a score vibscored has (or no vibscored): a clef of that name, by the clef rule.
+    const auto lookup = search.lookup();
+    if (auto found = lookup.find(name)) {
+        return {std::nullopt, std::move(found->clef)};
+    }
+    throw std::runtime_error(name + ": no such file, no registry score of that name (" + why +
+                             "), and no clef \"" + name + "\" in " + lookup.places);
 }
 
 }  // namespace vibscore::client

@@ -21,6 +21,10 @@ struct ClefSearch {
     // The text of the daemon's registry clef NAME; nullopt when it has none or does not run.
     std::function<std::optional<std::string>(const std::string& name)> registry;
     std::filesystem::path shipped;  // default: shipped_clefs_folder()
+    // The text of vibscored's registry score NAME, for check, render and show given a name.
+    // Throws std::runtime_error saying why there is none (no vibscored, no such score); unset:
+    // there is no registry to ask.
+    std::function<std::string(const std::string& name)> registry_score;
 
     ClefSearch();
 
@@ -45,5 +49,22 @@ struct LoadedScore {
     std::map<std::string, std::string> clef_origins;
 };
 LoadedScore load_score(const std::filesystem::path& path, const ClefSearch& search);
+
+// The rule of play, info and show for a document argument, so check and render follow it too:
+// a path (it has a '/', ends in .xml, or names a file that exists) is read as a file, and a file
+// path always wins; anything else is a registry name. (editor::classify_source says the same
+// for the editor, which this library does not link.)
+bool names_a_file(const std::string& argument);
+
+// A registry document named on the command line: vibscored's score NAME with its clefs found by
+// the clef rule above, or else the clef NAME the clef rule finds (--clefs, vibscored, the
+// shipped clefs). Exactly one of the two is set.
+struct RegistryDocument {
+    std::optional<LoadedScore> score;
+    std::optional<Clef> clef;
+};
+// Throws DocumentError for an invalid document, and std::runtime_error saying once where it
+// looked when NAME is neither a file nor a registry score nor a clef.
+RegistryDocument load_registry_document(const std::string& name, const ClefSearch& search);
 
 }  // namespace vibscore::client

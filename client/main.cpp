@@ -12,6 +12,7 @@
 #include "client/calibrate_verb.hpp"
 #include "client/clef_verbs.hpp"
 #include "client/convert_verb.hpp"
+#include "client/daemon_documents.hpp"
 #include "client/editor/documents.hpp"
 #include "client/editor/editor_app.hpp"
 #include "client/editor/verbs.hpp"
@@ -70,6 +71,9 @@ int resolve_actuator(const std::string& spec,
     try {
         declared = daemon ? daemon_actuator() : load_actuator(spec);
         return exit_ok;
+    } catch (const ActuatorFileUnreadable& error) {
+        err << "vibscore: " << error.what() << "\n";
+        return exit_failed;
     } catch (const std::exception& error) {
         err << "vibscore: " << error.what() << "\n";
         return daemon ? exit_failed : exit_usage;
@@ -122,21 +126,27 @@ int main(int argc, char** argv) {
 
     ClefSearch clef_search;
     clef_search.registry = registry_clef_fetcher();
+    clef_search.registry_score = registry_score_fetcher();
 
     std::vector<std::string> check_files;
     auto* check = app.add_subcommand(
         "check", "Validate scores (with the clefs they name) and clefs; list every problem.");
-    check->add_option("FILE", check_files, "VibScore or VibClef documents")->required();
+    check
+        ->add_option("FILE", check_files,
+                     "VibScore or VibClef files, or registry score or clef names")
+        ->required();
     add_clefs_option(check, clef_search);
     std::string check_actuator;
     add_actuator_option(check, check_actuator,
                         "also warn, naming bar, note and numbers, where a score asks what the "
-                        "actuator cannot give");
+                        "actuator cannot give; without FILE through the clefs vibscored plays "
+                        "it with (mapped or fitted, as get clef NAME --device gives them)");
 
     RenderRequest render;
     auto* render_verb = app.add_subcommand(
         "render", "Render a score's drive signal (clef units) to CSV or WAV, or plot it.");
-    render_verb->add_option("FILE", render.file, "VibScore document")->required();
+    render_verb->add_option("FILE", render.file, "VibScore file or registry score name")
+        ->required();
     render_verb->add_option("--rate", render.rate, "samples per second (default 8000)")
         ->check(number_between(1, 384000, NumberKind::whole));
     render_verb->add_option("--out", render.out,
@@ -153,7 +163,9 @@ int main(int argc, char** argv) {
     add_actuator_option(render_verb, render_actuator,
                         "--out FILE.csv then has t,written,uncompensated,compensated: the "
                         "strength written and what the actuator produces without and with "
-                        "compensation; --plot, --svg and --png draw those three");
+                        "compensation; --plot, --svg and --png draw those three; without FILE "
+                        "the score plays through the clefs vibscored uses (mapped or fitted, as "
+                        "get clef NAME --device gives them), which the picture names");
 
     ConvertRequest convert_request;
     auto* convert_verb = app.add_subcommand(
@@ -398,11 +410,16 @@ int main(int argc, char** argv) {
         if (const int failed = resolve_actuator(check_actuator, declared, std::cerr)) {
             return failed;
         }
-        return check_documents(check_files, clef_search, std::cout, std::cerr, declared);
+        return check_documents(
+            check_files, clef_search, std::cout, std::cerr, declared,
+            check_actuator == kDaemonActuator ? daemon_clef_binder() : DeviceClefBinder{});
     }
     if (render_verb->parsed()) {
         if (const int failed = resolve_actuator(render_actuator, render.actuator, std::cerr)) {
             return failed;
+        }
+        if (render_actuator == kDaemonActuator) {
+            render.device_clefs = daemon_clef_binder();
         }
         return render_document(render, clef_search, std::cout, std::cerr);
     }

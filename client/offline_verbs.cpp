@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <memory>
@@ -21,6 +22,7 @@
 #include "daemon/render/sampler.hpp"
 #include "score/bundle.hpp"
 #include "score/clef_xml.hpp"
+#include "score/registry_names.hpp"
 
 namespace vibscore::client {
 
@@ -192,45 +194,112 @@ std::size_t write_actuator_csv(const render::ActuatorResponse& response, const s
 
 }  // namespace
 
+namespace {
+
+// How a bar's clef is named in pictures and lines: its registry name, or its file's name.
+std::string written_clef_name(const ClefDeclaration& declaration) {
+    if (const auto name = clef_name_in_href(declaration.href)) {
+        return *name;
+    }
+    return std::filesystem::path(declaration.href).filename().string();
+}
+
+// The score as it is to be drawn or checked: through the device clefs when asked, with the
+// words that say which clefs those are.
+struct ClefsUsed {
+    ScoreBundle bundle;
+    std::map<std::string, std::string> names;  // by clef id
+    std::string said;
+};
+
+ClefsUsed clefs_used(const LoadedScore& loaded, const DeviceClefBinder& device_clefs) {
+    if (device_clefs) {
+        auto bound = device_clefs(loaded);
+        return {std::move(bound.bundle), std::move(bound.names),
+                "clefs as vibscored plays them: " + bound.said};
+    }
+    ClefsUsed used{loaded.bundle, {}, "clefs as written: "};
+    bool first = true;
+    for (const auto& declaration : loaded.bundle.score.clefs) {
+        used.names[declaration.id] = written_clef_name(declaration);
+        used.said += (first ? "" : ", ") + used.names[declaration.id];
+        first = false;
+    }
+    return used;
+}
+
+// The clef each bar plays through, by name, in bar order.
+std::vector<std::string> bar_clef_names(const ClefsUsed& used) {
+    std::vector<std::string> names;
+    for (const auto& bar : used.bundle.score.bars) {
+        const auto found = used.names.find(bar.clef);
+        names.push_back(found == used.names.end() ? bar.clef : found->second);
+    }
+    return names;
+}
+
+}  // namespace
+
 int check_documents(const std::vector<std::string>& files, const ClefSearch& clefs,
                     std::ostream& out, std::ostream& err,
-                    const std::optional<actuator::Declaration>& declared) {
+                    const std::optional<actuator::Declaration>& declared,
+                    const DeviceClefBinder& device_clefs) {
     int failed = 0;
     std::size_t warned = 0;
+    std::size_t checked = 0;
+    const auto check_clef = [&](const std::string& label, const Clef& clef) {
+        out << label << ": ok (clef: " << clef_summary(clef) << ")\n";
+        ++checked;
+        if (declared) {
+            for (const auto& warning : render::clef_warnings(clef, *declared)) {
+                err << label << ": warning: " << warning << "\n";
+                ++warned;
+            }
+        }
+    };
+    const auto check_score = [&](const std::string& label, const LoadedScore& loaded) {
+        const auto used = clefs_used(loaded, declared ? device_clefs : DeviceClefBinder{});
+        const render::Performance performance(used.bundle);
+        out << label << ": ok (score: " << count(used.bundle.score.bars.size(), "bar") << ", "
+            << fixed(performance.duration()) << " s)\n";
+        ++checked;
+        if (declared) {
+            if (device_clefs) {
+                out << label << ": " << used.said << "\n";
+            }
+            for (const auto& warning :
+                 render::actuator_warnings(used.bundle, performance, *declared)) {
+                err << label << ": warning: " << render::describe(warning) << "\n";
+                ++warned;
+            }
+        }
+    };
     for (const auto& file : files) {
         try {
+            if (!names_a_file(file)) {
+                const auto named = load_registry_document(file, clefs);
+                named.clef ? check_clef(file, *named.clef) : check_score(file, *named.score);
+                continue;
+            }
             const auto text = read_document_file(file);
             if (document_kind(text, file) == DocumentKind::clef) {
-                const Clef clef = read_clef(text, file);
-                out << file << ": ok (clef: " << clef_summary(clef) << ")\n";
-                if (declared) {
-                    for (const auto& warning : render::clef_warnings(clef, *declared)) {
-                        err << file << ": warning: " << warning << "\n";
-                        ++warned;
-                    }
-                }
+                check_clef(file, read_clef(text, file));
             } else {
-                const auto bundle = load_score(file, clefs).bundle;
-                const render::Performance performance(bundle);
-                out << file << ": ok (score: " << count(bundle.score.bars.size(), "bar") << ", "
-                    << fixed(performance.duration()) << " s)\n";
-                if (declared) {
-                    for (const auto& warning :
-                         render::actuator_warnings(bundle, performance, *declared)) {
-                        err << file << ": warning: " << render::describe(warning) << "\n";
-                        ++warned;
-                    }
-                }
+                check_score(file, load_score(file, clefs));
             }
         } catch (const DocumentError& error) {
             report(error, err);
+            ++failed;
+        } catch (const std::runtime_error& error) {
+            err << "vibscore: " << error.what() << "\n";
             ++failed;
         }
     }
     if (failed > 0 && files.size() > 1) {
         err << failed << " of " << files.size() << " documents are invalid\n";
     }
-    if (declared) {
+    // Only when something was checked against it: "0 warnings" about nothing is not true.
+    if (declared && checked > 0) {
         out << count(warned, "warning") << " for the actuator (" << actuator::describe(*declared)
             << ")\n";
     }
@@ -263,12 +332,24 @@ int render_document(const RenderRequest& request, const ClefSearch& clefs, std::
         return exit_usage;
     }
     try {
-        const auto text = read_document_file(request.file);
-        if (document_kind(text, request.file) == DocumentKind::clef) {
-            err << request.file << ": is a clef; render takes a score (VibScore)\n";
-            return exit_usage;
+        std::optional<LoadedScore> loaded;
+        if (names_a_file(request.file)) {
+            const auto text = read_document_file(request.file);
+            if (document_kind(text, request.file) == DocumentKind::clef) {
+                err << request.file << ": is a clef; render takes a score (VibScore)\n";
+                return exit_usage;
+            }
+            loaded = load_score(request.file, clefs);
+        } else {
+            auto named = load_registry_document(request.file, clefs);
+            if (named.clef) {
+                err << request.file << ": is a clef; render takes a score (VibScore)\n";
+                return exit_usage;
+            }
+            loaded = std::move(named.score);
         }
-        const auto bundle = load_score(request.file, clefs).bundle;
+        const auto used = clefs_used(*loaded, declared ? request.device_clefs : DeviceClefBinder{});
+        const ScoreBundle& bundle = used.bundle;
         const render::Performance performance(bundle);
         const std::string title = bundle.score.title.empty() ? request.file : bundle.score.title;
         // What the declared actuator makes of the score, sampled at `rate`.
@@ -282,7 +363,8 @@ int render_document(const RenderRequest& request, const ClefSearch& clefs, std::
             out << title << "  (" << fixed(performance.duration()) << " s, peak "
                 << number(performance.peak_amplitude()) << ")\n";
             if (declared) {
-                out << "on the actuator: " << actuator::describe(*declared) << "\n";
+                out << "on the actuator: " << actuator::describe(*declared) << "\n"
+                    << used.said << "\n";
                 plot_response(out, response(kResponsePictureRate), request.plot_width, 4);
             } else {
                 plot_envelope(out, performance, request.plot_width, 8);
@@ -303,9 +385,12 @@ int render_document(const RenderRequest& request, const ClefSearch& clefs, std::
         if (!request.svg.empty() || !request.png.empty()) {
             std::unique_ptr<pictures::Drawing> picture;
             if (declared) {
+                pictures::ResponsePicture::Options options;
+                options.bar_clefs = bar_clef_names(used);
                 picture = std::make_unique<pictures::ResponsePicture>(
                     performance, response(kResponsePictureRate), title,
-                    "on the actuator: " + actuator::describe(*declared));
+                    "on the actuator: " + actuator::describe(*declared) + "\n" + used.said,
+                    options);
             } else {
                 picture = std::make_unique<pictures::SignalPicture>(performance, title);
             }

@@ -1,6 +1,8 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
+#include <map>
 #include <optional>
 #include <ostream>
 #include <string>
@@ -14,12 +16,27 @@ namespace vibscore::client {
 // Exit codes shared by every verb.
 enum ExitCode : int { exit_ok = 0, exit_failed = 1, exit_usage = 2 };
 
+// `--actuator daemon` (render, check): the score bound to the clefs vibscored plays it through
+// (mapped in [clefs], or fitted to the declared actuator with fit = auto), as `vibscore get clef
+// NAME --device` gives each, and the words that say which.
+struct DeviceBound {
+    ScoreBundle bundle;
+    std::map<std::string, std::string> names;  // by clef id: "lra-phone (fitted)", "erm-phone"
+    std::string said;  // "lra-phone -> lra-phone (fitted)", one entry per declared clef
+};
+// Throws std::runtime_error when vibscored cannot say, DocumentError when the score's notes do
+// not fit a device clef.
+using DeviceClefBinder = std::function<DeviceBound(const LoadedScore& written)>;
+
 // vibscore check FILE... [--actuator [FILE]]: validates scores (with their clefs, found by
 // `clefs`) and clefs. With a declared actuator, also warns where a score asks what it cannot give
-// (render::actuator_warnings); warnings do not fail the check.
+// (render::actuator_warnings); warnings do not fail the check. A name that is not a file is a
+// registry score or clef (names_a_file, load_registry_document). With `device_clefs`, scores are
+// checked through the clefs vibscored plays them with.
 int check_documents(const std::vector<std::string>& files, const ClefSearch& clefs,
                     std::ostream& out, std::ostream& err,
-                    const std::optional<actuator::Declaration>& actuator = std::nullopt);
+                    const std::optional<actuator::Declaration>& actuator = std::nullopt,
+                    const DeviceClefBinder& device_clefs = {});
 
 struct RenderRequest {
     std::string file;
@@ -33,9 +50,11 @@ struct RenderRequest {
     // (render::actuator_response); --plot draws the three as charts and --svg/--png as a
     // picture (pictures::ResponsePicture) in place of the envelope and the signal.
     std::optional<actuator::Declaration> actuator;
+    // --actuator daemon: the clefs vibscored plays the score through, not the written ones.
+    DeviceClefBinder device_clefs;
 };
 
-// vibscore render FILE --rate HZ --out OUT.csv|OUT.wav [--plot] [--svg F] [--png F]
+// vibscore render FILE|NAME --rate HZ --out OUT.csv|OUT.wav [--plot] [--svg F] [--png F]
 int render_document(const RenderRequest& request, const ClefSearch& clefs, std::ostream& out,
                     std::ostream& err);
 

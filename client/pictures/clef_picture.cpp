@@ -91,8 +91,8 @@ ClefPicture::ClefPicture(const Clef& clef, std::string name,
                                    : "an ERM has no pitch: only the shapes are felt");
         } else if (clef.type == ClefType::sine) {
             caption_.push_back(
-                "curve: the strength full drive gives; bars: what each number "
-                "reaches on each string");
+                "curve: the strength full drive gives; rings: each number's strength as "
+                "written; marks: the strength it reaches on each string");
         } else {
             caption_.push_back("the LRA plays these shapes at its resonance");
         }
@@ -188,6 +188,8 @@ void ClefPicture::draw(cairo_t* cairo, Layers layers) const {
     if (clef_.type == ClefType::sine) {
         draw_response(cairo, layers);
         draw_sine(cairo, layers);
+        // Last, over the number's dots: what each number reaches is the point of the picture.
+        draw_reached(cairo, layers);
     } else {
         draw_shapes(cairo, layers);
     }
@@ -216,7 +218,19 @@ void ClefPicture::draw_response(cairo_t* cairo, Layers layers) const {
         }
         cairo_stroke(cairo);
     }
-    if (layers & reached) {
+    cairo_restore(cairo);
+}
+
+void ClefPicture::draw_reached(cairo_t* cairo, Layers layers) const {
+    if (!actuator_ || !(layers & reached)) {
+        return;
+    }
+    const Plot& plot = plots_.front();
+    cairo_save(cairo);
+    cairo_rectangle(cairo, std::round(plot.left) + 1, std::round(plot.top) + 1,
+                    std::round(plot.width) - 1, std::round(plot.height) - 1);
+    cairo_clip(cairo);
+    {
         set_rgb(cairo, kReachedInk);
         cairo_set_line_width(cairo, 2.0);
         for (std::size_t s = 0; s < clef_.strings.size(); ++s) {
@@ -280,7 +294,7 @@ void ClefPicture::draw_sine(cairo_t* cairo, Layers layers) const {
     const Plot& plot = plots_.front();
     const double right = plot.left + plot.width;
     draw_frame(cairo, plot, layers, true, "frequency (Hz)");
-    // The amplitude axis: ticks on the left, the numbers' own lines across.
+    // The strength axis: ticks on the left, the numbers' own lines across.
     const double y_step = tick_step(plot.y_to - plot.y_from, 5);
     select_font(cairo, 10, false);
     for (double y = 0.0; y <= plot.y_to + y_step * 1e-9; y += y_step) {
@@ -297,14 +311,14 @@ void ClefPicture::draw_sine(cairo_t* cairo, Layers layers) const {
         }
     }
     if (layers & axis_labels) {
-        show_text_at(cairo, kMargin, kTop - 10, "amplitude");
+        show_text_at(cairo, kMargin, kTop - 10, "strength");
     }
     if (layers & numbers) {
         const double dashes[] = {3.0, 3.0};
         cairo_set_dash(cairo, dashes, 2, 0);
         cairo_set_source_rgb(cairo, 0.55, 0.55, 0.55);
-        for (const double amplitude : clef_.numbers) {
-            const double y = std::round(plot.y_of(amplitude)) + 0.5;
+        for (const double strength : clef_.numbers) {
+            const double y = std::round(plot.y_of(strength)) + 0.5;
             cairo_move_to(cairo, plot.left + 1, y);
             cairo_line_to(cairo, right, y);
             cairo_stroke(cairo);
@@ -323,11 +337,16 @@ void ClefPicture::draw_sine(cairo_t* cairo, Layers layers) const {
     }
     if (layers & notes) {
         set_rgb(cairo, kNoteInk);
+        // Over an actuator's response the written dots are rings, so the mark of what a number
+        // reaches shows through where the two meet.
+        const bool rings = actuator_.has_value();
+        cairo_set_line_width(cairo, 1.2);
         for (const auto& string : clef_.strings) {
-            for (const double amplitude : clef_.numbers) {
+            for (const double strength : clef_.numbers) {
+                cairo_new_sub_path(cairo);
                 cairo_arc(cairo, std::round(plot.x_of(string.frequency)) + 0.5,
-                          std::round(plot.y_of(amplitude)) + 0.5, 3.2, 0, 2 * M_PI);
-                cairo_fill(cairo);
+                          std::round(plot.y_of(strength)) + 0.5, 3.2, 0, 2 * M_PI);
+                rings ? cairo_stroke(cairo) : cairo_fill(cairo);
             }
         }
     }
@@ -429,7 +448,7 @@ void ClefPicture::draw_table(cairo_t* cairo, Layers layers) const {
             row(std::to_string(s + 1), number_text(clef_.strings[s].frequency) + " Hz");
         }
         y += kRow;
-        heading("number   amplitude");
+        heading("number   strength");
     } else {
         heading("number   scales the level by");
     }

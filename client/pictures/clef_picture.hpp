@@ -11,13 +11,14 @@
 namespace vibscore::pictures {
 
 // A clef as the thesis' waveform windows show it (Fig. 4.1c, 4.2), with a table of its values:
-// - sine: amplitude over frequency, each string a vertical line at its frequency, each number a
-//   horizontal line at its amplitude, and a dot where they cross: every note the clef can play;
+// - sine: strength over frequency, each string a vertical line at its frequency, each number a
+//   horizontal line at its strength, and a dot where they cross: every note the clef can play;
 // - curve and line: each string's waveform over one quarter note with its control points,
 //   string 6 on top as on the staff; the numbers scale it.
 // With an actuator (`show CLEF --actuator`), captioned with its declaration: behind a sine clef's
 // strings an LRA's response, the strength full drive gives at each frequency, and at each string
-// the strength each number reaches there; an ERM is said to have no pitch.
+// the strength each number reaches there, a mark drawn over the dots (which become rings) so
+// that it shows where it meets one; an ERM is said to have no pitch.
 class ClefPicture : public Drawing {
   public:
     // The kinds of mark, one layer each (see Drawing).
@@ -49,7 +50,7 @@ class ClefPicture : public Drawing {
     struct Plot {
         double left = 0.0, top = 0.0, width = 0.0, height = 0.0;
         double x_from = 0.0, x_to = 1.0;  // Hz (sine) or seconds (shapes)
-        double y_from = 0.0, y_to = 1.0;  // amplitude (sine) or level (shapes)
+        double y_from = 0.0, y_to = 1.0;  // strength (sine) or level (shapes)
 
         double x_of(double x) const { return left + (x - x_from) / (x_to - x_from) * width; }
         double y_of(double y) const {
@@ -73,6 +74,7 @@ class ClefPicture : public Drawing {
                     const char* x_title) const;
     void draw_table(cairo_t* cairo, Layers layers) const;
     void draw_response(cairo_t* cairo, Layers layers) const;
+    void draw_reached(cairo_t* cairo, Layers layers) const;
     void draw_caption(cairo_t* cairo, Layers layers) const;
 
     const Clef& clef_;

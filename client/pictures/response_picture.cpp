@@ -11,10 +11,27 @@ namespace vibscore::pictures {
 
 namespace {
 
-// The plot's frame inside the picture; above it, the title and legend, then the caption.
-constexpr double kLeft = 58.0, kRight = 16.0, kTop = 50.0, kBottom = 42.0;
-constexpr double kTitleBaseline = 20.0, kCaptionBaseline = 38.0;
+// The plot's frame inside the picture; above it the title, the caption's lines, the legend and
+// the bar labels, each on a row of its own.
+constexpr double kLeft = 58.0, kRight = 16.0, kBottom = 42.0;
+constexpr double kTitleBaseline = 20.0, kCaptionBaseline = 38.0, kRow = 15.0;
 constexpr double kLegendLine = 20.0, kLegendGap = 16.0;
+constexpr double kBarLabelRow = 18.0, kAbovePlot = 6.0;
+
+constexpr double kBarLineInk[3] = {0.7, 0.7, 0.7};
+constexpr double kEndLineInk[3] = {0.3, 0.3, 0.3};
+constexpr double kBoundaryDashes[] = {4.0, 3.0};
+
+std::vector<std::string> lines_of(const std::string& text) {
+    std::vector<std::string> lines;
+    std::size_t from = 0;
+    for (std::size_t at = text.find('\n'); at != std::string::npos; at = text.find('\n', from)) {
+        lines.push_back(text.substr(from, at - from));
+        from = at + 1;
+    }
+    lines.push_back(text.substr(from));
+    return lines;
+}
 
 struct Trace {
     ResponsePicture::Layer layer;
@@ -63,7 +80,7 @@ ResponsePicture::ResponsePicture(const render::Performance& performance,
     : performance_(performance),
       response_(std::move(response)),
       title_(std::move(title)),
-      caption_(std::move(caption)),
+      caption_(lines_of(caption)),
       options_(options) {
     const double peak = std::max({largest(response_.written), largest(response_.uncompensated),
                                   largest(response_.compensated)});
@@ -78,13 +95,19 @@ double ResponsePicture::x_of(double t) const {
     return kLeft + t / span_ * (options_.width - kLeft - kRight);
 }
 
+double ResponsePicture::plot_top() const {
+    const double legend = kCaptionBaseline + static_cast<double>(caption_.size()) * kRow + 4;
+    return legend + kBarLabelRow + kAbovePlot;
+}
+
 double ResponsePicture::y_of(double strength) const {
     const double bottom = options_.height - kBottom;
-    return bottom - strength / top_ * (bottom - kTop);
+    return bottom - strength / top_ * (bottom - plot_top());
 }
 
 void ResponsePicture::draw(cairo_t* cairo, Layers layers) const {
     draw_header(cairo, layers);
+    draw_bar_labels(cairo, layers);
     draw_boundaries(cairo, layers);
     draw_traces(cairo, layers);
     draw_axes(cairo, layers);
@@ -92,43 +115,85 @@ void ResponsePicture::draw(cairo_t* cairo, Layers layers) const {
 
 void ResponsePicture::draw_header(cairo_t* cairo, Layers layers) const {
     const double right = options_.width - kRight;
-    // The legend's entries from the right edge leftwards, each as wide as its text.
-    select_font(cairo, 10, false);
-    std::vector<double> entry_x(std::size(kTraces));
-    double x = right;
-    for (std::size_t i = std::size(kTraces); i-- > 0;) {
-        x -= kLegendLine + 5 + text_width(cairo, kTraces[i].label);
-        entry_x[i] = x;
-        x -= kLegendGap;
+    if (layers & title) {
+        cairo_set_source_rgb(cairo, 0, 0, 0);
+        select_font(cairo, 14, true);
+        show_text_at(cairo, kLeft, kTitleBaseline, elided_text(cairo, title_, right - kLeft));
     }
-    const double legend_left = x;
-    for (std::size_t i = 0; i < std::size(kTraces); ++i) {
-        const Trace& trace = kTraces[i];
+    if (layers & caption) {
+        cairo_set_source_rgb(cairo, 0.3, 0.3, 0.3);
+        select_font(cairo, 10, false);
+        for (std::size_t i = 0; i < caption_.size(); ++i) {
+            show_text_at(cairo, kLeft, kCaptionBaseline + static_cast<double>(i) * kRow,
+                         elided_text(cairo, caption_[i], right - kLeft));
+        }
+    }
+    // The legend: one entry for every kind of line in the plot, left to right.
+    const double baseline = kCaptionBaseline + static_cast<double>(caption_.size()) * kRow + 4;
+    const double line_y = baseline - 4.5;
+    select_font(cairo, 10, false);
+    double x = kLeft;
+    const auto entry = [&](const std::string& label, const auto& stroke) {
         if (layers & legend) {
-            cairo_set_source_rgb(cairo, trace.ink[0], trace.ink[1], trace.ink[2]);
-            stroke_style(cairo, trace.layer);
-            cairo_move_to(cairo, std::round(entry_x[i]), kLegendLine - 4.5);
-            cairo_line_to(cairo, std::round(entry_x[i]) + kLegendLine, kLegendLine - 4.5);
+            stroke();
+            cairo_move_to(cairo, std::round(x), line_y);
+            cairo_line_to(cairo, std::round(x) + kLegendLine, line_y);
             cairo_stroke(cairo);
             cairo_set_dash(cairo, nullptr, 0, 0);
         }
         if (layers & legend_text) {
             select_font(cairo, 10, false);
             cairo_set_source_rgb(cairo, 0, 0, 0);
-            show_text_at(cairo, entry_x[i] + kLegendLine + 5, kTitleBaseline, trace.label);
+            show_text_at(cairo, x + kLegendLine + 5, baseline, label);
         }
+        x += kLegendLine + 5 + text_width(cairo, label) + kLegendGap;
+    };
+    for (const Trace& trace : kTraces) {
+        entry(trace.label, [&] {
+            cairo_set_source_rgb(cairo, trace.ink[0], trace.ink[1], trace.ink[2]);
+            stroke_style(cairo, trace.layer);
+        });
     }
-    if (layers & title) {
-        cairo_set_source_rgb(cairo, 0, 0, 0);
-        select_font(cairo, 14, true);
-        // A long title is cut short before the legend.
-        show_text_at(cairo, kLeft, kTitleBaseline,
-                     elided_text(cairo, title_, legend_left - 12 - kLeft));
+    const auto boundary = [cairo](const double* ink) {
+        return [cairo, ink] {
+            cairo_set_source_rgb(cairo, ink[0], ink[1], ink[2]);
+            cairo_set_line_width(cairo, 1.0);
+            cairo_set_dash(cairo, kBoundaryDashes, 2, 0);
+        };
+    };
+    entry("a bar begins", boundary(kBarLineInk));
+    entry("the score ends (then the actuator rings out)", boundary(kEndLineInk));
+}
+
+void ResponsePicture::draw_bar_labels(cairo_t* cairo, Layers layers) const {
+    if (!(layers & bar_labels)) {
+        return;
     }
-    if (layers & caption) {
-        cairo_set_source_rgb(cairo, 0.3, 0.3, 0.3);
-        select_font(cairo, 10, false);
-        show_text_at(cairo, kLeft, kCaptionBaseline, elided_text(cairo, caption_, right - kLeft));
+    // Each bar's number at its start, and its clef where that changes; a label that would run
+    // into the one before is left out (the bars are too short to name them all).
+    const double baseline = plot_top() - kAbovePlot - 2;
+    const double right = options_.width - kRight;
+    select_font(cairo, 9, false);
+    cairo_set_source_rgb(cairo, 0.2, 0.2, 0.2);
+    double free_from = kLeft;
+    std::string clef_before;
+    std::size_t bar = static_cast<std::size_t>(-1);
+    for (const auto& timing : performance_.timeline()) {
+        if (timing.bar == bar) {
+            continue;
+        }
+        bar = timing.bar;
+        std::string label = std::to_string(bar + 1);
+        if (bar < options_.bar_clefs.size() && options_.bar_clefs[bar] != clef_before) {
+            clef_before = options_.bar_clefs[bar];
+            label += " " + clef_before;
+        }
+        const double x = std::round(x_of(timing.onset)) + 3;
+        const double width = text_width(cairo, label);
+        if (x >= free_from && x + width <= right) {
+            show_text_at(cairo, x, baseline, label);
+            free_from = x + width + 6;
+        }
     }
 }
 
@@ -139,7 +204,7 @@ void ResponsePicture::draw_axes(cairo_t* cairo, Layers layers) const {
     cairo_set_line_width(cairo, 1.0);
     cairo_set_dash(cairo, nullptr, 0, 0);
     if (layers & frame) {
-        cairo_rectangle(cairo, kLeft + 0.5, kTop + 0.5, right - kLeft, bottom - kTop);
+        cairo_rectangle(cairo, kLeft + 0.5, plot_top() + 0.5, right - kLeft, bottom - plot_top());
         cairo_stroke(cairo);
     }
     select_font(cairo, 10, false);
@@ -181,16 +246,15 @@ void ResponsePicture::draw_boundaries(cairo_t* cairo, Layers layers) const {
         return;
     }
     const double bottom = options_.height - kBottom;
-    const double dashes[] = {4.0, 3.0};
-    cairo_set_dash(cairo, dashes, 2, 0);
+    cairo_set_dash(cairo, kBoundaryDashes, 2, 0);
     cairo_set_line_width(cairo, 1.0);
     const auto line_at = [&](double t) {
         const double x = std::round(x_of(t)) + 0.5;
-        cairo_move_to(cairo, x, kTop);
+        cairo_move_to(cairo, x, plot_top());
         cairo_line_to(cairo, x, bottom);
         cairo_stroke(cairo);
     };
-    cairo_set_source_rgb(cairo, 0.7, 0.7, 0.7);
+    cairo_set_source_rgb(cairo, kBarLineInk[0], kBarLineInk[1], kBarLineInk[2]);
     std::size_t bar = static_cast<std::size_t>(-1);
     for (const auto& timing : performance_.timeline()) {
         if (timing.bar != bar && timing.onset > 0.0) {
@@ -199,7 +263,7 @@ void ResponsePicture::draw_boundaries(cairo_t* cairo, Layers layers) const {
         bar = timing.bar;
     }
     // The score's end, after which the actuator only rings out.
-    cairo_set_source_rgb(cairo, 0.3, 0.3, 0.3);
+    cairo_set_source_rgb(cairo, kEndLineInk[0], kEndLineInk[1], kEndLineInk[2]);
     line_at(performance_.duration());
     cairo_set_dash(cairo, nullptr, 0, 0);
 }
