@@ -397,6 +397,26 @@ TEST(Readme, EveryCommandItShowsWorksVerbatim) {
     EXPECT_GE(ran, 30);
 }
 
+// `./dev man PAGE` shows the page as the packages install it: meson's filled copy in build/man/,
+// no @VERSION@ or @CLEFDIR@ left; a page that is not there is named with the ones that are.
+TEST(DevMan, ShowsTheFilledPageFromTheBuildTree) {
+    ReadmeCheckout checkout;
+    const auto shown =
+        testing::run_command({"/bin/bash", "-c", checkout.shell("MANWIDTH=80 ./dev man vibscore")});
+    ASSERT_EQ(shown.exit_code, 0) << shown.err;
+    EXPECT_THAT(shown.out, HasSubstr("clef fit CLEF"));
+    EXPECT_THAT(shown.out, ::testing::Not(HasSubstr("@VERSION@")));
+    EXPECT_THAT(shown.out, ::testing::Not(HasSubstr("@CLEFDIR@")));
+    const auto conf = testing::run_command(
+        {"/bin/bash", "-c", checkout.shell("MANWIDTH=80 ./dev man vibscored.conf")});
+    EXPECT_EQ(conf.exit_code, 0) << conf.err;
+    const auto missing =
+        testing::run_command({"/bin/bash", "-c", checkout.shell("./dev man vibscoer")});
+    EXPECT_EQ(missing.exit_code, 1);
+    EXPECT_THAT(missing.err, HasSubstr("no page vibscoer in "));
+    EXPECT_THAT(missing.err, HasSubstr(" vibscored.conf "));
+}
+
 // The private daemon of ./dev keeps a person's own settings: an [actuator] declared in
 // build/run/local.conf lasts across restarts (./dev never rewrites that file), wins over what ./dev
 // writes itself (no clash with the sim's own model), and `./dev daemon --reload` applies an edit.
