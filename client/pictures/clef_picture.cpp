@@ -28,7 +28,6 @@ constexpr int kResponseSamples = 520;  // one per pixel of the plot's width
 constexpr double kReachedHalfWidth = 6.0;
 
 constexpr double kResponseInk[3] = {0.95, 0.55, 0.15};
-constexpr double kReachedInk[3] = {0.85, 0.3, 0.05};
 
 constexpr double kStringInk[3] = {0.25, 0.4, 0.75};
 constexpr double kPointInk[3] = {0.85, 0.2, 0.1};
@@ -231,7 +230,7 @@ void ClefPicture::draw_reached(cairo_t* cairo, Layers layers) const {
                     std::round(plot.width) - 1, std::round(plot.height) - 1);
     cairo_clip(cairo);
     {
-        set_rgb(cairo, kReachedInk);
+        set_rgb(cairo, ClefPicture::reached_ink);
         cairo_set_line_width(cairo, 2.0);
         for (std::size_t s = 0; s < clef_.strings.size(); ++s) {
             const double x = std::round(plot.x_of(clef_.strings[s].frequency)) + 0.5;

@@ -36,6 +36,9 @@ class ClefPicture : public Drawing {
         caption = 1u << 10,  // the actuator, and for an ERM that it has no pitch
     };
 
+    // The mark of what a number reaches on a string, for tests to find it over the dots.
+    static constexpr double reached_ink[3] = {0.85, 0.3, 0.05};
+
     // `name`: what the title calls the clef (its registry name or file); `actuator`: the one
     // whose response is drawn behind the clef.
     ClefPicture(const Clef& clef, std::string name,

@@ -18,8 +18,6 @@ constexpr double kTitleBaseline = 20.0, kCaptionBaseline = 38.0, kRow = 15.0;
 constexpr double kLegendLine = 20.0, kLegendGap = 16.0;
 constexpr double kBarLabelRow = 18.0, kAbovePlot = 6.0;
 
-constexpr double kBarLineInk[3] = {0.7, 0.7, 0.7};
-constexpr double kEndLineInk[3] = {0.3, 0.3, 0.3};
 constexpr double kBoundaryDashes[] = {4.0, 3.0};
 
 std::vector<std::string> lines_of(const std::string& text) {
@@ -161,8 +159,8 @@ void ResponsePicture::draw_header(cairo_t* cairo, Layers layers) const {
             cairo_set_dash(cairo, kBoundaryDashes, 2, 0);
         };
     };
-    entry("a bar begins", boundary(kBarLineInk));
-    entry("the score ends (then the actuator rings out)", boundary(kEndLineInk));
+    entry("a bar begins", boundary(bar_line_ink));
+    entry("the score ends (then the actuator rings out)", boundary(end_line_ink));
 }
 
 void ResponsePicture::draw_bar_labels(cairo_t* cairo, Layers layers) const {
@@ -254,7 +252,7 @@ void ResponsePicture::draw_boundaries(cairo_t* cairo, Layers layers) const {
         cairo_line_to(cairo, x, bottom);
         cairo_stroke(cairo);
     };
-    cairo_set_source_rgb(cairo, kBarLineInk[0], kBarLineInk[1], kBarLineInk[2]);
+    cairo_set_source_rgb(cairo, bar_line_ink[0], bar_line_ink[1], bar_line_ink[2]);
     std::size_t bar = static_cast<std::size_t>(-1);
     for (const auto& timing : performance_.timeline()) {
         if (timing.bar != bar && timing.onset > 0.0) {
@@ -263,7 +261,7 @@ void ResponsePicture::draw_boundaries(cairo_t* cairo, Layers layers) const {
         bar = timing.bar;
     }
     // The score's end, after which the actuator only rings out.
-    cairo_set_source_rgb(cairo, kEndLineInk[0], kEndLineInk[1], kEndLineInk[2]);
+    cairo_set_source_rgb(cairo, end_line_ink[0], end_line_ink[1], end_line_ink[2]);
     line_at(performance_.duration());
     cairo_set_dash(cairo, nullptr, 0, 0);
 }

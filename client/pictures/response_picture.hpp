@@ -52,6 +52,9 @@ class ResponsePicture : public Drawing {
     static constexpr double written_ink[3] = {0.35, 0.35, 0.35};
     static constexpr double uncompensated_ink[3] = {0.9, 0.45, 0.0};
     static constexpr double compensated_ink[3] = {0.1, 0.3, 0.8};
+    // The dashed lines where a bar begins and where the score ends.
+    static constexpr double bar_line_ink[3] = {0.7, 0.7, 0.7};
+    static constexpr double end_line_ink[3] = {0.3, 0.3, 0.3};
 
     double width() const override { return options_.width; }
     double height() const override { return options_.height; }

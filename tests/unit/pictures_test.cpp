@@ -972,6 +972,36 @@ TEST(ResponsePicture, TellsTheThreeTracesApartByColourAndTheLegendShowsEach) {
     }
 }
 
+// The legend names every line in the plot: the dashed bar and end lines too, each in its own
+// colour; along the top each bar's number, and its clef where it changes, all above the plot.
+TEST(ResponsePicture, TheLegendShowsTheDashedLinesAndTheBarsAreLabelledAboveThePlot) {
+    const Felt felt(load_score_file(shipped("alarm.score.xml")), example_erm(), "alarm");
+    const auto legend = Image::of(felt.picture, ResponsePicture::legend);
+    EXPECT_GE(pixels_of(legend, ResponsePicture::bar_line_ink), 8);
+    EXPECT_GE(pixels_of(legend, ResponsePicture::end_line_ink), 8);
+    const auto labels = Image::ink_of(felt.picture, ResponsePicture::bar_labels);
+    const int plot_top = static_cast<int>(std::floor(felt.picture.y_of(felt.picture.top())));
+    int above = 0, inside = 0;
+    for (int x = 0; x < labels.width(); ++x) {
+        for (int y = 0; y < labels.height(); ++y) {
+            (y < plot_top ? above : inside) += labels.at(x, y).a > 0 ? 1 : 0;
+        }
+    }
+    EXPECT_GT(above, 30);  // "1 lra-phone" at least
+    EXPECT_EQ(inside, 0);
+    // The labels start at the first bar, at the left of the plot.
+    int first = labels.width();
+    for (int x = 0; x < labels.width() && first == labels.width(); ++x) {
+        for (int y = 0; y < plot_top; ++y) {
+            if (labels.at(x, y).a > 0) {
+                first = x;
+                break;
+            }
+        }
+    }
+    EXPECT_NEAR(first, felt.picture.x_of(0.0), 6);
+}
+
 TEST(ResponsePicture, KeepsEveryMarkApart) {
     const actuator::Declaration lra = example_lra();
     Layers inked = 0;
@@ -1249,6 +1279,28 @@ TEST(ClefPicture, DrawsAnLrasResponseBehindASineClefAndWhatEachNumberReaches) {
     EXPECT_NEAR(plain.reached_strength(5, 0), 0.2 * gain_235, 1e-9);
     EXPECT_NEAR(plain.reached_strength(5, 8), 1.0 * gain_235, 1e-9);
     EXPECT_LT(plain.reached_strength(5, 0), plain.reached_strength(5, 8));
+}
+
+// Where a number reaches just what it asks (near resonance), its mark lies on its dot: the mark
+// is drawn over it, so the picture shows it there and not only the dot.
+TEST(ClefPicture, WhatANumberReachesIsSeenOverItsDot) {
+    const auto clef = shipped_clef("lra-phone");
+    const ClefPicture picture(clef, "lra-phone", declared_in("lra.conf"));
+    const auto& plot = picture.plots().front();
+    const auto drawn = Image::of(picture);
+    for (std::size_t n = 0; n < clef.numbers.size(); ++n) {
+        ASSERT_NEAR(picture.reached_strength(1, n), clef.numbers[n], 1e-9);
+        const int x = static_cast<int>(std::lround(plot.x_of(clef.strings[1].frequency)));
+        const int y = static_cast<int>(std::lround(plot.y_of(clef.numbers[n])));
+        int marked = 0;
+        for (int dx = -2; dx <= 2; ++dx) {
+            const auto pixel = drawn.at(x + dx, y);
+            marked += std::abs(pixel.r - 217) <= 10 && std::abs(pixel.g - 77) <= 10 &&
+                      std::abs(pixel.b - 13) <= 10;
+        }
+        EXPECT_GE(marked, 3) << "number " << n + 1 << ": its dot hides its mark";
+    }
+    EXPECT_EQ(std::lround(ClefPicture::reached_ink[0] * 255), 217);
 }
 
 TEST(ClefPicture, WithoutAnActuatorDrawsNoResponseNoBarsAndNoCaption) {
