@@ -642,6 +642,111 @@ TEST_F(EditorEndToEnd, AClefEditedIsHeardAsItChangesAndSavedUnderANewNameForTheB
     EXPECT_TRUE(pane.wait_for_text("unsaved changes")) << pane.screen();
 }
 
+// Issue 31: "use for event..." assigns the open score itself (no copy), the line confirms by
+// the event's name, and vibscore-feedback's EventScores says so.
+TEST_F(EditorForAnEvent, UseForEventAssignsTheOpenScoreItselfAndTheLineConfirms) {
+    TmuxPane pane("env XDG_CONFIG_HOME=" + session.config_home().string() +
+                      " DBUS_SESSION_BUS_ADDRESS=" + session.address() + " " +
+                      edit_command("success"),
+                  40, 12);
+    ASSERT_TRUE(pane.wait_for_text("S:change")) << pane.screen();
+    pane.key("u");
+    ASSERT_TRUE(pane.wait_for_text("use success for")) << pane.screen();
+    bool on_alarm = false;
+    for (int press = 0; press < 30 && !on_alarm; ++press) {
+        send(pane, {Button::down});
+        on_alarm = pane.wait_for_text(">alarm:", std::chrono::milliseconds(500));
+    }
+    ASSERT_TRUE(on_alarm) << pane.screen();
+    send(pane, {Button::select});
+    ASSERT_TRUE(pane.wait_for_text("alarm plays:")) << pane.screen();
+    send(pane, {Button::select});  // ok
+    ASSERT_TRUE(pane.wait_for_text("alarm-clock-elapsed plays success")) << pane.screen();
+    const auto events = session.busctl({"call", testing::kFeedbackName, testing::kFeedbackPath,
+                                        "org.vibscore.Feedback1", "EventScores"});
+    EXPECT_NE(events.out.find("\"alarm-clock-elapsed\" \"success\""), std::string::npos)
+        << events.out;
+    for (const auto& entry : client->List("score")) {
+        EXPECT_NE(entry.get<0>(), "success-2");  // no copy was made
+    }
+    pane.key("q");
+    EXPECT_EQ(pane.wait_exit(), "0") << pane.screen();
+}
+
+// Without vibscore-feedback "use for event..." says so and how to start it, whole at 40 columns.
+TEST_F(EditorEndToEnd, UseForEventWithoutTheFeedbackServiceSaysHowToStartIt) {
+    TmuxPane pane(
+        "env FEEDBACK_THEME=/nonexistent/theme.json "
+        "DBUS_SESSION_BUS_ADDRESS=unix:path=/nonexistent/bus " +
+            edit_command("success"),
+        40, 12);
+    ASSERT_TRUE(pane.wait_for_text("S:change")) << pane.screen();
+    pane.key("u");
+    ASSERT_TRUE(pane.wait_for_text("not running")) << pane.screen();
+    EXPECT_NE(pane.screen().find("./dev daemon"), std::string::npos) << pane.screen();
+    EXPECT_NE(pane.screen().find("Sel/Back:close"), std::string::npos) << pane.screen();
+    send(pane, {Button::back});
+    ASSERT_TRUE(pane.wait_for_text("S:change")) << pane.screen();
+    pane.key("q");
+    EXPECT_EQ(pane.wait_exit(), "0") << pane.screen();
+}
+
+// The line names the symbol in words, and the bar box counts the symbol being changed.
+TEST_F(EditorEndToEnd, TheLineNamesSymbolsInWordsAndTheBarBoxCountsTheOneBeingChanged) {
+    TmuxPane pane(edit_command("success"), 40, 12);
+    // success: an 8th (4 on string 1), an 8th, a quarter: 2 beats.
+    ASSERT_TRUE(pane.wait_for_text("S:change 8th, 4, string 1 B:more")) << pane.screen();
+    EXPECT_NE(pane.screen().find("[lra 2]"), std::string::npos) << pane.screen();
+    send(pane, {Button::select});  // change it: the box still counts it
+    ASSERT_TRUE(pane.wait_for_text("change")) << pane.screen();
+    ASSERT_TRUE(pane.wait_for_text("\u25B2change")) << pane.screen();
+    EXPECT_NE(pane.screen().find("[lra 2]"), std::string::npos) << pane.screen();
+    EXPECT_EQ(pane.screen().find("_dot"), std::string::npos) << pane.screen();
+    send(pane, {Button::back, Button::back});
+    pane.key("q");
+    EXPECT_EQ(pane.wait_exit(), "0") << pane.screen();
+}
+
+// Issue 31: a number changed is heard on the string just edited (it was heard on s1, the last
+// string the cursor passed), and a number set above the next one is said.
+TEST_F(EditorEndToEnd, AClefsNumberIsHeardOnTheStringJustEditedAndAnInversionIsSaid) {
+    TmuxPane pane(edit_command("my-clefs"), 40, 12);
+    ASSERT_TRUE(pane.wait_for_text("S:new note")) << pane.screen();
+    const ClefDeclaration lra{"lra-phone", "lra-phone.clef.xml"};
+    std::vector<std::string> clef_names;
+    for (const auto& entry : client->List("clef")) {
+        clef_names.push_back(entry.get<0>());
+    }
+    editor::Editor copy{editor::EditorModel(editor::EditorModel::blank_score("my-clefs", lra),
+                                            editor::registry_clefs(clef_names)),
+                        {}};
+    send(pane, menu_presses(copy, "edit clefs..."));
+    ASSERT_TRUE(pane.wait_for_text(">lra-phone  sine 0.20 s")) << pane.screen();
+    send(pane, {Button::select, Button::down, Button::down, Button::down, Button::right});
+    ASSERT_TRUE(pane.wait_for_text(">s4 205 Hz")) << pane.screen();
+    send(pane, std::vector<Button>(8, Button::down));  // s3, s2, s1, n1 .. n5
+    ASSERT_TRUE(pane.wait_for_text(">n5 0.60")) << pane.screen();
+    const auto first = daemon.trace_rows().size();
+    send(pane, {Button::right, Button::right});
+    ASSERT_TRUE(pane.wait_for_text("!n5 0.80 is above n6 0.70")) << pane.screen();
+    // n5 at 0.8 on s4 (205 Hz, as edited), not on s1 (155 Hz).
+    ASSERT_TRUE(hil::eventually([&] {
+        const auto rows = daemon.trace_rows();
+        return std::any_of(
+            rows.begin() + static_cast<std::ptrdiff_t>(first), rows.end(), [](const auto& row) {
+                return row.frequency_hz == 205 && row.amplitude > 0.79 && row.amplitude < 0.81;
+            });
+    })) << pane.screen();
+    const auto rows = daemon.trace_rows();
+    EXPECT_FALSE(std::any_of(rows.begin() + static_cast<std::ptrdiff_t>(first), rows.end(),
+                             [](const auto& row) { return row.frequency_hz == 155; }));
+    send(pane, {Button::back, Button::back});  // close: a changed clef asks
+    ASSERT_TRUE(pane.wait_for_text("lra-phone changed")) << pane.screen();
+    send(pane, {Button::down, Button::select});  // drop the changes
+    pane.key("q");
+    EXPECT_EQ(pane.wait_exit(), "0") << pane.screen();
+}
+
 TEST_F(EditorEndToEnd, ShowDrawsARegistryScore) {
     const auto shown =
         run_command({testing::required_env("VIBSCORE"), "show", "success", "--width", "40"});
