@@ -74,7 +74,8 @@ bool erm_only(const std::string& key) {
     return key == kSpinUpMs.key || key == kSpinDownMs.key;
 }
 bool lra_only(const std::string& key) {
-    return key == kResonanceHz.key || key == kQ.key;
+    return key == kResonanceHz.key || key == kQ.key || key == kResonanceTolerancePercent.key ||
+           key == kQTolerancePercent.key;
 }
 
 std::string trim(const std::string& text) {
@@ -201,6 +202,12 @@ Declaration parse_declaration(const std::vector<Setting>& settings,
     if (const Setting* s = find(kQ.key)) {
         declaration.q = number(*s, kQ);
     }
+    if (const Setting* s = find(kResonanceTolerancePercent.key)) {
+        declaration.resonance_tolerance = number(*s, kResonanceTolerancePercent) / 100.0;
+    }
+    if (const Setting* s = find(kQTolerancePercent.key)) {
+        declaration.q_tolerance = number(*s, kQTolerancePercent) / 100.0;
+    }
     if (const Setting* s = find("brake")) {
         declaration.brake =
             choice(*s, {"none", "reverse"}) == "none" ? Brake::none : Brake::reverse;
@@ -273,6 +280,15 @@ std::vector<std::pair<std::string, std::string>> to_settings(const Declaration& 
     } else {
         settings.emplace_back(kResonanceHz.key, number_text(declaration.resonance_hz));
         settings.emplace_back(kQ.key, number_text(declaration.q));
+        const Declaration defaults;
+        if (declaration.resonance_tolerance != defaults.resonance_tolerance) {
+            settings.emplace_back(kResonanceTolerancePercent.key,
+                                  number_text(declaration.resonance_tolerance * 100.0));
+        }
+        if (declaration.q_tolerance != defaults.q_tolerance) {
+            settings.emplace_back(kQTolerancePercent.key,
+                                  number_text(declaration.q_tolerance * 100.0));
+        }
     }
     settings.emplace_back("brake", declaration.brake == Brake::reverse ? "reverse" : "none");
     settings.emplace_back("compensation", declaration.compensation ? "on" : "off");

@@ -23,7 +23,13 @@ struct Declaration {
     double spin_down_s = 0.080;   // ERM: time constant while coasting
     double resonance_hz = 175.0;  // LRA: resonance f0
     double q = 15.0;              // LRA: quality factor; envelope time constant q / (pi f0)
-    Brake brake = Brake::none;    // reverse: the board can drive backwards, so it can brake
+    // LRA: how far the actual part may be from resonance_hz and q, as fractions (0.05 = 5 %):
+    // compensation plans for every actuator within them, not only the declared one
+    // (render::Uncertainty). The defaults are the part-to-part spread of a datasheet's numbers
+    // (issue 32); a measured resonance and Q are known far better. 0 takes the numbers as exact.
+    double resonance_tolerance = 0.05;
+    double q_tolerance = 0.40;
+    Brake brake = Brake::none;  // reverse: the board can drive backwards, so it can brake
     bool compensation = true;
 
     bool operator==(const Declaration&) const = default;
@@ -42,11 +48,22 @@ inline constexpr Limit kSpinDownMs{"spin-down-ms", 1.0, 10000.0, true};
 inline constexpr Limit kResonanceHz{"resonance-hz", 10.0, 1000.0, true};
 // Below Q 1 a resonator hardly rings, and its envelope is no longer one exponential.
 inline constexpr Limit kQ{"q", 1.0, 500.0, true};
+// Percent. Past half the resonance the neighbours are other actuators; past 90 % of Q, one that
+// hardly rings (and the planner's members need Q above 0).
+inline constexpr Limit kResonanceTolerancePercent{"resonance-tolerance-percent", 0.0, 50.0, true};
+inline constexpr Limit kQTolerancePercent{"q-tolerance-percent", 0.0, 90.0, true};
 
 // The keys of [actuator], in the order the docs list them.
-inline constexpr const char* kKeys[] = {"kind",         "rated-drive",  "spin-up-ms",
-                                        "spin-down-ms", "resonance-hz", "q",
-                                        "brake",        "compensation"};
+inline constexpr const char* kKeys[] = {"kind",
+                                        "rated-drive",
+                                        "spin-up-ms",
+                                        "spin-down-ms",
+                                        "resonance-hz",
+                                        "q",
+                                        "resonance-tolerance-percent",
+                                        "q-tolerance-percent",
+                                        "brake",
+                                        "compensation"};
 
 // One "key = value" line of the section and where it was written ("file:line"; may be empty).
 struct Setting {
@@ -89,7 +106,8 @@ std::optional<Declaration> read_declaration(const std::string& text, const std::
 // compensation on".
 std::string describe(const Declaration& declaration);
 
-// The declaration as the keys of [actuator] would write it (for D-Bus and round trips).
+// The declaration as the keys of [actuator] would write it (for D-Bus and round trips); the
+// tolerances only where they differ from their defaults.
 std::vector<std::pair<std::string, std::string>> to_settings(const Declaration& declaration);
 
 // The envelope time constant of an LRA: the time its ringing takes to decay by 1/e.

@@ -219,7 +219,8 @@ class ActuatorDrives final : public Stage {
           planner_(*adaptation.actuator,
                    {adaptation.scale, adaptation.actuator->compensation,
                     adaptation.reverse && adaptation.actuator->brake == actuator::Brake::reverse,
-                    adaptation.min_drive_pulse_s, adaptation.uncertainty},
+                    adaptation.min_drive_pulse_s,
+                    adaptation.uncertainty.value_or(uncertainty_of(*adaptation.actuator))},
                    link.carry ? *link.carry : PlannerCarry{}) {}
 
     std::optional<Cue> next() override {

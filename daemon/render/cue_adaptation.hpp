@@ -39,8 +39,9 @@ struct CueAdaptation {
     // the planner brakes with it.
     bool reverse = false;
     double min_drive_pulse_s = PlannerOptions{}.min_pulse_s;
-    // How far the actual actuator may be from the declaration (DrivePlanner's Uncertainty).
-    Uncertainty uncertainty{};
+    // How far the actual actuator may be from the declaration (DrivePlanner's Uncertainty);
+    // nothing: what the declaration says of itself (uncertainty_of: its tolerances).
+    std::optional<Uncertainty> uncertainty;
 };
 
 // How the passes of one playback continue each other: the actuator's state where one pass ends

@@ -47,6 +47,13 @@ double tolerance(double strength) {
 
 }  // namespace
 
+Uncertainty uncertainty_of(const actuator::Declaration& declaration) {
+    if (declaration.kind != actuator::Kind::lra) {
+        return {};
+    }
+    return {declaration.resonance_tolerance, declaration.q_tolerance};
+}
+
 DrivePlanner::DrivePlanner(const actuator::Declaration& declaration, const PlannerOptions& options,
                            const PlannerCarry& carry)
     : physics_(declaration),

@@ -28,6 +28,9 @@ struct Uncertainty {
 };
 // What issue 32 asks to be safe against: an LRA's resonance within 5 % and its Q within 40 %.
 inline constexpr Uncertainty kPartToPart{0.05, 0.4};
+// What a declaration says of itself ([actuator] resonance-tolerance-percent, q-tolerance-percent;
+// by default kPartToPart): an LRA's tolerances; none for an ERM.
+Uncertainty uncertainty_of(const actuator::Declaration& declaration);
 
 struct PlannerOptions {
     // The written strength is multiplied by this (the playback's intensity, and the master

@@ -163,7 +163,9 @@ TEST(DaemonFeel, GpioLraBrakesInAntiPhaseWithItsBridgeSwapped) {
     DaemonFixture daemon(
         driver_config("gpio-lra",
                       "chip = " + sim.chip_name() + "\nline-a = 0\nline-b = 1\nresonance-hz = 50") +
-        "\n[actuator]\nkind = lra\nrated-drive = 1\nresonance-hz = 50\nq = 10\nbrake = reverse\n");
+        // Tolerances 0: the exact plan, whose brake length the kernel path must keep.
+        "\n[actuator]\nkind = lra\nrated-drive = 1\nresonance-hz = 50\nq = 10\nbrake = reverse\n"
+        "resonance-tolerance-percent = 0\nq-tolerance-percent = 0\n");
     GpioLinesSampler sampler(sim, {0, 1});
     auto client = daemon.client();
     const std::string clef = testing::sine_clef(0.3, {50.0}, {0.5, 1.0});
@@ -176,6 +178,8 @@ TEST(DaemonFeel, GpioLraBrakesInAntiPhaseWithItsBridgeSwapped) {
     lra.resonance_hz = 50.0;
     lra.q = 10.0;
     lra.brake = actuator::Brake::reverse;
+    lra.resonance_tolerance = 0.0;
+    lra.q_tolerance = 0.0;
     const auto drives = planned(score, lra, true, {{"hil-feel.clef.xml", clef}});
     ASSERT_EQ(drives.size(), 3u);
     EXPECT_EQ(drives[0].amplitude, 1.0);
@@ -300,13 +304,16 @@ TEST(DaemonFeel, EvdevOverdrivesWithFullMagnitudeAndBrakesWithANegativeOne) {
     DaemonFixture daemon(driver_config("evdev", "device = " + vibrator.event_node().string() +
                                                     "\nanti-phase = true") +
                          "\n[actuator]\nkind = lra\nrated-drive = 0.5\nresonance-hz = 200\nq = "
-                         "40\nbrake = reverse\n");
+                         "40\nbrake = reverse\nresonance-tolerance-percent = 0\n"
+                         "q-tolerance-percent = 0\n");
     actuator::Declaration lra;
     lra.kind = actuator::Kind::lra;
     lra.rated_drive = 0.5;
     lra.resonance_hz = 200.0;
     lra.q = 40.0;
     lra.brake = actuator::Brake::reverse;
+    lra.resonance_tolerance = 0.0;
+    lra.q_tolerance = 0.0;
     const auto score = whole_note("4");  // 200 Hz
     const auto drives = planned(score, lra, true);
     ASSERT_EQ(drives.size(), 4u);

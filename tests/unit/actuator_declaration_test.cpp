@@ -11,7 +11,10 @@
 namespace vibscore::actuator {
 namespace {
 
+using ::testing::AllOf;
+using ::testing::Contains;
 using ::testing::HasSubstr;
+using ::testing::Not;
 using ::testing::StartsWith;
 
 std::vector<Setting> lines(std::vector<std::pair<std::string, std::string>> pairs) {
@@ -63,6 +66,20 @@ TEST(ActuatorDeclaration, ReadsAnLraAndDefaultsTheRest) {
     EXPECT_EQ(parse({{"kind", "lra"}, {"brake", "none"}}).brake, Brake::none);
 }
 
+TEST(ActuatorDeclaration, AnLrasTolerancesDefaultToThePartToPartSpreadAndZeroIsExact) {
+    const Declaration d = parse({{"kind", "lra"}});
+    EXPECT_EQ(d.resonance_tolerance, 0.05);
+    EXPECT_EQ(d.q_tolerance, 0.40);
+    const Declaration exact = parse(
+        {{"kind", "lra"}, {"resonance-tolerance-percent", "0"}, {"q-tolerance-percent", "0"}});
+    EXPECT_EQ(exact.resonance_tolerance, 0.0);
+    EXPECT_EQ(exact.q_tolerance, 0.0);
+    const Declaration measured = parse(
+        {{"kind", "lra"}, {"resonance-tolerance-percent", "1"}, {"q-tolerance-percent", "15"}});
+    EXPECT_DOUBLE_EQ(measured.resonance_tolerance, 0.01);
+    EXPECT_DOUBLE_EQ(measured.q_tolerance, 0.15);
+}
+
 TEST(ActuatorDeclaration, KindIsRequired) {
     try {
         parse({{"rated-drive", "0.7"}});
@@ -92,6 +109,10 @@ TEST(ActuatorDeclaration, EveryLimitHoldsAtBothEdges) {
         {"lra", "resonance-hz", "1000", "1000.01"},
         {"lra", "q", "1", "0.99"},
         {"lra", "q", "500", "500.1"},
+        {"lra", "resonance-tolerance-percent", "0", "-0.001"},
+        {"lra", "resonance-tolerance-percent", "50", "50.001"},
+        {"lra", "q-tolerance-percent", "0", "-0.001"},
+        {"lra", "q-tolerance-percent", "90", "90.001"},
     };
     for (const auto& edge : edges) {
         EXPECT_NO_THROW(parse({{"kind", edge.kind}, {edge.key, edge.allowed}}))
@@ -166,6 +187,11 @@ TEST(ActuatorDeclaration, AKeyOfTheOtherKindIsAnError) {
     EXPECT_THAT(error_of({{"q", "15"}, {"kind", "erm"}}), StartsWith("v.conf:2: [actuator] q"));
     EXPECT_THAT(error_of({{"kind", "lra"}, {"spin-down-ms", "80"}}),
                 HasSubstr("is for kind = erm; this actuator is kind = lra"));
+    EXPECT_EQ(error_of({{"kind", "erm"}, {"q-tolerance-percent", "10"}}),
+              "v.conf:3: [actuator] q-tolerance-percent = \"10\" is for kind = lra; this "
+              "actuator is kind = erm");
+    EXPECT_THAT(error_of({{"kind", "erm"}, {"resonance-tolerance-percent", "1"}}),
+                HasSubstr("is for kind = lra"));
 }
 
 TEST(ActuatorDeclaration, AnUnknownKeyNamesTheClosestAndEveryKnownOne) {
@@ -210,14 +236,31 @@ TEST(ActuatorDeclaration, WritesBackWhatItReads) {
                  {"rated-drive", "0.7"},
                  {"spin-up-ms", "35.5"},
                  {"brake", "reverse"}}),
-          parse(
-              {{"kind", "lra"}, {"resonance-hz", "170"}, {"q", "22"}, {"compensation", "off"}})}) {
+          parse({{"kind", "lra"}, {"resonance-hz", "170"}, {"q", "22"}, {"compensation", "off"}}),
+          parse({{"kind", "lra"},
+                 {"resonance-tolerance-percent", "1"},
+                 {"q-tolerance-percent", "0"}})}) {
         std::vector<std::pair<std::string, std::string>> pairs;
         for (const auto& [key, value] : to_settings(d)) {
             pairs.emplace_back(key, value);
         }
         EXPECT_EQ(parse(pairs), d);
     }
+}
+
+TEST(ActuatorDeclaration, WritesTheTolerancesOnlyWhereTheyAreNotTheDefaults) {
+    const auto keys = [](const Declaration& d) {
+        std::vector<std::string> written;
+        for (const auto& [key, value] : to_settings(d)) {
+            written.push_back(key);
+        }
+        return written;
+    };
+    EXPECT_THAT(keys(parse({{"kind", "lra"}})), Not(Contains("q-tolerance-percent")));
+    EXPECT_THAT(keys(parse({{"kind", "lra"}})), Not(Contains("resonance-tolerance-percent")));
+    EXPECT_THAT(
+        keys(parse({{"kind", "lra"}, {"q-tolerance-percent", "15"}})),
+        AllOf(Contains("q-tolerance-percent"), Not(Contains("resonance-tolerance-percent"))));
 }
 
 TEST(ActuatorDeclaration, DescribesItselfInOneLine) {

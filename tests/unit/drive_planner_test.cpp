@@ -516,6 +516,35 @@ TEST(ActuatorDrives, TheUncertaintyReachesThePlanner) {
     EXPECT_LT(brake_length(kPartToPart), brake_length({}) - 1e-3);
 }
 
+TEST(ActuatorDrives, ADeclarationsTolerancesAreTheUncertaintyUnlessTheAdaptationGivesOne) {
+    const std::vector<Cue> note{drive(0.0, 1.0, 175.0), drive(0.3, 0.0)};
+    const auto cues_for = [&](const actuator::Declaration& lra,
+                              std::optional<Uncertainty> uncertainty) {
+        CueAdaptation adaptation = declared(lra, true);
+        adaptation.uncertainty = uncertainty;
+        return adapt_cues(note, 1.0, adaptation);
+    };
+    const auto same = [](const std::vector<Cue>& a, const std::vector<Cue>& b) {
+        return a.size() == b.size() &&
+               std::equal(a.begin(), a.end(), b.begin(), [](const Cue& x, const Cue& y) {
+                   return x.at == y.at && x.amplitude == y.amplitude &&
+                          x.frequency_hz == y.frequency_hz;
+               });
+    };
+    actuator::Declaration lra = example_lra();
+    EXPECT_EQ(uncertainty_of(lra), kPartToPart);  // [actuator]'s defaults
+    EXPECT_TRUE(same(cues_for(lra, std::nullopt), cues_for(lra, kPartToPart)));
+    EXPECT_FALSE(same(cues_for(lra, std::nullopt), cues_for(lra, Uncertainty{})));
+    lra.resonance_tolerance = 0.0;
+    lra.q_tolerance = 0.0;
+    EXPECT_TRUE(same(cues_for(lra, std::nullopt), cues_for(lra, Uncertainty{})));
+    lra.resonance_tolerance = 0.01;
+    lra.q_tolerance = 0.15;
+    EXPECT_EQ(uncertainty_of(lra), (Uncertainty{0.01, 0.15}));
+    EXPECT_TRUE(same(cues_for(lra, std::nullopt), cues_for(lra, Uncertainty{0.01, 0.15})));
+    EXPECT_EQ(uncertainty_of(example_erm()), Uncertainty{});  // an ERM's plans are not budgeted
+}
+
 TEST(ActuatorDrives, PositionsStayInTimeOrderAmongThePlannedDrives) {
     const auto cues =
         adapt_cues({drive(0.0, 1.0), position(0.0, 0), drive(0.2, 0.0), position(0.2, 1),
