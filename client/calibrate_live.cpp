@@ -112,7 +112,10 @@ int calibrate_live(const CalibrateRequest& request, std::ostream& out, std::ostr
         if (const auto sensor = field<std::string>(result, "accelerometer")) {
             out << "# accelerometer: " << *sensor << "\n";
         }
-        print_estimate(estimate, declared, out, err);
+        // Numbers an earlier calibration measured are "in use", not declared.
+        const auto before = field<std::string>(result, "declared-source").value_or("declared");
+        print_estimate(estimate, declared, out, err,
+                       before.starts_with("measured") ? "in use (" + before + ")" : "declared");
         const bool applied = field<bool>(result, "applied").value_or(false);
         if (const auto source = field<std::string>(result, "source")) {
             out << "# in use: " << *source << (applied ? " (applied now)" : "") << "\n";

@@ -66,13 +66,14 @@ constexpr const char* kNoKind =
 
 // "measured 168.2 Hz, declared 175 Hz" rows for the keys of the estimate's kind.
 void print_beside(const cal::Estimate& estimate,
-                  const std::optional<actuator::Declaration>& declared, std::ostream& out) {
+                  const std::optional<actuator::Declaration>& declared, std::ostream& out,
+                  const std::string& declared_as) {
     const auto row = [&](const char* key, const std::optional<double>& measured, double scale,
                          std::optional<double> declared_value) {
         out << "# " << key << ": measured "
             << (measured ? rounded_text(*measured * scale, 4) : std::string("-"));
         if (declared_value) {
-            out << ", declared " << rounded_text(*declared_value * scale, 4);
+            out << ", " << declared_as << " " << rounded_text(*declared_value * scale, 4);
         }
         out << "\n";
     };
@@ -110,9 +111,9 @@ actuator::Declaration with_measured(actuator::Declaration base, const cal::Estim
 
 void print_estimate(const cal::Estimate& estimate,
                     const std::optional<actuator::Declaration>& declared, std::ostream& out,
-                    std::ostream& err) {
+                    std::ostream& err, const std::string& declared_as) {
     out << cal::declaration_lines(estimate);
-    print_beside(estimate, declared, out);
+    print_beside(estimate, declared, out, declared_as);
     for (const auto& what : estimate.unmeasured) {
         err << "vibscore: calibrate: not measured: " << what << "\n";
     }
@@ -150,9 +151,21 @@ void write_calibration_picture(const std::string& path, const cal::Plan& plan,
     if (declared && declared->kind == estimate.kind) {
         traces.declared = cal::predicted_magnitude(plan, *declared, scale, traces.recorded.t_s);
     }
-    std::string caption = actuator::describe(with_measured(base, estimate)) + "; residual " +
-                          rounded_text(estimate.residual, 3) + ", signal-to-noise " +
-                          rounded_text(estimate.snr_db, 3) + " dB, " +
+    std::string measured;
+    const auto add = [&](const char* what, const std::optional<double>& value, double scale,
+                         const char* unit) {
+        if (value) {
+            measured += (measured.empty() ? "" : ", ") + std::string(what) + " " +
+                        rounded_text(*value * scale, 4) + unit;
+        }
+    };
+    add("resonance", estimate.resonance_hz, 1.0, " Hz");
+    add("Q", estimate.q, 1.0, "");
+    add("spin-up", estimate.spin_up_s, 1000.0, " ms");
+    add("spin-down", estimate.spin_down_s, 1000.0, " ms");
+    std::string caption = "measured " + (measured.empty() ? std::string("nothing") : measured) +
+                          "; residual " + rounded_text(estimate.residual, 3) +
+                          ", signal-to-noise " + rounded_text(estimate.snr_db, 3) + " dB, " +
                           rounded_text(estimate.sample_rate_hz, 4) + " Hz sampling; " +
                           (estimate.trusted ? "trusted" : "NOT trusted");
     const std::string title =

@@ -34,9 +34,11 @@ int calibrate_estimate(const CalibrateRequest& request, std::ostream& out, std::
 // What an estimate says, as both paths print it: the [actuator] lines (declaration_lines) and,
 // as `#` comments, each measured number beside the declared one. On `err`: what was not
 // measured, and when not trusted, why.
+// `declared_as` names where the declared numbers came from ("declared", or "in use" when an
+// earlier calibration's are).
 void print_estimate(const actuator::calibration::Estimate& estimate,
                     const std::optional<actuator::Declaration>& declared, std::ostream& out,
-                    std::ostream& err);
+                    std::ostream& err, const std::string& declared_as = "declared");
 
 // The picture of a calibration (pictures::CalibrationPicture) to `path` (.png or .svg).
 // Throws std::runtime_error / std::invalid_argument naming the file.

@@ -63,6 +63,7 @@ CalibrationReply calibration_reply(const CalibrationOutcome& outcome, bool recor
         }
     }
     reply["declared"] = sdbus::Variant(declared);
+    reply["declared-source"] = sdbus::Variant(outcome.declared_source);
     reply["applied"] = sdbus::Variant(outcome.applied);
     reply["source"] = sdbus::Variant(outcome.source);
     reply["accelerometer"] = sdbus::Variant(outcome.accelerometer);

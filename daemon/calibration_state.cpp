@@ -55,6 +55,8 @@ double limited(const actuator::Limit& limit, const std::string& value, const std
 MeasuredActuator measured_from(const actuator::calibration::Estimate& estimate,
                                std::string measured_at) {
     MeasuredActuator measured;
+    // Rounded as the state file keeps them (below), so the numbers in use are the same before
+    // and after a restart.
     measured.kind = estimate.kind;
     if (estimate.kind == Kind::erm) {
         measured.spin_up_s = estimate.spin_up_s;
@@ -64,7 +66,7 @@ MeasuredActuator measured_from(const actuator::calibration::Estimate& estimate,
         measured.q = estimate.q;
     }
     measured.measured_at = std::move(measured_at);
-    return measured;
+    return parse_measured(measured_text(measured), "the estimate");
 }
 
 std::string measured_text(const MeasuredActuator& measured) {
@@ -76,7 +78,8 @@ std::string measured_text(const MeasuredActuator& measured) {
          << "kind = " << (measured.kind == Kind::erm ? "erm" : "lra") << "\n";
     const auto line = [&](const char* key, const std::optional<double>& value, double scale) {
         if (value) {
-            text << key << " = " << rounded_text(*value * scale, 6) << "\n";
+            // Five digits: finer than any estimate is sure of (0.4 % of a resonance at best).
+            text << key << " = " << rounded_text(*value * scale, 5) << "\n";
         }
     };
     line(actuator::kSpinUpMs.key, measured.spin_up_s, 1000.0);

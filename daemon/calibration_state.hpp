@@ -27,7 +27,8 @@ struct MeasuredActuator {
 // The state file's name in the store. It starts with '.', so the registry never lists it.
 inline constexpr const char* kCalibrationStateFile = ".actuator-calibration";
 
-// What a trusted estimate measured, dated `measured_at`.
+// What a trusted estimate measured, dated `measured_at`, rounded as the state file keeps it (five
+// significant digits). Throws std::invalid_argument when a number is outside [actuator]'s limits.
 MeasuredActuator measured_from(const actuator::calibration::Estimate& estimate,
                                std::string measured_at);
 

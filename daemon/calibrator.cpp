@@ -44,6 +44,7 @@ struct Calibrator::Run {
     Done done;
     cal::Plan plan;
     std::optional<actuator::Declaration> declared;
+    std::string declared_source;
     std::shared_ptr<sensors::Accelerometer> sensor;
     std::string sensor_name;
 
@@ -117,6 +118,7 @@ void Calibrator::start(bool apply, uid_t owner, const std::string& sender, Done 
     run->sender = sender;
     run->done = std::move(done);
     run->declared = config_.actuator;
+    run->declared_source = config_.actuator_source;
     run->plan = cal::make_plan(config_.actuator->kind, config_.actuator);
     run->sensor = std::move(sensor);
     run->sensor_name = run->sensor->describe();
@@ -262,6 +264,7 @@ void Calibrator::record(const std::shared_ptr<Run>& run) {
         CalibrationOutcome outcome;
         outcome.plan = run->plan;
         outcome.declared = run->declared;
+        outcome.declared_source = run->declared_source;
         outcome.accelerometer = run->sensor_name;
         outcome.samples.reserve(readings.size());
         for (const auto& reading : readings) {

@@ -40,6 +40,7 @@ struct CalibrationOutcome {
     std::vector<actuator::calibration::Sample> samples;  // seconds from the probe's start
     actuator::calibration::Estimate estimate;
     std::optional<actuator::Declaration> declared;  // the numbers in use when it began
+    std::string declared_source;                    // and where they came from
     std::string accelerometer;                      // what recorded it
     bool applied = false;
     std::string source;  // of the numbers in use now ("declared", "measured DATE")
