@@ -5,6 +5,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <future>
@@ -129,6 +130,19 @@ TEST(DaemonCalibrate, AppliedNumbersShapeTheNextPlaybackAsCompensationPlansForTh
     const auto measured = play_one_note(daemon);
     ASSERT_FALSE(measured.empty());
     EXPECT_NE(measured, declared);
+}
+
+TEST(DaemonCalibrate, AnUnprivilegedCallerIsRefusedNamingTheActionAndNothingPlays) {
+    DaemonFixture daemon;
+    configure(daemon, "accelerometer-rate-hz = 1000\n");
+    const auto refused = daemon.call({"Calibrate", "a{sv}", "1", "apply", "b", "true"}, 65534);
+    EXPECT_THAT(refused.err, HasSubstr("Calibrating the actuator needs org.vibscore.manage"));
+    EXPECT_TRUE(
+        daemon.trace_rows().empty() ||
+        std::all_of(daemon.trace_rows().begin(), daemon.trace_rows().end(),
+                    [](const DaemonFixture::TraceRow& row) { return row.amplitude == 0.0; }))
+        << "no probe was played";
+    EXPECT_EQ(property(daemon, "ActuatorSource"), "s \"declared\"\n");
 }
 
 TEST(DaemonCalibrate, OptionsOfTheWrongTypeOrNameAreInvalid) {
