@@ -454,15 +454,14 @@ int driver(const std::string& name, std::ostream& out, std::ostream& err) {
         out << "\n" << haptics.DriverReason() << "\n";
         const auto declared = haptics.Actuator();
         if (haptics.Driver() == "sim") {
-            // The sim follows [actuator] when one is declared (drivers::make_sim_actuator);
-            // else its own [sim] model, an LRA at the declaration's defaults unless set there.
-            actuator::Declaration defaults;
+            // The sim follows [actuator] when one is declared (drivers::make_sim_actuator); else
+            // the model its [sim] section sets, whose numbers the bus does not publish: say where
+            // they are rather than guess them.
             out << "sim: "
                 << (declared.empty()
-                        ? "simulates the model of its [sim] section (model, resonance-hz, q, "
-                          "spin-up-ms, spin-down-ms in vibscored.conf; unset: lra " +
-                              number_text(defaults.resonance_hz) + " Hz q " +
-                              number_text(defaults.q) + "), no actuator being declared"
+                        ? std::string("simulates the model its [sim] section sets (model, "
+                                      "resonance-hz, q, spin-up-ms, spin-down-ms in "
+                                      "vibscored.conf), no actuator being declared")
                         : "simulates the declared actuator: " + actuator_line(declared))
                 << "\n";
         }

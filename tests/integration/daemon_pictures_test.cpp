@@ -147,7 +147,7 @@ TEST(DriverVerb, SaysWhatTheSimSimulates) {
     DaemonFixture undeclared;
     const auto result = vibscore({"driver"});
     ASSERT_EQ(result.exit_code, 0) << result.err;
-    EXPECT_THAT(result.out, HasSubstr("sim: simulates the model of its [sim] section"));
+    EXPECT_THAT(result.out, HasSubstr("sim: simulates the model its [sim] section sets"));
     EXPECT_THAT(result.out, HasSubstr("no actuator being declared"));
 }
 

@@ -130,6 +130,8 @@ TEST_F(DriverSwitch, TheClientSaysWhyTheDriverRunsAndWhenItIsAlreadyInUse) {
     // The reason names the line of the file that says so.
     const std::string configured = "configured at " + daemon.config().string() + ":2: driver = sim";
     const std::string undeclared =
+        "sim: simulates the model its [sim] section sets (model, resonance-hz, q, spin-up-ms, "
+        "spin-down-ms in vibscored.conf), no actuator being declared\n"
         "actuator: none declared: strengths play as written ([actuator] in vibscored.conf, "
         "docs/drivers.md)\n";
     EXPECT_EQ(shown.out,
