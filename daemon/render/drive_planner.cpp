@@ -39,6 +39,12 @@ constexpr double kStopped = 0.10;
 constexpr int kLooks = 32;
 // Brake frequencies tried on either side of the resonance.
 constexpr int kFrequencies = 12;
+// Where the resonance is uncertain by more than this many of its bandwidths (f0 / Q), the phase a
+// brake meets is not known: an LRA built at the margin's edge rings up to ~60 degrees away from
+// the model (more as it rings on at its own frequency), and a brake there pushes as much as it
+// stops. Such an LRA is not braked: its drive ends early instead, as on a board that cannot brake,
+// so that its own ring-down ends the note on time.
+constexpr double kPhaseKnown = 0.5;
 
 // Within this of the written strength counts as there: no overdrive or brake for a rounding.
 double tolerance(double strength) {
@@ -60,7 +66,8 @@ DrivePlanner::DrivePlanner(const actuator::Declaration& declaration, const Plann
       options_(options),
       state_(carry.state),
       drive_(carry.drive),
-      last_frequency_hz_(carry.ringing_frequency_hz) {
+      last_frequency_hz_(carry.ringing_frequency_hz),
+      brakes_(options.reverse) {
     const Uncertainty& u = options.uncertainty;
     if (!(u.resonance >= 0.0 && u.resonance <= 0.5) || !(u.q >= 0.0 && u.q <= 0.9)) {
         throw std::invalid_argument("drive planner: uncertainty of resonance " +
@@ -70,6 +77,7 @@ DrivePlanner::DrivePlanner(const actuator::Declaration& declaration, const Plann
     if (!physics_.is_lra() || !options.compensation || (u.resonance == 0.0 && u.q == 0.0)) {
         return;
     }
+    brakes_ = options.reverse && u.resonance * declaration.q <= kPhaseKnown;
     for (const double f : {1.0 - u.resonance, 1.0, 1.0 + u.resonance}) {
         for (const double q : {1.0 - u.q, 1.0, 1.0 + u.q}) {
             if ((f == 1.0 && q == 1.0) || (u.resonance == 0.0 && f != 1.0) ||
@@ -213,6 +221,9 @@ std::vector<DrivePlanner::Step> DrivePlanner::approach(double at, double until, 
     if (std::abs(now - strength) <= tolerance(strength)) {
         return {{at, hold}};
     }
+    if (strength == 0.0 && !brakes_ && !members_.empty()) {
+        return {{at, hold}};  // coast: the brake's phase is not known (kPhaseKnown)
+    }
     if (strength == 0.0 && options_.reverse && !members_.empty()) {
         // To rest, whatever the actuator within the uncertainty: the brake (frequency, length)
         // under which the worst of them stops soonest against coasting; none if none helps.
@@ -242,6 +253,8 @@ std::vector<DrivePlanner::Step> DrivePlanner::approach(double at, double until, 
     if (now < strength) {
         push = {1.0, frequency_hz};
     } else if (options_.reverse) {
+        // (A fall to a softer note is braked even where the phase is uncertain: coasting down
+        // would carry the next note's start above its strength.)
         push = {-1.0, frequency_hz};
     } else {
         push = {0.0, 0.0};  // coast
@@ -357,7 +370,7 @@ void DrivePlanner::segment(double at, double until, double strength, double freq
         const double frequency = written > 0.0 ? frequency_hz : last_frequency_hz_;
         steps = approach(at, until, written, frequency);
         tame(steps, until, written);
-        if (silence_follows && !options_.reverse && written > 0.0 && std::isfinite(until)) {
+        if (silence_follows && !brakes_ && written > 0.0 && std::isfinite(until)) {
             const double cut = early_end(steps, until, written);
             if (cut < until) {
                 std::erase_if(steps, [&](const Step& step) { return step.at >= cut; });

@@ -17,8 +17,10 @@ namespace vibscore::render {
 // strength; a brake to rest is the one that stops the declared one soonest without pushing any
 // member back up, after its lowest point, by more than 30 % of where it started (past rest a
 // brake adds energy: a shorter, weaker brake as the margins grow); and a held note whose beat
-// (off resonance) would rise above its strength is driven lower. Both zero (the default): the
-// declaration is taken as exact, issue 22's plans to the microsecond. An ERM's plans are not
+// (off resonance) would rise above its strength is driven lower. Where the resonance is uncertain
+// by more than half a bandwidth (resonance x Q > 0.5), no brake to rest at all: its phase is not
+// known, and the drive ends early instead, as without `reverse`. Both zero: the declaration is
+// taken as exact, issue 22's plans to the microsecond. An ERM's plans are not
 // budgeted: its exact brake and overdrive stay better than none over +-30 % in both time
 // constants (bench/feel, docs/performance.md), as coasting takes it twice as long as braking.
 struct Uncertainty {
@@ -128,6 +130,9 @@ class DrivePlanner {
     double last_frequency_hz_ = 0.0;  // of the last drive that vibrated: braking continues it
     std::vector<actuator::Physics> members_;  // an LRA's neighbours within the uncertainty
     std::vector<actuator::State> member_states_;
+    // Whether it brakes: `reverse`, and (with members) the resonance known to within a
+    // bandwidth's fraction (kPhaseKnown).
+    bool brakes_ = false;
 };
 
 }  // namespace vibscore::render
