@@ -4,8 +4,8 @@
 #include <cmath>
 #include <utility>
 
-#include "client/pictures/axis_ticks.hpp"
 #include "client/pictures/picture_text.hpp"
+#include "client/pictures/plot_axes.hpp"
 
 namespace vibscore::pictures {
 
@@ -131,46 +131,17 @@ void CalibrationPicture::draw_header(cairo_t* cairo, Layers layers) const {
 }
 
 void CalibrationPicture::draw_axes(cairo_t* cairo, Layers layers) const {
-    const double bottom = options_.height - kBottom;
-    const double right = options_.width - kRight;
-    cairo_set_source_rgb(cairo, 0, 0, 0);
-    cairo_set_line_width(cairo, 1.0);
-    cairo_set_dash(cairo, nullptr, 0, 0);
-    if (layers & frame) {
-        cairo_rectangle(cairo, kLeft + 0.5, kTop + 0.5, right - kLeft, bottom - kTop);
-        cairo_stroke(cairo);
-    }
-    select_font(cairo, 10, false);
-    const double step = tick_step(span_, 10);
-    for (double t = 0.0; t <= span_ + step * 1e-6; t += step) {
-        const double x = std::round(x_of(t)) + 0.5;
-        if (layers & frame) {
-            cairo_move_to(cairo, x, bottom);
-            cairo_line_to(cairo, x, bottom + 5);
-            cairo_stroke(cairo);
-        }
-        if (layers & axis_labels) {
-            const auto label = tick_label(t, step);
-            show_text_at(cairo, x - text_width(cairo, label) / 2, bottom + 17, label);
-        }
-    }
-    const double accel_step = tick_step(top_, 4);
-    for (double a = 0.0; a <= top_ + accel_step * 1e-6; a += accel_step) {
-        const double y = std::round(y_of(a)) + 0.5;
-        if (layers & frame) {
-            cairo_move_to(cairo, kLeft - 5, y);
-            cairo_line_to(cairo, kLeft, y);
-            cairo_stroke(cairo);
-        }
-        if (layers & axis_labels) {
-            const auto label = tick_label(a, accel_step);
-            show_text_at(cairo, kLeft - 8 - text_width(cairo, label), y + 4, label);
-        }
-    }
-    if (layers & axis_labels) {
-        show_text_at(cairo, right - 40, bottom + 33, "t (s)");
-        show_text_at(cairo, kLeft, bottom + 33, "vibration (m/s\u00b2, gravity taken out)");
-    }
+    PlotAxes axes;
+    axes.left = kLeft;
+    axes.top = kTop;
+    axes.right = options_.width - kRight;
+    axes.bottom = options_.height - kBottom;
+    axes.span_s = span_;
+    axes.top_value = top_;
+    axes.x_of = [this](double t) { return x_of(t); };
+    axes.y_of = [this](double a) { return y_of(a); };
+    axes.value_label = "vibration (m/s\u00b2, gravity taken out)";
+    draw_plot_axes(cairo, axes, (layers & frame) != 0, (layers & axis_labels) != 0);
 }
 
 void CalibrationPicture::draw_traces(cairo_t* cairo, Layers layers) const {

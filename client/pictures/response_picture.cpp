@@ -4,8 +4,8 @@
 #include <cmath>
 #include <utility>
 
-#include "client/pictures/axis_ticks.hpp"
 #include "client/pictures/picture_text.hpp"
+#include "client/pictures/plot_axes.hpp"
 
 namespace vibscore::pictures {
 
@@ -196,47 +196,17 @@ void ResponsePicture::draw_bar_labels(cairo_t* cairo, Layers layers) const {
 }
 
 void ResponsePicture::draw_axes(cairo_t* cairo, Layers layers) const {
-    const double bottom = options_.height - kBottom;
-    const double right = options_.width - kRight;
-    cairo_set_source_rgb(cairo, 0, 0, 0);
-    cairo_set_line_width(cairo, 1.0);
-    cairo_set_dash(cairo, nullptr, 0, 0);
-    if (layers & frame) {
-        cairo_rectangle(cairo, kLeft + 0.5, plot_top() + 0.5, right - kLeft, bottom - plot_top());
-        cairo_stroke(cairo);
-    }
-    select_font(cairo, 10, false);
-    const double step = tick_step(span_, 10);
-    for (double t = 0.0; t <= span_ + step * 1e-6; t += step) {
-        const double x = std::round(x_of(t)) + 0.5;
-        if (layers & frame) {
-            cairo_move_to(cairo, x, bottom);
-            cairo_line_to(cairo, x, bottom + 5);
-            cairo_stroke(cairo);
-        }
-        if (layers & axis_labels) {
-            const auto label = tick_label(t, step);
-            show_text_at(cairo, x - text_width(cairo, label) / 2, bottom + 17, label);
-        }
-    }
-    const double strength_step = tick_step(top_, 4);
-    for (double s = 0.0; s <= top_ + strength_step * 1e-6; s += strength_step) {
-        const double y = std::round(y_of(s)) + 0.5;
-        if (layers & frame) {
-            cairo_move_to(cairo, kLeft - 5, y);
-            cairo_line_to(cairo, kLeft, y);
-            cairo_stroke(cairo);
-        }
-        if (layers & axis_labels) {
-            const auto label = tick_label(s, strength_step);
-            // Right-aligned against the ticks, however long the number.
-            show_text_at(cairo, kLeft - 8 - text_width(cairo, label), y + 4, label);
-        }
-    }
-    if (layers & axis_labels) {
-        show_text_at(cairo, right - 40, bottom + 33, "t (s)");
-        show_text_at(cairo, kLeft, bottom + 33, "strength (1 = the rated drive)");
-    }
+    PlotAxes axes;
+    axes.left = kLeft;
+    axes.top = plot_top();
+    axes.right = options_.width - kRight;
+    axes.bottom = options_.height - kBottom;
+    axes.span_s = span_;
+    axes.top_value = top_;
+    axes.x_of = [this](double t) { return x_of(t); };
+    axes.y_of = [this](double s) { return y_of(s); };
+    axes.value_label = "strength (1 = the rated drive)";
+    draw_plot_axes(cairo, axes, (layers & frame) != 0, (layers & axis_labels) != 0);
 }
 
 void ResponsePicture::draw_boundaries(cairo_t* cairo, Layers layers) const {
