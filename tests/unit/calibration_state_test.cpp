@@ -118,6 +118,18 @@ TEST(CalibrationState, AtStartTheMeasuredNumbersStandInForTheDeclaredOnesAndTheR
     EXPECT_EQ(config.actuator_source, "measured 2026-11-28T18:40:12Z");
 }
 
+TEST(CalibrationState, MeasuredLraNumbersComeWithTheMeasurementsTolerancesNotTheDatasheets) {
+    actuator::Declaration declared = *declared_lra("/nonexistent").actuator;
+    const auto measured = daemon::with_measured(declared, lra(168.0, 10.0));
+    EXPECT_EQ(measured.resonance_tolerance, 0.01);  // from the default 5 %
+    EXPECT_EQ(measured.q_tolerance, 0.15);          // from the default 40 %
+    declared.resonance_tolerance = 0.0;             // declared exact: stays exact
+    declared.q_tolerance = 0.1;
+    const auto exact = daemon::with_measured(declared, lra(168.0, 10.0));
+    EXPECT_EQ(exact.resonance_tolerance, 0.0);
+    EXPECT_EQ(exact.q_tolerance, 0.1);
+}
+
 TEST(CalibrationState, AMeasurementOfAnotherKindIsIgnoredAndNothingDeclaredNeedsNone) {
     testing::TempDir dir;
     MeasuredActuator erm;
