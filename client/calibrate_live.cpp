@@ -79,15 +79,8 @@ int calibrate_live(const CalibrateRequest& request, std::ostream& out, std::ostr
                "live, vibscored probes the actuator it declares\n";
         return exit_usage;
     }
-    try {
-        for (const auto& path : {request.png, request.svg}) {
-            if (!path.empty()) {
-                pictures::picture_format_for(path);
-            }
-        }
-    } catch (const std::exception& error) {
-        err << "vibscore: calibrate: " << error.what() << "\n";
-        return exit_usage;
+    if (const int refused = check_picture_names(request, err)) {
+        return refused;
     }
     Result result;
     try {

@@ -64,6 +64,40 @@ constexpr const char* kNoKind =
     "vibscore: calibrate: say which actuator to probe: --kind erm|lra, or --actuator FILE with "
     "an [actuator] section\n";
 
+// The nominal declaration and kind of --plan and --estimate: exit_ok, or exit_usage having said
+// why (a bad --actuator file, or no kind from --kind or the file).
+int usable_nominal(const CalibrateRequest& request, Nominal& nominal, std::ostream& err) {
+    try {
+        nominal = nominal_of(request);
+    } catch (const std::exception& error) {
+        err << "vibscore: calibrate: " << error.what() << "\n";
+        return exit_usage;
+    }
+    if (!nominal.kind) {
+        err << kNoKind;
+        return exit_usage;
+    }
+    return exit_ok;
+}
+
+}  // namespace
+
+int check_picture_names(const CalibrateRequest& request, std::ostream& err) {
+    try {
+        for (const auto& path : {request.png, request.svg}) {
+            if (!path.empty()) {
+                pictures::picture_format_for(path);
+            }
+        }
+    } catch (const std::exception& error) {
+        err << "vibscore: calibrate: " << error.what() << "\n";
+        return exit_usage;
+    }
+    return exit_ok;
+}
+
+namespace {
+
 // "measured 168.2 Hz, declared 175 Hz" rows for the keys of the estimate's kind.
 void print_beside(const cal::Estimate& estimate,
                   const std::optional<actuator::Declaration>& declared, std::ostream& out,
@@ -175,15 +209,8 @@ void write_calibration_picture(const std::string& path, const cal::Plan& plan,
 
 int calibrate_plan(const CalibrateRequest& request, std::ostream& out, std::ostream& err) {
     Nominal nominal;
-    try {
-        nominal = nominal_of(request);
-    } catch (const std::exception& error) {
-        err << "vibscore: calibrate: " << error.what() << "\n";
-        return exit_usage;
-    }
-    if (!nominal.kind) {
-        err << kNoKind;
-        return exit_usage;
+    if (const int refused = usable_nominal(request, nominal, err)) {
+        return refused;
     }
     try {
         const auto plan = cal::make_plan(*nominal.kind, nominal.declared);
@@ -208,29 +235,15 @@ int calibrate_plan(const CalibrateRequest& request, std::ostream& out, std::ostr
 
 int calibrate_estimate(const CalibrateRequest& request, std::ostream& out, std::ostream& err) {
     Nominal nominal;
-    try {
-        nominal = nominal_of(request);
-    } catch (const std::exception& error) {
-        err << "vibscore: calibrate: " << error.what() << "\n";
-        return exit_usage;
-    }
-    if (!nominal.kind) {
-        err << kNoKind;
-        return exit_usage;
+    if (const int refused = usable_nominal(request, nominal, err)) {
+        return refused;
     }
     if (request.estimate.size() != 2) {
         err << "vibscore: calibrate --estimate takes two files: PLAN.csv ACCEL.csv\n";
         return exit_usage;
     }
-    try {
-        for (const auto& path : {request.png, request.svg}) {
-            if (!path.empty()) {
-                pictures::picture_format_for(path);
-            }
-        }
-    } catch (const std::exception& error) {
-        err << "vibscore: calibrate: " << error.what() << "\n";
-        return exit_usage;
+    if (const int refused = check_picture_names(request, err)) {
+        return refused;
     }
     try {
         const auto& plan_file = request.estimate[0];

@@ -40,6 +40,10 @@ void print_estimate(const actuator::calibration::Estimate& estimate,
                     const std::optional<actuator::Declaration>& declared, std::ostream& out,
                     std::ostream& err, const std::string& declared_as = "declared");
 
+// Before anything is measured: a --png/--svg name whose ending says no picture format is a
+// usage error (exit_usage, said on `err`), not a failure after the probe.
+int check_picture_names(const CalibrateRequest& request, std::ostream& err);
+
 // The picture of a calibration (pictures::CalibrationPicture) to `path` (.png or .svg).
 // Throws std::runtime_error / std::invalid_argument naming the file.
 void write_calibration_picture(const std::string& path, const actuator::calibration::Plan& plan,
