@@ -65,14 +65,17 @@ int main(int argc, char** argv) {
     int count = 24;
     std::uint64_t seed = 32;
     bool verbose = false;
-    std::vector<std::string> variants{"uniform", "sampled-jitter", "rotating-erm", "spring-lra"};
+    std::vector<std::string> variants{"uniform",    "sampled-jitter", "rotating-erm",
+                                      "spring-lra", "low-pass-1",     "low-pass-2"};
     app.add_option("--count", count, "actuators of each kind per rate and variant");
     app.add_option("--seed", seed, "the random actuators' and sensors' seed");
     app.add_option("--variants", variants,
                    "sensor variants: uniform (readings on the sensor's clock, reported times "
                    "jittered), sampled-jitter (readings taken at jittered times), rotating-erm "
                    "(the ERM's force turning in a plane), spring-lra (the phone feels the LRA's "
-                   "spring, not its mass's acceleration)");
+                   "spring, not its mass's acceleration), low-pass-1 (the sensor's own "
+                   "first-order low-pass at a quarter of its rate), low-pass-2 (second-order at "
+                   "half its rate)");
     double max_delay_ms = 15.0;
     app.add_option("--max-delay-ms", max_delay_ms,
                    "the drive reaches the actuator up to this late (uniformly random)");
@@ -117,6 +120,13 @@ int main(int argc, char** argv) {
                     sensor.erm_rotating = variant == "rotating-erm";
                     sensor.lra_spring = variant == "spring-lra";
                     sensor.jittered_sampling = variant == "sampled-jitter";
+                    if (variant == "low-pass-1") {
+                        sensor.low_pass_hz = sensor.rate_hz / 4.0;
+                        sensor.low_pass_order = 1;
+                    } else if (variant == "low-pass-2") {
+                        sensor.low_pass_hz = sensor.rate_hz / 2.0;
+                        sensor.low_pass_order = 2;
+                    }
                     sensor.seed = random();
                     if (kind == Kind::lra) {
                         truth.resonance_hz = between(150.0, 235.0);

@@ -33,6 +33,11 @@ constexpr double kMinSpinS = 0.006, kMaxSpinUpS = 0.2, kMaxSpinDownS = 0.4;
 // far from its median. A vibration's own peaks put a few readings on the top quantisation
 // step; a clipped one piles a good share of them there.
 constexpr double kClippedShare = 0.01;
+// ERM: the phase-coherent envelope is used when its local sinusoids explain at least this share
+// of the vibration (a steadily turning mass); below, the energy fit stands.
+constexpr double kMinEnvelopeExplained = 0.5;
+// ... and when the reported times explain this much more than the sensor's uniform clock would.
+constexpr double kJitteredMargin = 0.02;
 
 double axis_of(const Sample& s, int axis) {
     return axis == 0 ? s.x : axis == 1 ? s.y : s.z;
@@ -218,15 +223,34 @@ void estimate_erm(Estimate& e, const Plan& plan, const std::vector<Vec3>& vibrat
     const std::vector<double> regular = fit::regular_times(raw);
     fit::ErmFit best;
     bool first = true;
+    std::vector<fit::ErmFit> fits;
     for (const std::vector<double>* times : {&regular, &raw}) {
-        const fit::ErmFit f = fit::fit_erm(plan, *times, energy, weight, half);
-        if (first || f.rss < best.rss) {
-            best = f;
+        fits.push_back(fit::fit_erm(plan, *times, energy, weight, half));
+        if (first || fits.back().rss < best.rss) {
+            best = fits.back();
             first = false;
         }
     }
-    e.spin_up_s = best.spin_up_s;
-    e.spin_down_s = best.spin_down_s;
+    double spin_up_s = best.spin_up_s, spin_down_s = best.spin_down_s;
+    // Readings taken at jittered instants (the reported times right, not the sensor's uniform
+    // clock) sample the ripple of |vibration|^2 at random: there the time constants come from
+    // the phase-coherent envelope. Which time base is right shows in how much of the vibration
+    // the local sinusoids explain on each. On a uniform clock the energy fit stands: its ripple
+    // aliases to a frequency the average removes, where the envelope's local frequency would
+    // meet the same alias as the speed changes and mislead it.
+    const int window = std::max(3, static_cast<int>(std::lround(0.005 * e.sample_rate_hz)));
+    const fit::ErmEnvelope on_regular =
+        fit::erm_envelope(plan, regular, vibration, fits[0], window);
+    const fit::ErmEnvelope on_raw = fit::erm_envelope(plan, raw, vibration, fits[1], window);
+    if (on_raw.explained >= kMinEnvelopeExplained &&
+        on_raw.explained > on_regular.explained + kJitteredMargin) {
+        const fit::ErmFit coherent =
+            fit::fit_erm(plan, raw, on_raw.envelope, on_raw.weight, window);
+        spin_up_s = coherent.spin_up_s;
+        spin_down_s = coherent.spin_down_s;
+    }
+    e.spin_up_s = spin_up_s;
+    e.spin_down_s = spin_down_s;
     // Peak of one axis's sinusoid with the same energy: what an LRA's figure means too.
     e.full_scale_accel = std::sqrt(2.0 * std::max(0.0, best.scale));
     e.residual = best.energy_ss > 0.0 ? std::sqrt(best.rss / best.energy_ss) : 1.0;
@@ -238,18 +262,18 @@ void estimate_erm(Estimate& e, const Plan& plan, const std::vector<Vec3>& vibrat
     if (e.snr_db < kMinSnrDb) {
         return;
     }
-    if (best.spin_up_s <= kMinSpinS || best.spin_up_s >= kMaxSpinUpS) {
-        e.problems.push_back("the spin-up time came out at " + text(best.spin_up_s * 1000.0) +
+    if (spin_up_s <= kMinSpinS || spin_up_s >= kMaxSpinUpS) {
+        e.problems.push_back("the spin-up time came out at " + text(spin_up_s * 1000.0) +
                              " ms, beyond what the probe can time (" + text(kMinSpinS * 1000.0) +
                              "-" + text(kMaxSpinUpS * 1000.0) + " ms)");
     }
-    if (best.spin_down_s <= kMinSpinS || best.spin_down_s >= kMaxSpinDownS) {
-        e.problems.push_back("the spin-down time came out at " + text(best.spin_down_s * 1000.0) +
+    if (spin_down_s <= kMinSpinS || spin_down_s >= kMaxSpinDownS) {
+        e.problems.push_back("the spin-down time came out at " + text(spin_down_s * 1000.0) +
                              " ms, beyond what the probe can time (" + text(kMinSpinS * 1000.0) +
                              "-" + text(kMaxSpinDownS * 1000.0) + " ms)");
     }
-    check_limit(e, kSpinUpMs, best.spin_up_s * 1000.0);
-    check_limit(e, kSpinDownMs, best.spin_down_s * 1000.0);
+    check_limit(e, kSpinUpMs, spin_up_s * 1000.0);
+    check_limit(e, kSpinDownMs, spin_down_s * 1000.0);
 }
 
 }  // namespace

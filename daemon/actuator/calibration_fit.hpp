@@ -71,6 +71,24 @@ struct ErmFit {
 ErmFit fit_erm(const Plan& plan, const std::vector<double>& t_s, const std::vector<double>& energy,
                const std::vector<double>& weight, int half);
 
+// An ERM's vibration envelope independent of the phase at which the readings fall (for readings
+// at jittered instants, where |vibration|^2 carries the sampled phase as noise): the rotation
+// frequency at full speed from the plateaus' spectrum, the phase the speed model `first`
+// predicts from it, and in a window of 2 `half` + 1 readings around each one the sinusoid at
+// that phase fitted per axis (amplitude^2 summed over the axes, so it goes with speed^4 as the
+// energy does). `weight` is how well each window's phases separate the sine from the cosine
+// (near 0 where the sampling aliases the rotation to zero or half the rate, or the motor is
+// nearly still). `explained` is the share of the vibration the local sinusoids explain: the
+// readings' right time base explains more.
+struct ErmEnvelope {
+    std::vector<double> envelope;
+    std::vector<double> weight;
+    double full_speed_hz = 0.0;
+    double explained = 0.0;
+};
+ErmEnvelope erm_envelope(const Plan& plan, const std::vector<double>& t_s,
+                         const std::vector<Vec3>& vibration, const ErmFit& first, int half);
+
 // An ERM's normalised speed (1 = full scale's) at `t_s` under `plan`, shifted `delay_s`.
 double erm_speed(const Plan& plan, double spin_up_s, double spin_down_s, double delay_s,
                  double t_s);

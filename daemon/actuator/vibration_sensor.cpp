@@ -39,6 +39,14 @@ VibrationSensor::VibrationSensor(const Declaration& truth, const SensorOptions& 
         throw std::invalid_argument("vibration sensor: the rate must be positive, not " +
                                     number_text(options_.rate_hz));
     }
+    if (options_.low_pass_hz < 0.0 || !std::isfinite(options_.low_pass_hz) ||
+        (options_.low_pass_order != 1 && options_.low_pass_order != 2)) {
+        throw std::invalid_argument(
+            "vibration sensor: the low-pass must be 0 or a frequency of "
+            "order 1 or 2, not " +
+            number_text(options_.low_pass_hz) + " Hz order " +
+            std::to_string(options_.low_pass_order));
+    }
     random_unit(random_, gravity_);
     random_unit(random_, axis_);
     // A second axis at right angles to the first, for a rotating ERM force.
@@ -139,6 +147,7 @@ void VibrationSensor::advance_to(double t_s) {
         }
         const double h = std::min(change - t_, 1.0 / (kStepsPerCycle * fastest));
         step(h);
+        filter(h);
         t_ += h;
         if (change - t_ < 1e-12) {
             t_ = change;
@@ -163,6 +172,28 @@ double VibrationSensor::vibration() const {
     return force * drive_.amplitude * std::cos(phase_) - (w0 / truth_.q) * v_ - w0 * w0 * x_;
 }
 
+double VibrationSensor::second_component() const {
+    if (truth_.kind == Kind::erm && options_.erm_rotating) {
+        return options_.peak_accel * speed_ * std::abs(speed_) * std::sin(angle_);
+    }
+    return 0.0;
+}
+
+void VibrationSensor::filter(double h) {
+    if (options_.low_pass_hz <= 0.0) {
+        return;
+    }
+    // Each stage exact for an input held over the step (the step is 1/64 of a cycle or less).
+    const double keep = std::exp(-kTwoPi * options_.low_pass_hz * h);
+    double a = vibration(), b = second_component();
+    for (int stage = 0; stage < options_.low_pass_order; ++stage) {
+        filtered_a_[stage] = a + (filtered_a_[stage] - a) * keep;
+        filtered_b_[stage] = b + (filtered_b_[stage] - b) * keep;
+        a = filtered_a_[stage];
+        b = filtered_b_[stage];
+    }
+}
+
 std::vector<calibration::Sample> VibrationSensor::sample_until(double t_s) {
     std::vector<calibration::Sample> out;
     std::normal_distribution<double> noise(0.0, options_.noise_rms);
@@ -170,11 +201,10 @@ std::vector<calibration::Sample> VibrationSensor::sample_until(double t_s) {
         options_.bits > 0 ? 2.0 * options_.range / std::ldexp(1.0, options_.bits) : 0.0;
     while (due_ <= t_s) {
         advance_to(due_);
-        const double a = vibration();
-        double b = 0.0;
-        if (truth_.kind == Kind::erm && options_.erm_rotating) {
-            b = options_.peak_accel * speed_ * std::abs(speed_) * std::sin(angle_);
-        }
+        const bool filtered = options_.low_pass_hz > 0.0;
+        const int last = options_.low_pass_order - 1;
+        const double a = filtered ? filtered_a_[last] : vibration();
+        const double b = filtered ? filtered_b_[last] : second_component();
         double value[3];
         for (int i = 0; i < 3; ++i) {
             double v = options_.gravity * gravity_[i] + a * axis_[i] + b * axis2_[i];

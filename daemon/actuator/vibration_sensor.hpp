@@ -47,6 +47,11 @@ struct SensorOptions {
     double jitter_s = 0.001;
     bool jittered_sampling = false;  // true: sampled at the jittered times, reported exactly
     double first_sample_s = 0.0;     // when the sensor's first reading is taken
+    // The sensor's own anti-alias filter (many IMUs filter at ODR/2 or ODR/4): 0 none, else a
+    // cascade of `low_pass_order` (1 or 2) first-order low-passes at `low_pass_hz` on the
+    // vibration (gravity passes). It weakens and delays the vibration by its frequency.
+    double low_pass_hz = 0.0;
+    int low_pass_order = 1;
     std::uint64_t seed = 1;
 };
 
@@ -71,7 +76,9 @@ class VibrationSensor {
     };
     void advance_to(double t_s);
     void step(double h);
-    double vibration() const;  // along the vibration axis (ERM: first component)
+    double vibration() const;         // along the vibration axis (ERM: first component)
+    double second_component() const;  // a rotating ERM's along the second axis
+    void filter(double h);            // the sensor's low-pass over a step of h
     double next_sample_time();
 
     Declaration truth_;
@@ -84,6 +91,8 @@ class VibrationSensor {
     double x_ = 0.0, v_ = 0.0, phase_ = 0.0;
     double speed_ = 0.0, angle_ = 0.0;
     double axis_[3]{}, axis2_[3]{}, gravity_[3]{};
+    // The low-pass's stages, for the vibration along each axis.
+    double filtered_a_[2]{}, filtered_b_[2]{};
     long index_ = 0;
     double due_ = 0.0;           // when the next reading is taken
     double due_reported_ = 0.0;  // the time it is reported at
