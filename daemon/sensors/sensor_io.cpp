@@ -103,7 +103,10 @@ class SystemIo final : public SensorIo {
         std::ostringstream text;
         text << in.rdbuf();
         std::string content = text.str();
-        while (!content.empty() && (content.back() == '\n' || content.back() == ' ')) {
+        // Some attributes end in a NUL after the newline (6.1's current_timestamp_clock shows
+        // "realtime\n\0"): text ends there.
+        while (!content.empty() &&
+               (content.back() == '\n' || content.back() == ' ' || content.back() == '\0')) {
             content.pop_back();
         }
         return content;

@@ -9,6 +9,8 @@
 
 #include <chrono>
 #include <cstring>
+#include <filesystem>
+#include <fstream>
 #include <thread>
 
 #include "daemon/sensors/evdev_accelerometer.hpp"
@@ -389,6 +391,24 @@ TEST(ChoosingTheAccelerometer, APathNamesTheDeviceAndAMissingOneIsRefusedByName)
                  std::runtime_error);
     EXPECT_THROW(sensors::open_accelerometer("/tmp/accel", roots(), io, nullptr),
                  std::runtime_error);
+}
+
+TEST(SystemSensorIo, AnAttributesTextEndsBeforeItsNewlineAndATrailingNul) {
+    // Linux 6.1 shows current_timestamp_clock as "realtime\n\0" (seen on the hil guest).
+    const std::filesystem::path file = ::testing::TempDir() + "sensor_io_attribute";
+    {
+        std::ofstream out(file, std::ios::binary);
+        out << std::string("realtime\n\0", 10);
+    }
+    const auto io = sensors::system_sensor_io();
+    EXPECT_EQ(io->read_file(file), "realtime");
+    {
+        std::ofstream out(file, std::ios::binary);
+        out << "a b\n";  // what is inside the text stays
+    }
+    EXPECT_EQ(io->read_file(file), "a b");
+    std::filesystem::remove(file);
+    EXPECT_EQ(io->read_file(file), std::nullopt);
 }
 
 }  // namespace
