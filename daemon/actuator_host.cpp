@@ -246,10 +246,15 @@ bool ActuatorHost::follow_config() {
     const bool module_changed = !drivers::is_built_in_driver(driver_) && driver_ != "none" &&
                                 !fresh->same_module(*running_modules_, driver_);
     // Only the sim is made of the declaration; a real backend drives whatever is on the board.
+    // A new declaration reopens only a backend that cannot take it in place (the sim when its
+    // kind, brake or accelerometer would change): what plays goes on otherwise.
+    const bool redeclared_in_place =
+        !declaration_changed || (config_.actuator && declared_ && actuator_ &&
+                                 actuator_->take_declaration(*config_.actuator));
     const bool differs = config_.driver != configured_ || !follows_config_ ||
                          (config_.driver == drivers::kAutoDriver && auto_fell_back_) ||
                          config_.settings_of(driver_) != settings_ || module_changed ||
-                         (declaration_changed && driver_ == "sim");
+                         (!redeclared_in_place && driver_ == "sim");
     if (differs) {
         switch_running(config_.driver, configured_reason(), true);
     } else {

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "common/device_error.hpp"
+#include "daemon/actuator/declaration.hpp"
 
 namespace vibscore::sensors {
 class Accelerometer;
@@ -82,6 +83,12 @@ class Actuator {
     // A sensor that feels this actuator's vibration and comes with the backend (the sim's model
     // of one), for `vibscore calibrate` when [calibration] names no device; nullptr for most.
     virtual std::shared_ptr<sensors::Accelerometer> accelerometer() const { return nullptr; }
+
+    // The board's actuator was declared anew ([actuator] changed on a reload). A backend made of
+    // the declaration (the sim simulates it) takes the new one in place and returns true, so
+    // what plays goes on; false: its capabilities would change, so it must be reopened. A real
+    // backend drives whatever is on the board: nothing to take, true.
+    virtual bool take_declaration(const actuator::Declaration& /*declared*/) { return true; }
 };
 
 }  // namespace vibscore::drivers

@@ -35,6 +35,9 @@ class ConfiguredActuator final : public Actuator {
     std::shared_ptr<sensors::Accelerometer> accelerometer() const override {
         return backend_->accelerometer();
     }
+    bool take_declaration(const actuator::Declaration& declared) override {
+        return backend_->take_declaration(declared);
+    }
 
   private:
     std::unique_ptr<Actuator> backend_;

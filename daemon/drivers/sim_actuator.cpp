@@ -66,6 +66,7 @@ actuator::Declaration undeclared_sim_actuator() {
 
 SimActuator::SimActuator(SimSettings settings, MonotonicClock clock)
     : clock_(clock ? std::move(clock) : MonotonicClock(monotonic_now_ns)),
+      settings_(settings),
       reverse_(settings.declared && settings.actuator.brake == actuator::Brake::reverse),
       model_(settings.truth.value_or(settings.actuator)) {
     if (settings.accelerometer.rate_hz > 0.0) {
@@ -80,6 +81,32 @@ SimActuator::SimActuator(SimSettings settings, MonotonicClock clock)
             std::make_unique<TerminalMeter>(settings.meter_fd, meter_label(settings.actuator.kind),
                                             TerminalMeter::glyphs_for_environment());
     }
+}
+
+bool SimActuator::take_declaration(const actuator::Declaration& declared) {
+    if (!settings_.declared) {
+        return false;  // it simulated its own [sim] model: a declaration now is another sim
+    }
+    const auto& running = settings_.actuator;
+    if (declared.kind != running.kind || declared.brake != running.brake) {
+        return false;
+    }
+    if (!settings_.truth) {
+        // The new physics from now on, continuing the drive in force (the simulated state starts
+        // again from rest: a sim's convenience, not a real actuator's).
+        const std::int64_t now_ns = clock_();
+        const actuator::Drive drive = model_.drive();
+        actuator::Timeline fresh(declared);
+        fresh.command(static_cast<double>(now_ns) * 1e-9, drive);
+        model_ = std::move(fresh);
+        if (accelerometer_) {
+            // It feels the declared actuator too; a recording under way keeps the one it has.
+            accelerometer_ = std::make_shared<SimAccelerometer>(declared, settings_.accelerometer);
+            accelerometer_->command(now_ns, drive);
+        }
+    }
+    settings_.actuator = declared;
+    return true;
 }
 
 Capabilities SimActuator::capabilities() const {

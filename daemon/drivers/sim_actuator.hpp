@@ -64,6 +64,12 @@ class SimActuator : public Actuator {
         return accelerometer_;
     }
 
+    // In place when only the numbers changed: the same kind and brake (the reverse-drive
+    // capability the player planned with); the model (and the accelerometer's, unless [sim]
+    // true-* keys say how the actuator truly is) then simulates the new declaration from the
+    // drive in force. Else false (reopen).
+    bool take_declaration(const actuator::Declaration& declared) override;
+
     const actuator::Timeline& model() const { return model_; }
     // Commands taken so far, apply() and off() alike.
     std::uint64_t command_count() const { return commands_; }
@@ -72,6 +78,7 @@ class SimActuator : public Actuator {
     void take(double amplitude, double frequency_hz);
 
     MonotonicClock clock_;
+    SimSettings settings_;
     bool reverse_;
     actuator::Timeline model_;
     std::optional<TraceFile> trace_;

@@ -16,6 +16,7 @@
 #include "score/score_xml.hpp"
 #include "tests/support/daemon_fixture.hpp"
 #include "tests/support/run_command.hpp"
+#include "tests/support/wait_until.hpp"
 
 namespace vibscore {
 namespace {
@@ -145,6 +146,44 @@ testing::CommandResult vibscore(const std::vector<std::string>& args) {
     std::vector<std::string> argv{testing::required_env("VIBSCORE")};
     argv.insert(argv.end(), args.begin(), args.end());
     return testing::run_command(argv);
+}
+
+// A reload that changes only the declared numbers (the same kind and brake) does not end what
+// plays with "driver-switch": the sim takes them in place. Another kind reopens it, as a new
+// backend, and that ends the playback as before.
+TEST(DaemonFeel, ANewDeclarationOfTheSameKindKeepsWhatPlaysAndAnotherKindEndsIt) {
+    DaemonFixture daemon(erm_section("reverse", "on"));
+    auto client = daemon.client();
+    const auto id = client->Play(
+        "ringtone", std::map<std::string, sdbus::Variant>{{"repeat", sdbus::Variant(-1)}});
+    const auto trace = "trace = " + daemon.trace().string();
+    daemon.write_config(
+        "[actuator]\nkind = erm\nrated-drive = 0.7\nspin-up-ms = 60\nspin-down-ms = 80\n"
+        "brake = reverse\n",
+        trace);
+    daemon.signal_daemon(SIGHUP);
+    ASSERT_TRUE(wait_for_log(daemon, "configuration reloaded")) << daemon.daemon_log();
+    // Still playing: a position of it arrives after the reload, and it did not finish.
+    const std::size_t seen_at_reload = client->signals().size();
+    EXPECT_TRUE(testing::wait_until([&] {
+        const auto seen = client->signals();
+        for (std::size_t i = seen_at_reload + 1; i < seen.size(); ++i) {
+            if (seen[i].name == "PlaybackPosition" && seen[i].id == id) {
+                return true;
+            }
+        }
+        return false;
+    })) << daemon.daemon_log();
+    for (const auto& seen : client->signals()) {
+        EXPECT_FALSE(seen.name == "PlaybackFinished" && seen.id == id) << seen.text;
+    }
+    EXPECT_THAT(daemon.daemon_log(), ::testing::Not(HasSubstr("driver is now")));
+
+    daemon.write_config("[actuator]\nkind = lra\nbrake = reverse\n", trace);
+    daemon.signal_daemon(SIGHUP);
+    std::string reason;
+    ASSERT_TRUE(client->wait_finished(id, &reason)) << daemon.daemon_log();
+    EXPECT_EQ(reason, "driver-switch");
 }
 
 TEST(DaemonFeel, TheDeclarationIsPublishedOnTheBusAndShownByTheClient) {

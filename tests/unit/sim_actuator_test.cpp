@@ -144,6 +144,34 @@ TEST(SimActuator, SimulatesTheDeclaredLraPushedDownInAntiPhase) {
     EXPECT_NEAR(sim.model().response_at(3.0 + tau * std::log(2.0)), 0.0, 1e-9);
 }
 
+// A reload that changes only the declared numbers: the sim takes them in place (what plays goes
+// on, now on the new physics); another kind or brake would change what the player planned with.
+TEST(SimActuator, TakesANewDeclarationOfTheSameKindAndBrakeInPlace) {
+    FakeClock clock;
+    SimActuator sim(declared(actuator::Kind::lra, actuator::Brake::reverse), clock.function());
+    sim.apply({0.7, 175.0});
+    auto retuned = declared(actuator::Kind::lra, actuator::Brake::reverse).actuator;
+    retuned.resonance_hz = 160.0;
+    ASSERT_TRUE(sim.take_declaration(retuned));
+    EXPECT_EQ(sim.model().physics().declaration().resonance_hz, 160.0);
+    EXPECT_EQ(sim.model().drive(), (actuator::Drive{0.7, 175.0})) << "the drive in force goes on";
+    EXPECT_TRUE(sim.capabilities().reverse);
+
+    auto unbraked = retuned;
+    unbraked.brake = actuator::Brake::none;
+    EXPECT_FALSE(sim.take_declaration(unbraked));  // the reverse capability would go
+    auto erm = retuned;
+    erm.kind = actuator::Kind::erm;
+    EXPECT_FALSE(sim.take_declaration(erm));
+    EXPECT_EQ(sim.model().physics().declaration().resonance_hz, 160.0) << "refused: unchanged";
+}
+
+TEST(SimActuator, ASimOfItsOwnModelIsReopenedForADeclaration) {
+    SimActuator sim(SimSettings{});
+    EXPECT_FALSE(
+        sim.take_declaration(declared(actuator::Kind::lra, actuator::Brake::none).actuator));
+}
+
 TEST(SimActuator, WithoutADeclaredBrakeItHasNoReverse) {
     SimActuator sim(declared(actuator::Kind::erm, actuator::Brake::none));
     EXPECT_FALSE(sim.capabilities().reverse);
