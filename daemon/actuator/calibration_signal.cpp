@@ -29,7 +29,13 @@ double median_rate(const std::vector<double>& t_s) {
 std::vector<double> regular_times(const std::vector<double>& t_s) {
     const double n = static_cast<double>(t_s.size());
     if (t_s.size() < 2) {
-        return t_s;
+        // Element by element: GCC 14 takes a copy of a one-element vector here for an
+        // out-of-bounds memmove (-Warray-bounds, a false positive that -Werror makes fatal).
+        std::vector<double> few(t_s.size());
+        for (std::size_t i = 0; i < t_s.size(); ++i) {
+            few[i] = t_s[i];
+        }
+        return few;
     }
     double mean_i = (n - 1.0) / 2.0, mean_t = 0.0;
     for (const double t : t_s) {
