@@ -68,8 +68,10 @@ struct ErmFit {
 };
 // `energy`: |vibration|^2 smoothed by box_smooth over `half`; `weight`: how much each reading's
 // energy is to be believed (weighted least squares).
+// `try_filter`: whether a sensor low-pass on the vibration is tried (kept only where it clearly
+// explains more).
 ErmFit fit_erm(const Plan& plan, const std::vector<double>& t_s, const std::vector<double>& energy,
-               const std::vector<double>& weight, int half);
+               const std::vector<double>& weight, int half, bool try_filter = true);
 
 // An ERM's vibration envelope independent of the phase at which the readings fall (for readings
 // at jittered instants, where |vibration|^2 carries the sampled phase as noise): the rotation
