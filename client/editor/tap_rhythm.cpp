@@ -243,11 +243,13 @@ TappedRhythm tapped_rhythm(const std::vector<TapRecorder::Sound>& sounds, double
     if (clef_tempo > 0.0 && std::abs(tempo - clef_tempo) <= kClefTempoShare * clef_tempo) {
         tempo = clef_tempo;
         fit.step = tempo / formats::ticks_per_quarter;
+    } else {
+        // To a whole number of beats a minute, as a person counts a tempo (150, not 149.63, for
+        // taps 401 ms apart): a beat a minute is 2.7 ms at 150, far below what a thumb keeps,
+        // and the tempo clef made for it is named as it plays.
+        tempo = 60.0 / std::max(1.0, std::round(60.0 / tempo));
     }
-    // To the millisecond: the tempo clef made for it says what it plays, and a millisecond a
-    // beat is far below what a thumb keeps.
-    tempo =
-        std::clamp(std::round(tempo * 1000.0) / 1000.0, limits::min_tempo_s, limits::max_tempo_s);
+    tempo = std::clamp(tempo, limits::min_tempo_s, limits::max_tempo_s);
 
     // On the grid of that tempo, the times are exact: the importers' quantisation then keeps
     // the tempo and lays the notes and rests out in bars.

@@ -19,6 +19,7 @@ namespace vibscore {
 namespace {
 
 using testing::DaemonFixture;
+using ::testing::AnyOf;
 using ::testing::HasSubstr;
 using testing::ModulesDir;
 using ::testing::Not;
@@ -107,9 +108,14 @@ TEST(DriverModules, AConstructorThatKillsTheDaemonOrForksIsRefusedAndTheDaemonSe
     EXPECT_THAT(daemon.daemon_log(),
                 HasSubstr("driver module " + killer.string() +
                           " is not loaded: tried to signal another process (kill) while loading"));
+    // Named on glibc 2.36; glibc 2.41 blocks SIGSYS around fork's clone, so there the trial is
+    // only known to have been stopped by a refused call (tests/unit/driver_modules_test.cpp).
     EXPECT_THAT(daemon.daemon_log(),
-                HasSubstr("driver module " + forker.string() +
-                          " is not loaded: tried to start a process (clone, fork) while loading"));
+                AnyOf(HasSubstr("driver module " + forker.string() +
+                                " is not loaded: tried to start a process (clone, fork) while "
+                                "loading"),
+                      HasSubstr("driver module " + forker.string() +
+                                " is not loaded: was stopped by SIGSYS while loading")));
     const auto listed = daemon.call({"ListDrivers"});
     EXPECT_THAT(listed.out, HasSubstr("\"trace\""));
     EXPECT_THAT(listed.out, Not(HasSubstr("\"kill-parent\"")));
