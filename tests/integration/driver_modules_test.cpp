@@ -18,8 +18,8 @@
 namespace vibscore {
 namespace {
 
-using testing::DaemonFixture;
 using ::testing::AnyOf;
+using testing::DaemonFixture;
 using ::testing::HasSubstr;
 using testing::ModulesDir;
 using ::testing::Not;
