@@ -1,5 +1,5 @@
 // How well `vibscore calibrate` measures an actuator (issue 32): recordings of the probe made by
-// the accelerometer model (daemon/actuator/vibration_sensor) of LRAs 150-235 Hz with Q 5-30 and
+// the accelerometer model (actuator/vibration_sensor) of LRAs 150-235 Hz with Q 5-30 and
 // ERMs with spin-up 20-80 ms and spin-down 40-200 ms, at 400 Hz and 1 kHz, with 12-bit
 // quantisation at ±4 g, 0.02 m/s² noise, gravity and the vibration on random axes and ±1 ms
 // timestamp jitter, estimated from a nominal declaration deliberately off from the truth
@@ -16,8 +16,8 @@
 #include <vector>
 
 #include "bench/report.hpp"
-#include "daemon/actuator/calibration.hpp"
-#include "daemon/actuator/vibration_sensor.hpp"
+#include "actuator/calibration.hpp"
+#include "actuator/vibration_sensor.hpp"
 
 namespace {
 

@@ -1,7 +1,7 @@
 // What `vibscore calibrate --apply` is worth in feel (issue 32, "with measured numbers"): for
 // actuators whose truth is off from the declared nominal (resonance up to ±10 %, Q and time
 // constants up to ±30 %), the probe recorded by the accelerometer model
-// (daemon/actuator/vibration_sensor, 400 Hz and 1 kHz, the issue's imperfections), estimated,
+// (actuator/vibration_sensor, 400 Hz and 1 kHz, the issue's imperfections), estimated,
 // applied to the declaration; then the shipped tactons' feel figures (bench/feel's metrics and
 // actuator model) with the measured numbers declared against those with the true numbers
 // declared. Prints the worst and median ratio per figure and one JSON line. Recordings come from
@@ -18,8 +18,8 @@
 #include "bench/feel_metrics.hpp"
 #include "bench/feel_plant.hpp"
 #include "bench/report.hpp"
-#include "daemon/actuator/calibration.hpp"
-#include "daemon/actuator/vibration_sensor.hpp"
+#include "actuator/calibration.hpp"
+#include "actuator/vibration_sensor.hpp"
 #include "daemon/render/cue_adaptation.hpp"
 #include "daemon/render/cue_schedule.hpp"
 #include "daemon/render/drive_planner.hpp"

@@ -2,7 +2,7 @@
 
 #include <vector>
 
-#include "daemon/actuator/declaration.hpp"
+#include "actuator/declaration.hpp"
 #include "daemon/render/cue_stream.hpp"
 
 namespace vibscore::bench {

@@ -3,7 +3,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "daemon/actuator/declaration.hpp"
+#include "actuator/declaration.hpp"
 
 namespace vibscore::client {
 

@@ -7,7 +7,7 @@
 #include <string>
 
 #include "client/clef_search.hpp"
-#include "daemon/actuator/declaration.hpp"
+#include "actuator/declaration.hpp"
 
 namespace vibscore::client {
 

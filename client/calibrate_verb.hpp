@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "daemon/actuator/calibration.hpp"
-#include "daemon/actuator/declaration.hpp"
+#include "actuator/calibration.hpp"
+#include "actuator/declaration.hpp"
 
 namespace vibscore::client {
 

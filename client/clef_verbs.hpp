@@ -4,7 +4,7 @@
 #include <string>
 
 #include "client/clef_search.hpp"
-#include "daemon/actuator/declaration.hpp"
+#include "actuator/declaration.hpp"
 #include "daemon/render/clef_fit.hpp"
 
 namespace vibscore::client {

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "client/clef_search.hpp"
-#include "daemon/actuator/declaration.hpp"
+#include "actuator/declaration.hpp"
 
 namespace vibscore::client {
 

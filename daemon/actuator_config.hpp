@@ -2,7 +2,7 @@
 
 #include <optional>
 
-#include "daemon/actuator/declaration.hpp"
+#include "actuator/declaration.hpp"
 
 namespace vibscore::daemon {
 

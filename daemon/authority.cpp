@@ -1,6 +1,6 @@
 #include "daemon/authority.hpp"
 
-#include "daemon/log.hpp"
+#include "common/log.hpp"
 #include "daemon/request_error.hpp"
 
 namespace vibscore::daemon {

@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "daemon/callers.hpp"
-#include "daemon/usage.hpp"
+#include "common/usage.hpp"
 
 // Who may do what: polkit decides, as for every system service (timedated, NetworkManager).
 // The actions and their defaults are in polkit/org.vibscore.policy; docs/daemon.md explains them.

@@ -3,7 +3,7 @@
 #include <string>
 
 #include "daemon/drivers/actuator.hpp"
-#include "daemon/log.hpp"
+#include "common/log.hpp"
 #include "daemon/playback_thread.hpp"
 #include "daemon/player.hpp"
 #include "daemon/registry/registry.hpp"

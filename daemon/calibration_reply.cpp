@@ -3,7 +3,7 @@
 #include <sstream>
 #include <vector>
 
-#include "daemon/actuator/calibration.hpp"
+#include "actuator/calibration.hpp"
 #include "daemon/player.hpp"
 #include "daemon/request_error.hpp"
 #include "dbus/haptics1_names.hpp"

@@ -12,8 +12,8 @@
 
 #include "common/number_text.hpp"
 #include "daemon/config.hpp"
-#include "daemon/log.hpp"
-#include "daemon/registry/atomic_file.hpp"
+#include "common/log.hpp"
+#include "common/atomic_file.hpp"
 
 namespace vibscore::daemon {
 

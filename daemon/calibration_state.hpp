@@ -4,8 +4,8 @@
 #include <optional>
 #include <string>
 
-#include "daemon/actuator/calibration.hpp"
-#include "daemon/actuator/declaration.hpp"
+#include "actuator/calibration.hpp"
+#include "actuator/declaration.hpp"
 
 namespace vibscore::daemon {
 
@@ -38,7 +38,7 @@ MeasuredActuator measured_from(const actuator::calibration::Estimate& estimate,
 std::string measured_text(const MeasuredActuator& measured);
 MeasuredActuator parse_measured(const std::string& text, const std::string& file);
 
-// Writes the file atomically (registry/atomic_file.hpp): after a crash at any instant the old
+// Writes the file atomically (common/atomic_file.hpp): after a crash at any instant the old
 // measurement or the new one is there, never a mixture. Throws std::system_error naming the path.
 void save_measured(const std::filesystem::path& file, const MeasuredActuator& measured);
 

@@ -6,7 +6,7 @@
 
 #include "common/monotonic_clock.hpp"
 #include "daemon/calibration_state.hpp"
-#include "daemon/log.hpp"
+#include "common/log.hpp"
 #include "daemon/render/cue_stream.hpp"
 #include "daemon/sensors/open_accelerometer.hpp"
 

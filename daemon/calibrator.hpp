@@ -13,7 +13,7 @@
 #include <thread>
 #include <vector>
 
-#include "daemon/actuator/calibration.hpp"
+#include "actuator/calibration.hpp"
 #include "daemon/actuator_host.hpp"
 #include "daemon/config.hpp"
 #include "daemon/playback_thread.hpp"

@@ -5,11 +5,11 @@
 #include <filesystem>
 #include <iostream>
 
-#include "common/json/build_tree.hpp"
+#include "json/build_tree.hpp"
 #include "config.h"
 #include "daemon/calibration_state.hpp"
 #include "daemon/drivers/available.hpp"
-#include "daemon/log.hpp"
+#include "common/log.hpp"
 #include "daemon/module_record.hpp"
 
 namespace vibscore::daemon {

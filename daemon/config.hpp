@@ -1,7 +1,7 @@
 #pragma once
 
 #include "config.h"
-#include "daemon/actuator/declaration.hpp"
+#include "actuator/declaration.hpp"
 #include "daemon/device_clefs.hpp"
 #include "daemon/playback_limits.hpp"
 
@@ -32,7 +32,7 @@ namespace vibscore::daemon {
 struct DaemonConfig {
     std::string driver = "sim";
     std::filesystem::path store = "/var/lib/vibscore";
-    std::filesystem::path shipped;  // default: shipped_clefs_folder() (common/json/build_tree.hpp)
+    std::filesystem::path shipped;  // default: shipped_clefs_folder() (json/build_tree.hpp)
     std::filesystem::path drivers_dir = VIBSCORE_DRIVERDIR;  // driver modules (*.so)
     double separation_ms = 30.0;
     double requests_per_second = 50.0;

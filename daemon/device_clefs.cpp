@@ -2,7 +2,7 @@
 
 #include <cstddef>
 
-#include "daemon/log.hpp"
+#include "common/log.hpp"
 #include "daemon/render/clef_check.hpp"
 #include "daemon/render/clef_fit.hpp"
 

@@ -7,7 +7,7 @@
 #include <string_view>
 #include <vector>
 
-#include "daemon/actuator/declaration.hpp"
+#include "actuator/declaration.hpp"
 #include "daemon/registry/registry.hpp"
 #include "daemon/render/clef_fit.hpp"
 #include "score/bundle.hpp"

@@ -7,8 +7,8 @@
 #include <sstream>
 #include <utility>
 
-#include "daemon/log.hpp"
-#include "daemon/registry/atomic_file.hpp"
+#include "common/log.hpp"
+#include "common/atomic_file.hpp"
 
 namespace vibscore::daemon {
 

@@ -9,7 +9,7 @@
 #include "daemon/device_clefs.hpp"
 #include "daemon/player.hpp"
 #include "daemon/registry/registry.hpp"
-#include "daemon/usage.hpp"
+#include "common/usage.hpp"
 #include "score/bundle.hpp"
 
 // The pure part of Play: the caller's options checked, the score it names found, and that score

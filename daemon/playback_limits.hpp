@@ -10,7 +10,7 @@
 #include <string>
 #include <unordered_map>
 
-#include "daemon/usage.hpp"
+#include "common/usage.hpp"
 
 namespace vibscore::daemon {
 

@@ -12,7 +12,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "daemon/log.hpp"
+#include "common/log.hpp"
 
 namespace vibscore::daemon {
 

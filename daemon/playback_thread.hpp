@@ -17,7 +17,7 @@
 #include <utility>
 #include <vector>
 
-#include "daemon/event_loop.hpp"
+#include "common/event_loop.hpp"
 #include "daemon/player.hpp"
 #include "daemon/task_queue.hpp"
 

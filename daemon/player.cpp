@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "daemon/log.hpp"
+#include "common/log.hpp"
 #include "daemon/render/cue_adaptation.hpp"
 
 namespace vibscore::daemon {

@@ -10,14 +10,14 @@
 #include <utility>
 #include <vector>
 
-#include "daemon/actuator/declaration.hpp"
+#include "actuator/declaration.hpp"
 #include "daemon/drivers/actuator.hpp"
-#include "daemon/event_loop.hpp"
+#include "common/event_loop.hpp"
 #include "daemon/playback_cues.hpp"
 #include "daemon/playback_limits.hpp"
 #include "daemon/playback_positions.hpp"
 #include "daemon/render/cue_stream.hpp"
-#include "daemon/usage.hpp"
+#include "common/usage.hpp"
 
 namespace vibscore::daemon {
 

@@ -8,7 +8,7 @@
 #include "daemon/drivers/available.hpp"
 #include "daemon/drivers/configured_actuator.hpp"
 #include "daemon/drivers/driver_settings.hpp"
-#include "daemon/log.hpp"
+#include "common/log.hpp"
 
 namespace vibscore::daemon {
 

@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "daemon/log.hpp"
+#include "common/log.hpp"
 
 namespace vibscore::daemon {
 

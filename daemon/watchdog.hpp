@@ -2,7 +2,7 @@
 
 #include <cstdint>
 
-#include "daemon/event_loop.hpp"
+#include "common/event_loop.hpp"
 #include "daemon/playback_thread.hpp"
 
 namespace vibscore::daemon {

@@ -5,7 +5,7 @@
 #include <stdexcept>
 
 #include "common/quoted_text.hpp"
-#include "daemon/log.hpp"
+#include "common/log.hpp"
 
 namespace vibscore::feedback {
 

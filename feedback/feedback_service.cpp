@@ -7,7 +7,7 @@
 
 #include "common/monotonic_clock.hpp"
 #include "common/quoted_text.hpp"
-#include "daemon/log.hpp"
+#include "common/log.hpp"
 #include "dbus/name_owner_watch.hpp"
 #include "dbus/sdbus_compat.hpp"
 

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "daemon/event_loop.hpp"
+#include "common/event_loop.hpp"
 #include "feedback-adaptor.h"
 #include "feedback/event_table.hpp"
 #include "feedback/haptics_link.hpp"

@@ -4,7 +4,7 @@
 #include <string>
 #include <string_view>
 
-#include "common/json/json_document.hpp"
+#include "json/json_document.hpp"
 #include "score/document_error.hpp"
 
 // Typed reading of a theme's or settings file's JSON for vibscore-feedback: each accessor

@@ -12,11 +12,11 @@
 #include <string>
 #include <vector>
 
-#include "common/json/build_tree.hpp"
+#include "json/build_tree.hpp"
 #include "config.h"
-#include "daemon/event_loop.hpp"
-#include "daemon/log.hpp"
-#include "daemon/usage.hpp"
+#include "common/event_loop.hpp"
+#include "common/log.hpp"
+#include "common/usage.hpp"
 #include "dbus/sdbus_compat.hpp"
 #include "feedback/feedback_service.hpp"
 #include "feedback/feedbackd_theme.hpp"

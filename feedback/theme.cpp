@@ -1,6 +1,6 @@
 #include "feedback/theme.hpp"
 
-#include "daemon/usage.hpp"
+#include "common/usage.hpp"
 #include "feedback/feedbackd_theme.hpp"
 #include "feedback/json_fields.hpp"
 

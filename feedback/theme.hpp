@@ -7,7 +7,7 @@
 
 #include <vector>
 
-#include "common/json/json_document.hpp"
+#include "json/json_document.hpp"
 #include "feedback/profile.hpp"
 #include "feedback/vibra_feedback.hpp"
 #include "score/document_error.hpp"

@@ -6,9 +6,9 @@
 #include <stdexcept>
 #include <system_error>
 
-#include "common/json/json_document.hpp"
+#include "json/json_document.hpp"
 #include "common/quoted_text.hpp"
-#include "daemon/registry/atomic_file.hpp"
+#include "common/atomic_file.hpp"
 #include "feedback/json_fields.hpp"
 #include "score/registry_names.hpp"
 

@@ -6,7 +6,7 @@
 #include <functional>
 #include <string>
 
-#include "daemon/event_loop.hpp"
+#include "common/event_loop.hpp"
 
 namespace vibscore::feedback {
 

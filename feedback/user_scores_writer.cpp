@@ -9,7 +9,7 @@
 #include <system_error>
 #include <utility>
 
-#include "daemon/log.hpp"
+#include "common/log.hpp"
 #include "feedback/user_scores.hpp"
 
 namespace vibscore::feedback {

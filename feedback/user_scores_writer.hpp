@@ -13,7 +13,7 @@
 #include <thread>
 
 #include "common/unique_fd.hpp"
-#include "daemon/event_loop.hpp"
+#include "common/event_loop.hpp"
 
 namespace vibscore::feedback {
 

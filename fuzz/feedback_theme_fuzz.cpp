@@ -5,7 +5,7 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "common/json/json_document.hpp"
+#include "json/json_document.hpp"
 #include "feedback/feedbackd_theme.hpp"
 #include "feedback/theme.hpp"
 #include "fuzz/fuzz_support.hpp"

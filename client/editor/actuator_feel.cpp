@@ -4,7 +4,7 @@
 #include <optional>
 #include <stdexcept>
 
-#include "daemon/actuator/physics.hpp"
+#include "actuator/physics.hpp"
 
 namespace vibscore::editor {
 

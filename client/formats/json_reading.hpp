@@ -5,7 +5,7 @@
 #include <string>
 #include <string_view>
 
-#include "common/json/json_document.hpp"
+#include "json/json_document.hpp"
 #include "score/document_error.hpp"
 
 namespace vibscore::formats {

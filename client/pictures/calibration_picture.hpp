@@ -4,7 +4,7 @@
 #include <vector>
 
 #include "client/pictures/picture_file.hpp"
-#include "daemon/actuator/calibration.hpp"
+#include "actuator/calibration.hpp"
 
 namespace vibscore::pictures {
 

@@ -7,7 +7,7 @@
 #include "client/pictures/axis_ticks.hpp"
 #include "client/pictures/picture_text.hpp"
 #include "common/number_text.hpp"
-#include "daemon/actuator/physics.hpp"
+#include "actuator/physics.hpp"
 #include "daemon/render/waveform.hpp"
 
 namespace vibscore::pictures {

@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "client/pictures/picture_file.hpp"
-#include "daemon/actuator/declaration.hpp"
+#include "actuator/declaration.hpp"
 #include "score/clef.hpp"
 
 namespace vibscore::pictures {

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "common/device_error.hpp"
-#include "daemon/actuator/declaration.hpp"
+#include "actuator/declaration.hpp"
 
 namespace vibscore::sensors {
 class Accelerometer;

@@ -10,7 +10,7 @@
 #include "daemon/drivers/led_vibrator_actuator.hpp"
 #include "daemon/drivers/sim_actuator.hpp"
 #include "daemon/drivers/sysfs_pwm_actuator.hpp"
-#include "daemon/log.hpp"
+#include "common/log.hpp"
 
 namespace vibscore::drivers {
 

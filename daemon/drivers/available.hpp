@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "daemon/actuator/declaration.hpp"
+#include "actuator/declaration.hpp"
 #include "daemon/drivers/actuator.hpp"
 #include "daemon/drivers/module_catalog.hpp"
 

@@ -7,7 +7,7 @@
 
 #include "daemon/drivers/driver_settings.hpp"
 #include "daemon/drivers/evdev_discovery.hpp"
-#include "daemon/log.hpp"
+#include "common/log.hpp"
 
 namespace vibscore::drivers {
 

@@ -12,7 +12,7 @@
 
 #include "daemon/drivers/actuator.hpp"
 #include "daemon/drivers/gpio_lines_chip.hpp"
-#include "daemon/log.hpp"
+#include "common/log.hpp"
 
 namespace vibscore::drivers {
 

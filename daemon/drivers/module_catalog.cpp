@@ -10,7 +10,7 @@
 #include "daemon/drivers/external_driver.hpp"
 #include "daemon/drivers/module_probe.hpp"
 #include "daemon/drivers/module_trust.hpp"
-#include "daemon/log.hpp"
+#include "common/log.hpp"
 
 namespace vibscore::drivers {
 

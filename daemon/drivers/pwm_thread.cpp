@@ -12,7 +12,7 @@
 #include <utility>
 
 #include "common/monotonic_clock.hpp"
-#include "daemon/log.hpp"
+#include "common/log.hpp"
 
 namespace vibscore::drivers {
 

@@ -7,9 +7,9 @@
 #include <string>
 #include <vector>
 
-#include "daemon/actuator/declaration.hpp"
-#include "daemon/actuator/physics.hpp"
-#include "daemon/actuator/vibration_sensor.hpp"
+#include "actuator/declaration.hpp"
+#include "actuator/physics.hpp"
+#include "actuator/vibration_sensor.hpp"
 #include "daemon/sensors/accelerometer.hpp"
 
 namespace vibscore::drivers {

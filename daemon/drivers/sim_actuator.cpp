@@ -6,7 +6,7 @@
 #include <utility>
 
 #include "daemon/drivers/driver_settings.hpp"
-#include "daemon/log.hpp"
+#include "common/log.hpp"
 
 namespace vibscore::drivers {
 

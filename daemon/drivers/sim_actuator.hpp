@@ -10,7 +10,7 @@
 #include <string_view>
 
 #include "common/monotonic_clock.hpp"
-#include "daemon/actuator/timeline.hpp"
+#include "actuator/timeline.hpp"
 #include "daemon/drivers/actuator.hpp"
 #include "daemon/drivers/sim_accelerometer.hpp"
 #include "daemon/drivers/terminal_meter.hpp"

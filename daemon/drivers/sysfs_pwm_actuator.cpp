@@ -8,7 +8,7 @@
 #include "common/quoted_text.hpp"
 #include "daemon/drivers/drive_levels.hpp"
 #include "daemon/drivers/driver_settings.hpp"
-#include "daemon/log.hpp"
+#include "common/log.hpp"
 
 namespace vibscore::drivers {
 

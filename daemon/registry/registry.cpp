@@ -10,8 +10,8 @@
 
 #include "common/number_text.hpp"
 #include "common/quoted_text.hpp"
-#include "daemon/log.hpp"
-#include "daemon/registry/atomic_file.hpp"
+#include "common/log.hpp"
+#include "common/atomic_file.hpp"
 #include "score/clef_xml.hpp"
 #include "score/document_error.hpp"
 #include "score/score_xml.hpp"

@@ -7,7 +7,7 @@
 #include <set>
 
 #include "common/number_text.hpp"
-#include "daemon/actuator/physics.hpp"
+#include "actuator/physics.hpp"
 #include "daemon/render/actuator_response.hpp"
 #include "daemon/render/clef_check.hpp"
 

@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "daemon/actuator/declaration.hpp"
+#include "actuator/declaration.hpp"
 #include "daemon/render/performance.hpp"
 #include "score/bundle.hpp"
 

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "daemon/actuator/physics.hpp"
+#include "actuator/physics.hpp"
 #include "daemon/render/cue_schedule.hpp"
 
 namespace vibscore::render {

@@ -6,7 +6,7 @@
 #include <optional>
 
 #include "common/number_text.hpp"
-#include "daemon/actuator/physics.hpp"
+#include "actuator/physics.hpp"
 #include "daemon/render/clef_fit.hpp"
 
 namespace vibscore::render {

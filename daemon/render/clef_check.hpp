@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "daemon/actuator/declaration.hpp"
+#include "actuator/declaration.hpp"
 #include "score/clef.hpp"
 
 namespace vibscore::render {

@@ -7,7 +7,7 @@
 #include <numeric>
 
 #include "common/number_text.hpp"
-#include "daemon/actuator/physics.hpp"
+#include "actuator/physics.hpp"
 #include "daemon/render/waveform.hpp"
 #include "score/limits.hpp"
 

@@ -6,7 +6,7 @@
 #include <string_view>
 #include <vector>
 
-#include "daemon/actuator/declaration.hpp"
+#include "actuator/declaration.hpp"
 #include "score/clef.hpp"
 
 // A written clef fitted to a declared actuator (`vibscore clef fit`, `[clefs] fit = auto`): the

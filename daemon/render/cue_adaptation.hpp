@@ -5,7 +5,7 @@
 #include <optional>
 #include <vector>
 
-#include "daemon/actuator/declaration.hpp"
+#include "actuator/declaration.hpp"
 #include "daemon/render/cue_schedule.hpp"
 #include "daemon/render/drive_planner.hpp"
 

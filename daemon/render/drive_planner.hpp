@@ -4,7 +4,7 @@
 #include <utility>
 #include <vector>
 
-#include "daemon/actuator/physics.hpp"
+#include "actuator/physics.hpp"
 #include "daemon/render/cue_stream.hpp"
 
 namespace vibscore::render {

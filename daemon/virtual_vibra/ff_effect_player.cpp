@@ -4,7 +4,7 @@
 #include <cerrno>
 #include <memory>
 
-#include "daemon/log.hpp"
+#include "common/log.hpp"
 #include "daemon/request_error.hpp"
 #include "daemon/virtual_vibra/ff_effect_pattern.hpp"
 #include "score/document_error.hpp"

@@ -8,7 +8,7 @@
 
 #include "daemon/play_request.hpp"
 #include "daemon/player.hpp"
-#include "daemon/usage.hpp"
+#include "common/usage.hpp"
 #include "daemon/virtual_vibra/uinput_ff_device.hpp"
 
 namespace vibscore::daemon {

@@ -4,9 +4,9 @@
 #include <memory>
 #include <string>
 
-#include "daemon/event_loop.hpp"
+#include "common/event_loop.hpp"
 #include "daemon/player.hpp"
-#include "daemon/usage.hpp"
+#include "common/usage.hpp"
 #include "daemon/virtual_vibra/ff_effect_player.hpp"
 #include "daemon/virtual_vibra/uinput_ff_device.hpp"
 

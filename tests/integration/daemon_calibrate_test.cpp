@@ -13,8 +13,8 @@
 #include <sstream>
 #include <thread>
 
-#include "daemon/actuator/calibration.hpp"
-#include "daemon/actuator/vibration_sensor.hpp"
+#include "actuator/calibration.hpp"
+#include "actuator/vibration_sensor.hpp"
 #include "tests/support/daemon_fixture.hpp"
 #include "tests/support/run_command.hpp"
 #include "tests/support/support.hpp"

@@ -1,6 +1,6 @@
 #pragma once
 
-#include "daemon/actuator/declaration.hpp"
+#include "actuator/declaration.hpp"
 
 namespace vibscore::testing {
 

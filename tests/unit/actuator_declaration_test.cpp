@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "daemon/actuator/declaration.hpp"
+#include "actuator/declaration.hpp"
 
 namespace vibscore::actuator {
 namespace {

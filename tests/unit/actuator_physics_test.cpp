@@ -1,4 +1,4 @@
-// The declared actuator's physics (daemon/actuator/) against closed forms: an ERM's first-order
+// The declared actuator's physics (actuator/) against closed forms: an ERM's first-order
 // speed under forward drive, coasting and reverse drive; an LRA's envelope building up, ringing
 // down and pushed down by anti-phase drive, weaker and beating off resonance.
 #include <gtest/gtest.h>
@@ -8,8 +8,8 @@
 #include <numbers>
 #include <stdexcept>
 
-#include "daemon/actuator/physics.hpp"
-#include "daemon/actuator/timeline.hpp"
+#include "actuator/physics.hpp"
+#include "actuator/timeline.hpp"
 
 namespace vibscore::actuator {
 namespace {

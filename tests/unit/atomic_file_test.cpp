@@ -1,4 +1,4 @@
-#include "daemon/registry/atomic_file.hpp"
+#include "common/atomic_file.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

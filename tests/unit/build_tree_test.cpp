@@ -5,7 +5,7 @@
 #include <cstdlib>
 #include <fstream>
 
-#include "common/json/build_tree.hpp"
+#include "json/build_tree.hpp"
 #include "config.h"
 #include "daemon/command_line.hpp"
 #include "tests/support/support.hpp"

@@ -9,7 +9,7 @@
 
 #include "client/calibrate_verb.hpp"
 #include "client/pictures/calibration_picture.hpp"
-#include "daemon/actuator/vibration_sensor.hpp"
+#include "actuator/vibration_sensor.hpp"
 #include "tests/support/support.hpp"
 #include "tests/unit/picture_ink.hpp"
 

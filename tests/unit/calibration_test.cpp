@@ -9,8 +9,8 @@
 #include <stdexcept>
 #include <string>
 
-#include "daemon/actuator/calibration.hpp"
-#include "daemon/actuator/vibration_sensor.hpp"
+#include "actuator/calibration.hpp"
+#include "actuator/vibration_sensor.hpp"
 #include "tests/support/example_actuators.hpp"
 
 namespace vibscore::actuator::calibration {

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <filesystem>
 
-#include "daemon/actuator/physics.hpp"
+#include "actuator/physics.hpp"
 #include "daemon/render/clef_fit.hpp"
 #include "score/bundle.hpp"
 #include "score/clef_xml.hpp"

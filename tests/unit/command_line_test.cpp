@@ -2,7 +2,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "common/json/build_tree.hpp"
+#include "json/build_tree.hpp"
 #include "config.h"
 #include "daemon/command_line.hpp"
 #include "tests/support/support.hpp"

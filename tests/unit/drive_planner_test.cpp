@@ -8,7 +8,7 @@
 #include <random>
 
 #include "bench/feel_plant.hpp"
-#include "daemon/actuator/physics.hpp"
+#include "actuator/physics.hpp"
 #include "daemon/render/actuator_response.hpp"
 #include "daemon/render/cue_adaptation.hpp"
 #include "daemon/render/drive_planner.hpp"

@@ -15,7 +15,7 @@
 #include <system_error>
 #include <vector>
 
-#include "daemon/registry/atomic_file.hpp"
+#include "common/atomic_file.hpp"
 #include "daemon/registry/registry.hpp"
 #include "tests/support/support.hpp"
 

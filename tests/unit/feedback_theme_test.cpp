@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "daemon/usage.hpp"
+#include "common/usage.hpp"
 #include "feedback/feedbackd_theme.hpp"
 #include "feedback/theme.hpp"
 #include "tests/support/run_command.hpp"

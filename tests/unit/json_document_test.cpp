@@ -1,11 +1,11 @@
-// The tree's one JSON reader (common/json): where each value began, its limits at their edges
+// The tree's one JSON reader (json/): where each value began, its limits at their edges
 // (nesting, file size, numbers), duplicate keys, and the trailing commas it tolerates when
 // asked to.
 #include <gtest/gtest.h>
 
 #include <string>
 
-#include "common/json/json_document.hpp"
+#include "json/json_document.hpp"
 #include "tests/support/support.hpp"
 
 namespace vibscore {

@@ -5,7 +5,7 @@
 
 #include <string>
 
-#include "daemon/log.hpp"
+#include "common/log.hpp"
 
 namespace vibscore::log {
 namespace {

@@ -21,7 +21,7 @@
 #include "client/pictures/response_picture.hpp"
 #include "client/pictures/signal_picture.hpp"
 #include "client/pictures/staff_picture.hpp"
-#include "daemon/actuator/physics.hpp"
+#include "actuator/physics.hpp"
 #include "daemon/config.hpp"
 #include "daemon/render/actuator_response.hpp"
 #include "daemon/render/waveform.hpp"

@@ -13,7 +13,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "daemon/actuator/calibration_fit.hpp"
+#include "actuator/calibration_fit.hpp"
 
 namespace vibscore::actuator::calibration::fit {
 

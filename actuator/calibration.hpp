@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "daemon/actuator/declaration.hpp"
+#include "actuator/declaration.hpp"
 
 // Measuring the actuator with the device's accelerometer (issue 32): the probe vibscore plays,
 // what a recording of it says about the actuator, and how sure that is. Pure: no clock, no

@@ -1,4 +1,4 @@
-#include "daemon/actuator/declaration.hpp"
+#include "actuator/declaration.hpp"
 
 #include <algorithm>
 #include <charconv>
@@ -13,7 +13,7 @@
 #include "common/closest_name.hpp"
 #include "common/number_text.hpp"
 #include "common/quoted_text.hpp"
-#include "daemon/actuator/physics.hpp"
+#include "actuator/physics.hpp"
 
 namespace vibscore::actuator {
 

@@ -1,4 +1,4 @@
-#include "daemon/actuator/timeline.hpp"
+#include "actuator/timeline.hpp"
 
 #include <algorithm>
 #include <cmath>

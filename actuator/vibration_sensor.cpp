@@ -1,4 +1,4 @@
-#include "daemon/actuator/vibration_sensor.hpp"
+#include "actuator/vibration_sensor.hpp"
 
 #include <algorithm>
 #include <cmath>

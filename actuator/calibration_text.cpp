@@ -1,4 +1,4 @@
-#include "daemon/actuator/calibration_text.hpp"
+#include "actuator/calibration_text.hpp"
 
 #include <charconv>
 #include <cmath>

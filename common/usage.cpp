@@ -1,4 +1,4 @@
-#include "daemon/usage.hpp"
+#include "common/usage.hpp"
 
 #include <array>
 #include <utility>

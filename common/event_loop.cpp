@@ -1,4 +1,4 @@
-#include "daemon/event_loop.hpp"
+#include "common/event_loop.hpp"
 
 #include <signal.h>
 #include <sys/epoll.h>
@@ -11,7 +11,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "daemon/log.hpp"
+#include "common/log.hpp"
 
 namespace vibscore::daemon {
 

@@ -11,7 +11,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "daemon/actuator/calibration_fit.hpp"
+#include "actuator/calibration_fit.hpp"
 
 namespace vibscore::actuator::calibration::fit {
 

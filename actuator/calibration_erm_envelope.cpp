@@ -12,7 +12,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "daemon/actuator/calibration_fit.hpp"
+#include "actuator/calibration_fit.hpp"
 
 namespace vibscore::actuator::calibration::fit {
 

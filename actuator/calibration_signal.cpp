@@ -3,7 +3,7 @@
 #include <cmath>
 #include <numeric>
 
-#include "daemon/actuator/calibration_fit.hpp"
+#include "actuator/calibration_fit.hpp"
 
 namespace vibscore::actuator::calibration::fit {
 

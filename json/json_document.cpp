@@ -1,4 +1,4 @@
-#include "common/json/json_document.hpp"
+#include "json/json_document.hpp"
 
 #include <nlohmann/json.hpp>
 

@@ -3,8 +3,8 @@
 #include <cmath>
 
 #include "common/number_text.hpp"
-#include "daemon/actuator/calibration.hpp"
-#include "daemon/actuator/calibration_text.hpp"
+#include "actuator/calibration.hpp"
+#include "actuator/calibration_text.hpp"
 
 namespace vibscore::actuator::calibration {
 

@@ -1,6 +1,6 @@
 #pragma once
 
-#include "daemon/actuator/physics.hpp"
+#include "actuator/physics.hpp"
 
 namespace vibscore::actuator {
 

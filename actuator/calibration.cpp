@@ -1,14 +1,14 @@
 // estimate(): what a recording of a probe says about the actuator, and whether to trust it;
 // apply() and declaration_lines(): what a trusted estimate changes; the pictures' traces.
-#include "daemon/actuator/calibration.hpp"
+#include "actuator/calibration.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 
 #include "common/number_text.hpp"
-#include "daemon/actuator/calibration_fit.hpp"
-#include "daemon/actuator/physics.hpp"
+#include "actuator/calibration_fit.hpp"
+#include "actuator/physics.hpp"
 
 namespace vibscore::actuator::calibration {
 

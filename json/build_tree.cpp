@@ -1,6 +1,6 @@
-#include "common/json/build_tree.hpp"
+#include "json/build_tree.hpp"
 
-#include "common/json/json_document.hpp"
+#include "json/json_document.hpp"
 #include "config.h"
 
 namespace vibscore {

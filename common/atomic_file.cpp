@@ -1,4 +1,4 @@
-#include "daemon/registry/atomic_file.hpp"
+#include "common/atomic_file.hpp"
 
 #include "common/unique_fd.hpp"
 

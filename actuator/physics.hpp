@@ -3,7 +3,7 @@
 #include <complex>
 #include <optional>
 
-#include "daemon/actuator/declaration.hpp"
+#include "actuator/declaration.hpp"
 
 namespace vibscore::actuator {
 

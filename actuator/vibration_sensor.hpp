@@ -5,9 +5,9 @@
 #include <random>
 #include <vector>
 
-#include "daemon/actuator/calibration.hpp"
-#include "daemon/actuator/declaration.hpp"
-#include "daemon/actuator/physics.hpp"
+#include "actuator/calibration.hpp"
+#include "actuator/declaration.hpp"
+#include "actuator/physics.hpp"
 
 // What an accelerometer on the phone records while an actuator vibrates it: the calibration's
 // benchmark and tests record plans with it, and the sim backend gives its simulated actuator an

@@ -1,4 +1,4 @@
-#include "daemon/actuator/physics.hpp"
+#include "actuator/physics.hpp"
 
 #include <algorithm>
 #include <cmath>

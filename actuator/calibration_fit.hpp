@@ -4,7 +4,7 @@
 #include <functional>
 #include <vector>
 
-#include "daemon/actuator/calibration.hpp"
+#include "actuator/calibration.hpp"
 
 // The numerical parts of estimate() (internal to the actuator library): the recording's time
 // line, its vibration with gravity and the hand taken out, and the two model fits.

@@ -1,4 +1,4 @@
-#include "daemon/log.hpp"
+#include "common/log.hpp"
 
 #include <sys/stat.h>
 #include <sys/uio.h>
