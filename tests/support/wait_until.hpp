@@ -1,7 +1,11 @@
 #pragma once
 
 #include <chrono>
+#include <filesystem>
+#include <fstream>
 #include <functional>
+#include <iterator>
+#include <string>
 #include <thread>
 
 namespace vibscore::testing {
@@ -19,6 +23,19 @@ inline bool wait_until(const std::function<bool()>& condition,
         std::this_thread::sleep_for(std::chrono::milliseconds(10));
     }
     return true;
+}
+
+// Whether the file at `path` holds `text` within `timeout`: a log line or an output another
+// process writes (a missing file is one that does not hold it yet).
+inline bool wait_until_file_contains(const std::filesystem::path& path, const std::string& text,
+                                     std::chrono::milliseconds timeout = std::chrono::seconds(10)) {
+    return wait_until(
+        [&] {
+            std::ifstream in(path, std::ios::binary);
+            const std::string content{std::istreambuf_iterator<char>(in), {}};
+            return content.find(text) != std::string::npos;
+        },
+        timeout);
 }
 
 }  // namespace vibscore::testing
