@@ -15,8 +15,8 @@
 #include <thread>
 
 #include "client/clef_verbs.hpp"
-#include "client/daemon_errors.hpp"
-#include "client/daemon_watch.hpp"
+#include "client/editor/daemon_errors.hpp"
+#include "client/editor/daemon_watch.hpp"
 #include "client/editor/documents.hpp"
 #include "client/offline_verbs.hpp"
 #include "common/number_text.hpp"

@@ -6,7 +6,7 @@
 #include <map>
 #include <stdexcept>
 
-#include "client/daemon_errors.hpp"
+#include "client/editor/daemon_errors.hpp"
 #include "client/offline_verbs.hpp"
 #include "client/pictures/picture_file.hpp"
 #include "dbus/haptics1_names.hpp"

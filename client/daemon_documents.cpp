@@ -10,7 +10,7 @@
 #include <stdexcept>
 
 #include "client/bus_verbs.hpp"
-#include "client/daemon_errors.hpp"
+#include "client/editor/daemon_errors.hpp"
 #include "daemon/render/clef_fit.hpp"
 #include "dbus/haptics1_names.hpp"
 #include "dbus/sdbus_compat.hpp"

@@ -6,8 +6,8 @@
 #include <map>
 #include <set>
 
-#include "client/daemon_errors.hpp"
-#include "client/daemon_watch.hpp"
+#include "client/editor/daemon_errors.hpp"
+#include "client/editor/daemon_watch.hpp"
 #include "dbus/haptics1_names.hpp"
 #include "dbus/sdbus_compat.hpp"
 #include "haptics1-proxy.h"

@@ -8,7 +8,7 @@
 
 #include "client/editor/daemon_link.hpp"
 #include "client/editor/documents.hpp"
-#include "client/staff_text.hpp"
+#include "client/editor/staff_text.hpp"
 #include "score/document_error.hpp"
 #include "score/score_xml.hpp"
 

@@ -1,7 +1,7 @@
 // vibscored's named errors in the words a person reads (the CLI and the editor's status line).
 #include <gtest/gtest.h>
 
-#include "client/daemon_errors.hpp"
+#include "client/editor/daemon_errors.hpp"
 
 namespace vibscore::client {
 namespace {

@@ -3,7 +3,7 @@
 
 #include "client/editor/staff_layout.hpp"
 #include "client/editor/staff_options.hpp"
-#include "client/staff_text.hpp"
+#include "client/editor/staff_text.hpp"
 #include "tests/support/editor_support.hpp"
 
 namespace vibscore {

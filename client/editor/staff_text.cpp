@@ -1,4 +1,4 @@
-#include "client/staff_text.hpp"
+#include "client/editor/staff_text.hpp"
 
 #include <string>
 

@@ -1,4 +1,4 @@
-#include "client/daemon_watch.hpp"
+#include "client/editor/daemon_watch.hpp"
 
 #include "dbus/haptics1_names.hpp"
 #include "dbus/name_owner_watch.hpp"
