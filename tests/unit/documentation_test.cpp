@@ -467,6 +467,61 @@ TEST(Architecture, TheMapShowsEveryFolderOfCodeAndEveryThread) {
     }
 }
 
+// The top-level folders of the checkout a newcomer sees (build trees and hidden folders aside).
+std::set<std::string> top_level_folders() {
+    std::set<std::string> folders;
+    for (const auto& entry : fs::directory_iterator(source_root())) {
+        const std::string name = entry.path().filename().string();
+        if (entry.is_directory() && !name.starts_with(".") &&
+            !fs::exists(entry.path() / "meson-info")) {
+            folders.insert(name + "/");
+        }
+    }
+    return folders;
+}
+
+// The library targets the product's meson.build files declare (tests, benches and fuzz targets
+// build their own helpers, which the map does not draw).
+std::set<std::string> product_library_targets() {
+    std::set<std::string> targets;
+    const fs::path root = source_root();
+    for (auto it = fs::recursive_directory_iterator(root); it != fs::recursive_directory_iterator();
+         ++it) {
+        const std::string name = it->path().filename().string();
+        if (it->is_directory() && (name.starts_with(".") || fs::exists(it->path() / "meson-info") ||
+                                   (it->path().parent_path() == root &&
+                                    (name == "tests" || name == "bench" || name == "fuzz")))) {
+            it.disable_recursion_pending();
+            continue;
+        }
+        if (name != "meson.build") {
+            continue;
+        }
+        const std::string text = testing::read_file(it->path());
+        for (const std::string call : {"static_library('", "shared_library('"}) {
+            for (auto at = text.find(call); at != std::string::npos; at = text.find(call, at + 1)) {
+                const auto begin = at + call.size();
+                targets.insert(text.substr(begin, text.find('\'', begin) - begin));
+            }
+        }
+    }
+    return targets;
+}
+
+TEST(Architecture, TheMapNamesEveryTopLevelFolderAndEveryLibraryTarget) {
+    const std::string map = testing::read_file(source_root() / "docs" / "architecture.md");
+    const auto folders = top_level_folders();
+    EXPECT_GE(folders.size(), 20u);
+    for (const auto& folder : folders) {
+        EXPECT_TRUE(mentions_folder(map, folder)) << "docs/architecture.md lacks " << folder;
+    }
+    const auto targets = product_library_targets();
+    EXPECT_GE(targets.size(), 20u);
+    for (const auto& target : targets) {
+        EXPECT_TRUE(mentions_folder(map, target)) << "docs/architecture.md lacks " << target;
+    }
+}
+
 TEST(Docs, NoneStillPromisesTheWorkOfALaterIssue) {
     for (const auto& entry : fs::recursive_directory_iterator(source_root() / "docs")) {
         if (entry.path().extension() != ".md") {
