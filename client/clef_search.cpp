@@ -1,50 +1,11 @@
 #include "client/clef_search.hpp"
 
-#include <nlohmann/json.hpp>
-
-#include <fstream>
-
-#include "config.h"
+#include "json/build_tree.hpp"
 #include "score/clef_xml.hpp"
 #include "score/registry_names.hpp"
 #include "score/score_xml.hpp"
 
 namespace vibscore::client {
-
-std::optional<std::filesystem::path> source_tree_clefs(const std::filesystem::path& program) {
-    std::error_code ignored;
-    for (auto folder = program.parent_path(); !folder.empty() && folder != folder.root_path();
-         folder = folder.parent_path()) {
-        const auto info = folder / "meson-info" / "meson-info.json";
-        if (!std::filesystem::is_regular_file(info, ignored)) {
-            continue;
-        }
-        std::ifstream in(info);
-        const auto json = nlohmann::json::parse(in, nullptr, false);
-        if (json.is_discarded() || !json.contains("directories") ||
-            !json["directories"].contains("source") || !json["directories"]["source"].is_string()) {
-            return std::nullopt;
-        }
-        const auto clefs =
-            std::filesystem::path(json["directories"]["source"].get<std::string>()) / "clefs";
-        if (!std::filesystem::is_directory(clefs, ignored)) {
-            return std::nullopt;
-        }
-        return clefs;
-    }
-    return std::nullopt;
-}
-
-std::filesystem::path shipped_clefs_folder() {
-    std::error_code error;
-    const auto program = std::filesystem::read_symlink("/proc/self/exe", error);
-    if (!error) {
-        if (auto clefs = source_tree_clefs(program)) {
-            return *clefs;
-        }
-    }
-    return VIBSCORE_CLEFDIR;
-}
 
 ClefSearch::ClefSearch() : shipped(shipped_clefs_folder()) {}
 

@@ -20,7 +20,7 @@ struct ClefSearch {
     std::vector<std::filesystem::path> folders;  // --clefs DIR, in order
     // The text of the daemon's registry clef NAME; nullopt when it has none or does not run.
     std::function<std::optional<std::string>(const std::string& name)> registry;
-    std::filesystem::path shipped;  // default: shipped_clefs_folder()
+    std::filesystem::path shipped;  // default: shipped_clefs_folder() (json/build_tree.hpp)
     // The text of vibscored's registry score NAME, for check, render and show given a name.
     // Throws std::runtime_error saying why there is none (no vibscored, no such score); unset:
     // there is no registry to ask.
@@ -33,15 +33,6 @@ struct ClefSearch {
 };
 
 inline constexpr const char* kRegistryOrigin = "registry";
-
-// The source tree's clefs/ when `program` lies in a meson build tree (a folder above it holds
-// meson-info/meson-info.json, which names the source folder); nullopt for an installed program.
-std::optional<std::filesystem::path> source_tree_clefs(const std::filesystem::path& program);
-
-// The shipped clefs: the source tree's for a program run from its build tree (so a fresh
-// checkout's build/client/vibscore finds lra-phone with nothing installed), else the installed
-// folder.
-std::filesystem::path shipped_clefs_folder();
 
 // A score file loaded by the rule above, with where each of its clefs came from, by clef id.
 struct LoadedScore {

@@ -6,22 +6,21 @@
 
 #include <algorithm>
 #include <csignal>
-#include <cstdlib>
 #include <filesystem>
 #include <iostream>
 #include <string>
 #include <vector>
 
-#include "json/build_tree.hpp"
-#include "config.h"
 #include "common/event_loop.hpp"
 #include "common/log.hpp"
 #include "common/usage.hpp"
+#include "config.h"
 #include "dbus/sdbus_compat.hpp"
 #include "feedback/feedback_service.hpp"
 #include "feedback/feedbackd_theme.hpp"
 #include "feedback/theme.hpp"
 #include "feedback/user_scores.hpp"
+#include "json/build_tree.hpp"
 
 using namespace vibscore;
 using namespace vibscore::feedback;
@@ -90,32 +89,11 @@ int serve(const Options& options) {
     return code;
 }
 
-// The theme without --theme: $FEEDBACK_THEME; else, run from a meson build tree, its checkout's
-// (as vibscored finds its checkout's clefs: a fresh clone works before anything is installed);
-// else the installed one.
-std::string default_theme() {
-    const char* variable = std::getenv("FEEDBACK_THEME");
-    if (variable != nullptr && *variable != '\0') {
-        return variable;
-    }
-    std::error_code error;
-    const auto program = std::filesystem::read_symlink("/proc/self/exe", error);
-    if (!error) {
-        if (const auto source = source_tree_of(program)) {
-            const auto theme = *source / "feedback" / "themes" / "default.json";
-            if (std::filesystem::exists(theme, error)) {
-                return theme.string();
-            }
-        }
-    }
-    return VIBSCORE_FEEDBACK_THEME;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
     Options options;
-    options.theme = default_theme();
+    options.theme = default_feedback_theme().string();
     CLI::App app(
         "The feedbackd API (org.sigxcpu.Feedback) on the session bus, played through "
         "vibscored. Run with no arguments it serves the bus DBUS_SESSION_BUS_ADDRESS "

@@ -1,7 +1,9 @@
 #include "json/build_tree.hpp"
 
-#include "json/json_document.hpp"
+#include <cstdlib>
+
 #include "config.h"
+#include "json/json_document.hpp"
 
 namespace vibscore {
 
@@ -33,18 +35,46 @@ std::optional<fs::path> source_tree_of(const fs::path& program) {
     return std::nullopt;
 }
 
-fs::path shipped_clefs_folder() {
+DataLocations installed_data() {
+    return {VIBSCORE_CLEFDIR, VIBSCORE_FEEDBACK_THEME, VIBSCORE_CLIENT_DOCDIR};
+}
+
+DataLocations data_locations_of(const fs::path& program) {
+    DataLocations found = installed_data();
+    const auto source = source_tree_of(program);
+    if (!source) {
+        return found;
+    }
+    std::error_code ignored;
+    if (const auto clefs = *source / "clefs"; fs::is_directory(clefs, ignored)) {
+        found.clefs = clefs;
+    }
+    if (const auto theme = *source / "feedback" / "themes" / "default.json";
+        fs::is_regular_file(theme, ignored)) {
+        found.feedback_theme = theme;
+    }
+    if (const auto docs = *source / "docs"; fs::is_directory(docs, ignored)) {
+        found.docs = docs;
+    }
+    return found;
+}
+
+DataLocations data_locations() {
     std::error_code error;
     const auto program = fs::read_symlink("/proc/self/exe", error);
-    if (!error) {
-        if (const auto source = source_tree_of(program)) {
-            const auto clefs = *source / "clefs";
-            if (fs::is_directory(clefs, error)) {
-                return clefs;
-            }
-        }
+    return error ? installed_data() : data_locations_of(program);
+}
+
+fs::path shipped_clefs_folder() {
+    return data_locations().clefs;
+}
+
+fs::path default_feedback_theme() {
+    const char* chosen = std::getenv("FEEDBACK_THEME");
+    if (chosen != nullptr && *chosen != '\0') {
+        return chosen;
     }
-    return VIBSCORE_CLEFDIR;
+    return data_locations().feedback_theme;
 }
 
 }  // namespace vibscore

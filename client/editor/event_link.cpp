@@ -2,18 +2,13 @@
 
 #include <sdbus-c++/sdbus-c++.h>
 
-#include <cstdlib>
-
 #include "dbus/sdbus_compat.hpp"
 #include "feedback/feedbackd_theme.hpp"
 #include "feedback/profile.hpp"
 #include "feedback/theme.hpp"
 #include "feedback/user_scores.hpp"
 #include "feedback1-proxy.h"
-
-#ifndef VIBSCORE_FEEDBACK_THEME
-#define VIBSCORE_FEEDBACK_THEME "/usr/share/vibscore/feedback/default.json"
-#endif
+#include "json/build_tree.hpp"
 
 namespace vibscore::editor {
 
@@ -21,12 +16,6 @@ namespace {
 
 constexpr const char* kFeedbackName = "org.sigxcpu.Feedback";
 constexpr const char* kFeedbackPath = "/org/sigxcpu/Feedback";
-
-// The theme vibscore-feedback reads when it starts.
-std::string theme_path() {
-    const char* chosen = std::getenv("FEEDBACK_THEME");
-    return chosen != nullptr && *chosen != '\0' ? chosen : VIBSCORE_FEEDBACK_THEME;
-}
 
 }  // namespace
 
@@ -72,7 +61,9 @@ std::vector<EventScore> EventLink::events() {
     try {
         std::vector<Diagnostic> warnings;
         const auto theme =
-            feedback::load_theme(theme_path(), feedback::ThemeSearch::from_environment());
+            // The theme vibscore-feedback reads when it starts: the same rule.
+            feedback::load_theme(default_feedback_theme().string(),
+                                 feedback::ThemeSearch::from_environment());
         const auto chosen = feedback::read_user_scores(feedback::user_scores_path(), warnings);
         for (const auto& [event, levels] : theme.events()) {
             const auto* entry = theme.lookup(event, feedback::Profile::full);
