@@ -6,14 +6,14 @@
 #include <map>
 #include <numbers>
 #include <optional>
-#include <sstream>
 #include <string>
 
+#include "actuator/physics.hpp"
 #include "common/above_zero.hpp"
 #include "common/closest_name.hpp"
+#include "common/ini_reader.hpp"
 #include "common/number_text.hpp"
 #include "common/quoted_text.hpp"
-#include "actuator/physics.hpp"
 
 namespace vibscore::actuator {
 
@@ -76,14 +76,6 @@ bool erm_only(const std::string& key) {
 bool lra_only(const std::string& key) {
     return key == kResonanceHz.key || key == kQ.key || key == kResonanceTolerancePercent.key ||
            key == kQTolerancePercent.key;
-}
-
-std::string trim(const std::string& text) {
-    const auto begin = text.find_first_not_of(" \t\r");
-    if (begin == std::string::npos) {
-        return {};
-    }
-    return text.substr(begin, text.find_last_not_of(" \t\r") - begin + 1);
 }
 
 // Where the declared model stops being finite, or nothing. Each number is within its limits,
@@ -226,39 +218,28 @@ Declaration parse_declaration(const std::vector<Setting>& settings,
     return declaration;
 }
 
-std::optional<Section> find_section(const std::string& text, const std::string& file) {
-    std::istringstream lines(text);
-    std::string line;
-    int number = 0;
-    bool inside = false;
+std::optional<Section> find_section(const std::vector<IniLine>& lines) {
     std::optional<Section> section;
-    while (std::getline(lines, line)) {
-        ++number;
-        const std::string where = file + ":" + std::to_string(number);
-        const auto content = trim(line.substr(0, line.find_first_of("#;")));
-        if (content.empty()) {
+    for (const IniLine& line : lines) {
+        if (line.section != kSection) {
             continue;
         }
-        if (content.front() == '[') {
-            inside =
-                content.back() == ']' && trim(content.substr(1, content.size() - 2)) == "actuator";
-            if (inside && !section) {
-                section = Section{{}, where};
-            }
-            continue;
+        if (!section) {
+            section = Section{{}, line.where};
         }
-        if (!inside) {
-            continue;
+        if (!line.is_header()) {
+            section->settings.push_back({line.key, line.value, line.where});
         }
-        const auto equals = content.find('=');
-        if (equals == std::string::npos) {
-            throw DeclarationError(
-                {}, where + ": expected \"key = value\", found " + quoted_text(content));
-        }
-        section->settings.push_back(
-            {trim(content.substr(0, equals)), trim(content.substr(equals + 1)), where});
     }
     return section;
+}
+
+std::optional<Section> find_section(const std::string& text, const std::string& file) {
+    try {
+        return find_section(read_ini(text, file));
+    } catch (const IniError& error) {
+        throw DeclarationError({}, error.what());
+    }
 }
 
 std::optional<Declaration> read_declaration(const std::string& text, const std::string& file) {

@@ -6,6 +6,8 @@
 #include <utility>
 #include <vector>
 
+#include "common/ini_reader.hpp"
+
 // The actuator's physics, declared once: what [actuator] in vibscored.conf says, read the same
 // way by the daemon (config, sim, compensation) and the client (render --actuator, check).
 namespace vibscore::actuator {
@@ -90,13 +92,19 @@ class DeclarationError : public std::invalid_argument {
 Declaration parse_declaration(const std::vector<Setting>& settings,
                               const std::string& section_where);
 
+// The section's name in an INI file: "[actuator]".
+inline constexpr const char* kSection = "actuator";
+
 // The [actuator] section of an INI text (vibscored.conf, or a file of its own): its lines, and
-// where its header is; nothing when the text has none. Other sections are skipped unread; a
-// malformed line inside the section is a DeclarationError naming file and line.
+// where its header is (the first, when the file opens it twice); nothing when the text has none.
+// The text is read by common/ini_reader.hpp, the daemon's reader, so the client and the daemon
+// read one file the same way: a line the reader refuses anywhere in the file (a malformed header,
+// "kind = lra#x") is a DeclarationError naming file, line and value.
 struct Section {
     std::vector<Setting> settings;
     std::string where;
 };
+std::optional<Section> find_section(const std::vector<IniLine>& lines);
 std::optional<Section> find_section(const std::string& text, const std::string& file);
 
 // find_section, then parse_declaration: the declaration a file makes, if any.

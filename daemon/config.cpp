@@ -10,9 +10,9 @@
 
 #include "common/above_zero.hpp"
 #include "common/closest_name.hpp"
+#include "common/ini_reader.hpp"
 #include "common/number_text.hpp"
 #include "common/quoted_text.hpp"
-#include "daemon/actuator_config.hpp"
 
 namespace vibscore::daemon {
 
@@ -21,14 +21,6 @@ namespace {
 const std::vector<std::string> kDaemonKeys = {
     "driver",        "drivers-dir",         "store",         "shipped",
     "separation-ms", "requests-per-second", "request-burst", "rt-priority"};
-
-std::string trim(const std::string& text) {
-    const auto begin = text.find_first_not_of(" \t\r");
-    if (begin == std::string::npos) {
-        return {};
-    }
-    return text.substr(begin, text.find_last_not_of(" \t\r") - begin + 1);
-}
 
 double positive_number(const std::string& value, const std::string& where, const std::string& key,
                        double max) {
@@ -115,85 +107,28 @@ std::vector<std::string> unknown_sections(const DaemonConfig& config,
     return warnings;
 }
 
-namespace {
-
-// Where a comment begins: '#' or ';' at the start of a line or after a blank, as the shipped
-// file and the docs write them ("carrier-hz = 20000  # erm only"). npos: no comment.
-std::size_t comment_start(const std::string& line) {
-    for (std::size_t i = 0; i < line.size(); ++i) {
-        if ((line[i] == '#' || line[i] == ';') &&
-            (i == 0 || line[i - 1] == ' ' || line[i - 1] == '\t' || line[i - 1] == '\r')) {
-            return i;
-        }
-    }
-    return std::string::npos;
-}
-
-// A second "key = value" for a key the section already set is a mistake (which one was meant?),
-// not a silent override.
-void refuse_repeated(std::map<std::string, std::string>& lines, const std::string& section,
-                     const std::string& key, const std::string& value, const std::string& where,
-                     std::map<std::string, std::string>& values) {
-    if (const auto first = lines.find(key); first != lines.end()) {
-        throw ConfigError(where + ": " + shown_text(key) + " = " + quoted_text(value) + " sets " +
-                          "[" + shown_text(section) + "] " + shown_text(key) + " again (" +
-                          first->second + " set it to " + quoted_text(values[key]) +
-                          "); keep one of them");
-    }
-    lines[key] = where;
-    values[key] = value;
-}
-
-}  // namespace
-
 DaemonConfig parse_config(const std::string& text, const std::string& file, DaemonConfig config) {
-    std::istringstream lines(text);
-    std::string line;
-    std::string section;
-    int number = 0;
+    std::vector<IniLine> lines;
+    try {
+        lines = read_ini(text, file);
+    } catch (const IniError& error) {
+        throw ConfigError(error.what());
+    }
     bool fit_auto = false;  // [clefs] fit = auto
     std::string fit_where;
-    // Every value as the file gave it, by section and key, for the messages about repeated keys.
-    std::map<std::string, std::map<std::string, std::string>> values;
-    while (std::getline(lines, line)) {
-        ++number;
-        const std::string where = file + ":" + std::to_string(number);
-        const auto content = trim(line.substr(0, comment_start(line)));
-        if (content.empty()) {
-            continue;
-        }
-        if (const auto mark = content.find_first_of("#;"); mark != std::string::npos) {
-            // "store = /var/lib/vib#score": cutting it at the '#' would quietly use another path.
-            const auto equals = content.find('=');
-            const std::string what = equals == std::string::npos || content.front() == '['
-                                         ? quoted_text(content)
-                                         : shown_text(trim(content.substr(0, equals))) + " = " +
-                                               quoted_text(trim(content.substr(equals + 1)));
-            throw ConfigError(where + ": " + what + " holds '" + content[mark] +
-                              "', which starts a comment only at the start of a line or after a "
-                              "space; a value cannot contain it");
-        }
-        if (content.front() == '[') {
-            if (content.back() != ']' || content.size() < 3) {
-                throw ConfigError(where + ": malformed section header " + quoted_text(content));
-            }
-            section = trim(content.substr(1, content.size() - 2));
+    for (const IniLine& line : lines) {
+        const std::string& section = line.section;
+        const std::string& where = line.where;
+        if (line.is_header()) {
             if (section != "daemon") {
                 config.driver_settings[section];  // an empty section still names a driver
                 config.section_lines.try_emplace(section, where);
             }
             continue;
         }
-        const auto equals = content.find('=');
-        if (equals == std::string::npos) {
-            throw ConfigError(where + ": expected \"key = value\", found " + quoted_text(content));
-        }
-        const auto key = trim(content.substr(0, equals));
-        const auto value = trim(content.substr(equals + 1));
-        if (section.empty()) {
-            throw ConfigError(where + ": " + quoted_text(key) + " is outside any [section]");
-        }
-        refuse_repeated(config.setting_lines[section], section, key, value, where, values[section]);
+        const std::string& key = line.key;
+        const std::string& value = line.value;
+        config.setting_lines[section][key] = where;
         if (section == "clefs") {
             if (key == "fit") {
                 fit_where = where;
@@ -205,7 +140,9 @@ DaemonConfig parse_config(const std::string& text, const std::string& file, Daem
         }
         if (section == kLimitsSection) {
             try {
-                config.limits.set(key, value);
+                if (!config.admission.set(key, value)) {
+                    config.limits.set(key, value);
+                }
             } catch (const std::invalid_argument& error) {
                 throw ConfigError(where + ": " + error.what());
             }
@@ -247,7 +184,15 @@ DaemonConfig parse_config(const std::string& text, const std::string& file, Daem
             throw ConfigError(where + ": " + shown_text(key) + " has no value");
         }
     }
-    config.actuator = declared_actuator(config);
+    try {
+        if (const auto declared = actuator::find_section(lines)) {
+            config.actuator = actuator::parse_declaration(declared->settings, declared->where);
+        } else {
+            config.actuator.reset();
+        }
+    } catch (const actuator::DeclarationError& error) {
+        throw ConfigError(error.what());
+    }
     config.device_clefs.fit_to.reset();
     if (fit_auto) {
         if (!config.actuator) {

@@ -1,7 +1,8 @@
 #pragma once
 
-#include "config.h"
 #include "actuator/declaration.hpp"
+#include "config.h"
+#include "daemon/admission.hpp"
 #include "daemon/device_clefs.hpp"
 #include "daemon/playback_limits.hpp"
 
@@ -19,12 +20,15 @@ class ModuleCatalog;
 
 namespace vibscore::daemon {
 
-// vibscored.conf: INI sections of "key = value" lines. '#' and ';' start a comment at the start
-// of a line or after a blank; anywhere else they are an error, as is a key set twice in a section.
+// vibscored.conf: INI sections of "key = value" lines, read by common/ini_reader.hpp (the client's
+// --actuator FILE too). '#' and ';' start a comment at the start of a line or after a blank;
+// anywhere else they are an error, as is a key set twice in a section.
 //   [daemon]  driver, drivers-dir, store, shipped, separation-ms, requests-per-second,
 //             request-burst, rt-priority
-//   [actuator] the actuator's physics, declared once (daemon/actuator_config.hpp)
+//   [actuator] the actuator's physics, declared once (actuator/declaration.hpp)
 //   [limits]  max-on-time, max-on-time-USAGE, cool-down (daemon/playback_limits.hpp)
+//             document-bytes-per-second, document-burst-bytes, work-cpu-per-second,
+//             work-cpu-burst, connection-share (daemon/admission.hpp)
 //   [clefs]   WRITTEN = DEVICE: the clef bars written for WRITTEN play through on this device;
 //             "* = DEVICE" for any other clef; "fit = auto" fits every other clef to [actuator]
 //   [NAME]    the settings of driver NAME (e.g. [sim] model = erm), handed to that driver
@@ -42,6 +46,8 @@ struct DaemonConfig {
     DeviceClefs device_clefs;
     std::optional<actuator::Declaration> actuator;  // [actuator]; nothing: playback as written
     PlaybackLimits limits;                          // [limits]
+    // [limits]' admission budgets; their request rate and burst are [daemon]'s.
+    AdmissionBudgets admission;
     // Where actuator's numbers come from: "declared", or "measured <ISO date>" when the store
     // holds a calibration of the declared kind (calibration_state.hpp); "" when none is declared.
     std::string actuator_source;
@@ -80,7 +86,7 @@ DaemonConfig load_config(const std::filesystem::path& path, DaemonConfig default
 std::vector<std::string> missing_device_clefs(const DaemonConfig& config, const Registry& registry);
 
 // Sections besides [daemon] and the backends' that configure parts of the service.
-inline constexpr const char* kActuatorSection = "actuator";
+inline constexpr const char* kActuatorSection = actuator::kSection;
 inline constexpr const char* kLimitsSection = "limits";
 inline constexpr const char* kCalibrationSection = "calibration";  // accelerometer = auto|PATH
 inline constexpr const char* kServiceSections[] = {"clefs", "virtual-vibra", kActuatorSection,

@@ -230,6 +230,27 @@ TEST(ActuatorDeclaration, AFileGivesItsSectionAndSkipsTheOthers) {
     }
 }
 
+// The file is read by the daemon's reader (common/ini_reader.hpp): a line it refuses is refused
+// in any section, and a malformed "[actuator" header is an error, not a section quietly skipped.
+TEST(ActuatorDeclaration, AFileIsReadByTheDaemonsStrictRules) {
+    const auto error_in = [](const std::string& text) {
+        try {
+            find_section(text, "f.conf");
+        } catch (const DeclarationError& error) {
+            return std::string(error.what());
+        }
+        return std::string("<no error>");
+    };
+    EXPECT_EQ(error_in("[actuator\nkind = lra\n"),
+              "f.conf:1: malformed section header \"[actuator\"");
+    EXPECT_THAT(error_in("[actuator]\nkind = lra#x\n"),
+                StartsWith("f.conf:2: kind = \"lra#x\" holds '#'"));
+    EXPECT_THAT(error_in("[sim]\nmodel = erm;x\n[actuator]\nkind = lra\n"),
+                StartsWith("f.conf:2: model = \"erm;x\" holds ';'"));
+    // The last allowed: the mark after a blank starts a comment.
+    EXPECT_EQ(read_declaration("[actuator]\nkind = lra #x\n", "f.conf")->kind, Kind::lra);
+}
+
 TEST(ActuatorDeclaration, WritesBackWhatItReads) {
     for (const Declaration& d :
          {parse({{"kind", "erm"},
