@@ -250,6 +250,15 @@ std::optional<Declaration> read_declaration(const std::string& text, const std::
     return parse_declaration(section->settings, section->where);
 }
 
+Declaration from_settings(const std::map<std::string, std::string>& settings,
+                          const std::string& source) {
+    std::vector<Setting> lines;
+    for (const auto& [key, value] : settings) {
+        lines.push_back({key, value, source});
+    }
+    return parse_declaration(lines, source);
+}
+
 std::vector<std::pair<std::string, std::string>> to_settings(const Declaration& declaration) {
     std::vector<std::pair<std::string, std::string>> settings;
     const bool erm = declaration.kind == Kind::erm;

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <map>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -117,6 +118,12 @@ std::string describe(const Declaration& declaration);
 // The declaration as the keys of [actuator] would write it (for D-Bus and round trips); the
 // tolerances only where they differ from their defaults.
 std::vector<std::pair<std::string, std::string>> to_settings(const Declaration& declaration);
+
+// The reverse of to_settings: the declaration the daemon's Haptics1.Actuator property publishes,
+// read by the one function the client's verbs and the editor share. Throws DeclarationError,
+// naming `source` (e.g. "vibscored's Actuator property") for the key and value at fault.
+Declaration from_settings(const std::map<std::string, std::string>& settings,
+                          const std::string& source);
 
 // The envelope time constant of an LRA: the time its ringing takes to decay by 1/e.
 double lra_time_constant_s(double resonance_hz, double q);

@@ -97,12 +97,8 @@ std::string explain(const sdbus::Error& error) {
 
 // The declaration the Actuator property holds: [actuator]'s own keys and values.
 actuator::Declaration declaration_of(const std::map<std::string, std::string>& settings) {
-    std::vector<actuator::Setting> lines;
-    for (const auto& [key, value] : settings) {
-        lines.push_back({key, value, "vibscored's Actuator property"});
-    }
     try {
-        return actuator::parse_declaration(lines, "vibscored's Actuator property");
+        return actuator::from_settings(settings, "vibscored's Actuator property");
     } catch (const actuator::DeclarationError& error) {
         throw std::runtime_error(error.what());
     }

@@ -251,6 +251,19 @@ TEST(ActuatorDeclaration, AFileIsReadByTheDaemonsStrictRules) {
     EXPECT_EQ(read_declaration("[actuator]\nkind = lra #x\n", "f.conf")->kind, Kind::lra);
 }
 
+TEST(ActuatorDeclaration, ThePropertyReadsBackWhatToSettingsWrites) {
+    const Declaration lra = parse({{"kind", "lra"}, {"resonance-hz", "170"}, {"q", "22"}});
+    const auto pairs = to_settings(lra);
+    EXPECT_EQ(from_settings({pairs.begin(), pairs.end()}, "the property"), lra);
+    try {
+        from_settings({{"kind", "lra"}, {"q", "0"}}, "the property");
+        FAIL();
+    } catch (const DeclarationError& error) {
+        EXPECT_EQ(std::string(error.what()),
+                  "the property: [actuator] q = \"0\": expected a number from 1 to 500");
+    }
+}
+
 TEST(ActuatorDeclaration, WritesBackWhatItReads) {
     for (const Declaration& d :
          {parse({{"kind", "erm"},

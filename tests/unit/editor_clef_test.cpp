@@ -333,11 +333,23 @@ TEST(ActuatorFeel, NothingIsShownForAnErmOrWithoutAUsableDeclaration) {
             << resonance;
     }
     EXPECT_TRUE(
-        editor::actuator_feel(lra_phone(), {{"kind", "lra"}, {"resonance-hz", "175"}}).empty());
+        editor::actuator_feel(lra_phone(), {{"kind", "lra"}, {"q", "10"}, {"brake", "x"}}).empty());
+}
+
+// The property is read by actuator::from_settings, as the client's verbs read it (issue 30): what
+// the declaration allows is shown, what it refuses is not. (The editor's own parse once took any
+// positive resonance and wanted q given; the declaration's limit is 10 Hz and q defaults to 15.)
+TEST(ActuatorFeel, TheDeclarationsOwnLimitsAndDefaultsDecideWhatIsShown) {
     EXPECT_EQ(
-        editor::actuator_feel(lra_phone(), {{"kind", "lra"}, {"resonance-hz", "0.001"}, {"q", "1"}})
+        editor::actuator_feel(lra_phone(), {{"kind", "lra"}, {"resonance-hz", "10"}, {"q", "1"}})
             .size(),
-        6u);  // the least positive value is a declaration
+        6u);  // the last resonance allowed
+    EXPECT_TRUE(
+        editor::actuator_feel(lra_phone(), {{"kind", "lra"}, {"resonance-hz", "9.99"}, {"q", "1"}})
+            .empty());  // the first refused
+    EXPECT_EQ(editor::actuator_feel(lra_phone(), {{"kind", "lra"}, {"resonance-hz", "185"}}),
+              editor::actuator_feel(lra_phone(),
+                                    {{"kind", "lra"}, {"resonance-hz", "185"}, {"q", "15"}}));
 }
 
 }  // namespace
