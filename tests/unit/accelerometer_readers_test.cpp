@@ -18,6 +18,7 @@
 #include "daemon/sensors/iio_scan.hpp"
 #include "daemon/sensors/open_accelerometer.hpp"
 #include "tests/fakes/fake_sensor_io.hpp"
+#include "tests/support/wait_until.hpp"
 
 namespace vibscore {
 namespace {
@@ -32,14 +33,7 @@ const std::string kChar = "/dev/iio:device0";
 
 // Waits for a condition a reader's thread brings about; false after two seconds.
 bool eventually(const std::function<bool()>& condition) {
-    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(2);
-    while (!condition()) {
-        if (std::chrono::steady_clock::now() > deadline) {
-            return false;
-        }
-        std::this_thread::sleep_for(std::chrono::milliseconds(1));
-    }
-    return true;
+    return testing::wait_until(condition, std::chrono::seconds(2));
 }
 
 sensors::SensorRoots roots() {

@@ -16,6 +16,7 @@
 #include "daemon/drivers/drive_levels.hpp"
 #include "daemon/drivers/driver_settings.hpp"
 #include "tests/fakes/fake_gpio_lines.hpp"
+#include "tests/support/wait_until.hpp"
 
 namespace vibscore::drivers {
 namespace {
@@ -309,15 +310,18 @@ TEST(GpioErm, ALineErrorFailsTheNextApplyNamingChipAndLine) {
     auto gpio = std::make_shared<FakeGpio>();
     GpioPwmActuator erm(erm_settings(1000.0, false), gpio->lines({17}, "gpiochip3"));
     gpio->fail();
+    // The PWM thread meets the error on its own time: applies (alternating, so each is a change)
+    // until one reports it.
     std::string message;
-    for (int attempt = 0; attempt < 2000 && message.empty(); ++attempt) {
+    int attempt = 0;
+    EXPECT_TRUE(vibscore::testing::wait_until([&] {
         try {
-            erm.apply({0.1 + (attempt % 2) * 0.5});
+            erm.apply({0.1 + (attempt++ % 2) * 0.5});
         } catch (const DeviceError& error) {
             message = error.what();
         }
-        std::this_thread::sleep_for(std::chrono::milliseconds(1));
-    }
+        return !message.empty();
+    }));
     EXPECT_THAT(message, HasSubstr("gpio-erm on gpiochip3 line 17"));
     EXPECT_THAT(message, HasSubstr("Input/output error"));
 

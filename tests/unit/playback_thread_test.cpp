@@ -3,6 +3,7 @@
 // thread, Started before Play's call returns and Finished before Stop's.
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <chrono>
 #include <condition_variable>
 #include <mutex>
@@ -11,6 +12,7 @@
 #include <thread>
 
 #include "daemon/playback_thread.hpp"
+#include "tests/support/wait_until.hpp"
 
 namespace vibscore::daemon {
 namespace {
@@ -198,19 +200,23 @@ class Gate {
     bool open_ = false;
 };
 
-// An actuator whose apply() of the drive 0.6 hangs until the gate opens.
+// An actuator whose apply() of the drive 0.6 hangs until the gate opens; hanging() says it has
+// got there, so that tests wait for the hang rather than for a time it is likely by.
 class HangingActuator : public SharedActuator {
   public:
     explicit HangingActuator(Gate& gate) : gate_(gate) {}
     void apply(const drivers::Drive& drive) override {
         if (drive.amplitude == 0.6) {
+            hanging_ = true;
             gate_.wait();
         }
         SharedActuator::apply(drive);
     }
+    bool hanging() const { return hanging_; }
 
   private:
     Gate& gate_;
+    std::atomic<bool> hanging_{false};
 };
 
 // 0.5 at once, 0.6 from 20 ms (on the playback thread's timer, not in the call), off at 40 ms.
@@ -263,14 +269,13 @@ TEST(PlaybackThreadStuck, CallsFailAfterTheTimeoutThenAtOnceUntilTheThreadIsBack
     EXPECT_THROW(playback.call([&ran](Player&) { ran = true; }), PlaybackStuck);
     gate.open();
     // The stuck work finishes; the thread answers again.
-    for (int i = 0; i < 100; ++i) {
+    EXPECT_TRUE(testing::wait_until([&] {
         try {
-            EXPECT_EQ(playback.call([](Player&) { return 42; }), 42);
-            break;
+            return playback.call([](Player&) { return 42; }) == 42;
         } catch (const PlaybackStuck&) {
-            std::this_thread::sleep_for(10ms);
+            return false;
         }
-    }
+    }));
     EXPECT_EQ(playback.call([](Player&) { return 43; }), 43);
     EXPECT_FALSE(ran);
 }
@@ -283,18 +288,18 @@ TEST(PlaybackThreadStuck, AnAbandonedCallIsNeverRunLater) {
     HangingActuator actuator(gate);
     PlaybackThread playback{bus_loop, actuator, {.call_timeout = 100ms}};
     playback.call([](Player& player) { return player.play(two_drives()); });
-    std::this_thread::sleep_for(50ms);  // the second drive's apply() hangs by now
+    ASSERT_TRUE(testing::wait_until([&] { return actuator.hanging(); }));
     bool ran = false;
     EXPECT_THROW(playback.call([&ran](Player&) { ran = true; }), PlaybackStuck);
     gate.open();
-    for (int i = 0; i < 100; ++i) {
+    EXPECT_TRUE(testing::wait_until([&] {
         try {
             playback.call([](Player&) {});
-            break;
+            return true;
         } catch (const PlaybackStuck&) {
-            std::this_thread::sleep_for(10ms);
+            return false;
         }
-    }
+    }));
     EXPECT_FALSE(ran);
 }
 
@@ -305,21 +310,15 @@ TEST(PlaybackThreadWatchdog, AHeartbeatIsAnsweredWhileTheThreadRunsAndNotWhileIt
     PlaybackThread playback{bus_loop, actuator, {.call_timeout = 100ms}};
     auto asked = monotonic_now_us();
     playback.ask_for_heartbeat();
-    for (int i = 0; i < 500 && !playback.answered_since(asked); ++i) {
-        std::this_thread::sleep_for(1ms);
-    }
-    EXPECT_TRUE(playback.answered_since(asked));
+    EXPECT_TRUE(testing::wait_until([&] { return playback.answered_since(asked); }));
     playback.call([](Player& player) { return player.play(two_drives()); });
-    std::this_thread::sleep_for(50ms);  // the second drive's apply() hangs by now
+    ASSERT_TRUE(testing::wait_until([&] { return actuator.hanging(); }));
     asked = monotonic_now_us();
     playback.ask_for_heartbeat();
-    std::this_thread::sleep_for(100ms);
-    EXPECT_FALSE(playback.answered_since(asked));
+    // Hung in apply(), it cannot answer: 100 ms is only how long the test gives it to be wrong.
+    EXPECT_FALSE(testing::wait_until([&] { return playback.answered_since(asked); }, 100ms));
     gate.open();
-    for (int i = 0; i < 500 && !playback.answered_since(asked); ++i) {
-        std::this_thread::sleep_for(1ms);
-    }
-    EXPECT_TRUE(playback.answered_since(asked));
+    EXPECT_TRUE(testing::wait_until([&] { return playback.answered_since(asked); }));
 }
 
 }  // namespace

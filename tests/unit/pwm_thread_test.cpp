@@ -9,6 +9,8 @@
 #include <vector>
 
 #include "tests/fakes/fake_gpio_lines.hpp"
+#include "tests/support/pace.hpp"
+#include "tests/support/wait_until.hpp"
 
 namespace vibscore::drivers {
 namespace {
@@ -34,9 +36,11 @@ PwmWaveform half_high(std::size_t line) {
     return {4 * kMs, {{0, high}, {2 * kMs, {0, 0}}}};
 }
 
-// Lets the thread run for a while: whatever it does meanwhile shows up in the records.
+// Lets the thread run for a while: whatever it does meanwhile shows up in the records. Not a
+// wait for something (nothing is expected to happen): the stretch is the time in which a wrong
+// thread would write, 20 of its 3 ms periods.
 void let_run() {
-    std::this_thread::sleep_for(std::chrono::milliseconds(60));
+    vibscore::testing::pace_for(std::chrono::milliseconds(60));
 }
 
 class PwmThreadTest : public ::testing::Test {
@@ -135,11 +139,8 @@ TEST_F(PwmThreadTest, ALineErrorIsReportedOnceAndTheThreadGoesOn) {
     thread->play(three_step());
     ASSERT_TRUE(gpio->wait_for_failures(1));
     std::optional<std::string> error;
-    for (int attempt = 0; attempt < 2000 && !error; ++attempt) {
-        error = thread->take_error();
-        std::this_thread::sleep_for(std::chrono::milliseconds(1));
-    }
-    ASSERT_TRUE(error);
+    ASSERT_TRUE(
+        vibscore::testing::wait_until([&] { return (error = thread->take_error()).has_value(); }));
     EXPECT_THAT(*error, HasSubstr("gpiochip9 lines 17, 18"));
     EXPECT_THAT(*error, HasSubstr("Input/output error"));
     EXPECT_FALSE(thread->take_error()) << "one error, reported once";

@@ -17,6 +17,7 @@
 #include <utility>
 
 #include "score/limits.hpp"
+#include "tests/support/pace.hpp"
 #include "tests/support/run_command.hpp"
 #include "tests/support/support.hpp"
 
@@ -628,7 +629,10 @@ TEST(RegistryCrash, SigkillNeverLeavesAPartialDocumentNorLosesAnAcknowledgedOne)
              wanted > 0 && read_seq(read_end.get(), seq); --wanted) {
             record(seq);
         }
-        ::usleep(std::uniform_int_distribution(0, 2000)(random));
+        // A random 0-2 ms more of writing, so that the kill lands anywhere in a write: the
+        // time is the test's subject (where the crash falls), not a wait for anything.
+        vibscore::testing::pace_for(
+            std::chrono::microseconds(std::uniform_int_distribution(0, 2000)(random)));
         ::kill(child, SIGKILL);
         int status = 0;
         ASSERT_EQ(::waitpid(child, &status, 0), child);
