@@ -6,6 +6,7 @@
 
 #include "client/pictures/picture_text.hpp"
 #include "client/pictures/plot_axes.hpp"
+#include "client/pictures/trace_stroke.hpp"
 
 namespace vibscore::pictures {
 
@@ -13,38 +14,23 @@ namespace {
 
 constexpr double kLeft = 58.0, kRight = 16.0, kTop = 50.0, kBottom = 42.0;
 constexpr double kTitleBaseline = 20.0, kCaptionBaseline = 38.0;
-constexpr double kLegendLine = 20.0, kLegendGap = 16.0;
+constexpr double kLegendGap = 16.0;
 
 struct Entry {
     CalibrationPicture::Layer layer;
-    const double* ink;
+    TraceStroke stroke;
     const char* label;
-};
-
-constexpr Entry kEntries[] = {
-    {CalibrationPicture::recorded, CalibrationPicture::recorded_ink, "recorded"},
-    {CalibrationPicture::fitted, CalibrationPicture::fitted_ink, "model, measured numbers"},
-    {CalibrationPicture::declared, CalibrationPicture::declared_ink, "model, declared numbers"},
 };
 
 // The recording thin (it is noisy), the fit solid and widest, the declaration dashed: the two
 // models stay apart where they agree.
-void stroke_style(cairo_t* cairo, CalibrationPicture::Layer layer) {
-    static const double dashes[] = {6.0, 3.0};
-    cairo_set_dash(cairo, nullptr, 0, 0);
-    switch (layer) {
-        case CalibrationPicture::recorded:
-            cairo_set_line_width(cairo, 1.0);
-            break;
-        case CalibrationPicture::declared:
-            cairo_set_line_width(cairo, 1.6);
-            cairo_set_dash(cairo, dashes, 2, 0);
-            break;
-        default:
-            cairo_set_line_width(cairo, 1.8);
-            break;
-    }
-}
+constexpr Entry kEntries[] = {
+    {CalibrationPicture::recorded, {CalibrationPicture::recorded_ink, 1.0}, "recorded"},
+    {CalibrationPicture::fitted, {CalibrationPicture::fitted_ink, 1.8}, "model, measured numbers"},
+    {CalibrationPicture::declared,
+     {CalibrationPicture::declared_ink, 1.6, 6.0, 3.0},
+     "model, declared numbers"},
+};
 
 double largest(const actuator::calibration::Trace& trace) {
     double peak = 0.0;
@@ -92,30 +78,17 @@ void CalibrationPicture::draw(cairo_t* cairo, Layers layers) const {
 
 void CalibrationPicture::draw_header(cairo_t* cairo, Layers layers) const {
     const double right = options_.width - kRight;
-    select_font(cairo, 10, false);
     std::vector<double> entry_x(std::size(kEntries));
     double x = right;
     for (std::size_t i = std::size(kEntries); i-- > 0;) {
-        x -= kLegendLine + 5 + text_width(cairo, kEntries[i].label);
+        x -= legend_entry_width(cairo, kEntries[i].label);
         entry_x[i] = x;
         x -= kLegendGap;
     }
     const double legend_left = x;
     for (std::size_t i = 0; i < std::size(kEntries); ++i) {
-        const Entry& entry = kEntries[i];
-        if (layers & legend) {
-            cairo_set_source_rgb(cairo, entry.ink[0], entry.ink[1], entry.ink[2]);
-            stroke_style(cairo, entry.layer);
-            cairo_move_to(cairo, std::round(entry_x[i]), kLegendLine - 4.5);
-            cairo_line_to(cairo, std::round(entry_x[i]) + kLegendLine, kLegendLine - 4.5);
-            cairo_stroke(cairo);
-            cairo_set_dash(cairo, nullptr, 0, 0);
-        }
-        if (layers & legend_text) {
-            select_font(cairo, 10, false);
-            cairo_set_source_rgb(cairo, 0, 0, 0);
-            show_text_at(cairo, entry_x[i] + kLegendLine + 5, kTitleBaseline, entry.label);
-        }
+        draw_legend_entry(cairo, entry_x[i], kTitleBaseline, kEntries[i].label, kEntries[i].stroke,
+                          (layers & legend) != 0, (layers & legend_text) != 0);
     }
     if (layers & title) {
         cairo_set_source_rgb(cairo, 0, 0, 0);
@@ -165,8 +138,7 @@ void CalibrationPicture::draw_traces(cairo_t* cairo, Layers layers) const {
             drawing ? cairo_line_to(cairo, x, y) : cairo_move_to(cairo, x, y);
             drawing = true;
         }
-        cairo_set_source_rgb(cairo, entry.ink[0], entry.ink[1], entry.ink[2]);
-        stroke_style(cairo, entry.layer);
+        apply_stroke(cairo, entry.stroke);
         cairo_stroke(cairo);
     }
     cairo_set_dash(cairo, nullptr, 0, 0);

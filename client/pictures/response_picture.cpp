@@ -6,6 +6,7 @@
 
 #include "client/pictures/picture_text.hpp"
 #include "client/pictures/plot_axes.hpp"
+#include "client/pictures/trace_stroke.hpp"
 
 namespace vibscore::pictures {
 
@@ -15,7 +16,7 @@ namespace {
 // the bar labels, each on a row of its own.
 constexpr double kLeft = 58.0, kRight = 16.0, kBottom = 42.0;
 constexpr double kTitleBaseline = 20.0, kCaptionBaseline = 38.0, kRow = 15.0;
-constexpr double kLegendLine = 20.0, kLegendGap = 16.0;
+constexpr double kLegendGap = 16.0;
 constexpr double kBarLabelRow = 18.0, kAbovePlot = 6.0;
 
 constexpr double kBoundaryDashes[] = {4.0, 3.0};
@@ -33,34 +34,21 @@ std::vector<std::string> lines_of(const std::string& text) {
 
 struct Trace {
     ResponsePicture::Layer layer;
-    const double* ink;
+    TraceStroke stroke;
     const char* label;
 };
 
+// The written one thin over a light fill, the uncompensated dashed, the compensated solid and
+// widest: they stay apart where they run together.
 constexpr Trace kTraces[] = {
-    {ResponsePicture::written, ResponsePicture::written_ink, "written"},
-    {ResponsePicture::uncompensated, ResponsePicture::uncompensated_ink, "actuator, uncompensated"},
-    {ResponsePicture::compensated, ResponsePicture::compensated_ink, "actuator, compensated"},
+    {ResponsePicture::written, {ResponsePicture::written_ink, 1.2}, "written"},
+    {ResponsePicture::uncompensated,
+     {ResponsePicture::uncompensated_ink, 1.6, 6.0, 3.0},
+     "actuator, uncompensated"},
+    {ResponsePicture::compensated,
+     {ResponsePicture::compensated_ink, 1.8},
+     "actuator, compensated"},
 };
-
-// How each trace is stroked, so that they stay apart where they run together: the written one
-// thin over a light fill, the uncompensated dashed, the compensated solid and widest.
-void stroke_style(cairo_t* cairo, ResponsePicture::Layer layer) {
-    static const double dashes[] = {6.0, 3.0};
-    cairo_set_dash(cairo, nullptr, 0, 0);
-    switch (layer) {
-        case ResponsePicture::written:
-            cairo_set_line_width(cairo, 1.2);
-            break;
-        case ResponsePicture::uncompensated:
-            cairo_set_line_width(cairo, 1.6);
-            cairo_set_dash(cairo, dashes, 2, 0);
-            break;
-        default:
-            cairo_set_line_width(cairo, 1.8);
-            break;
-    }
-}
 
 double largest(const std::vector<double>& values) {
     double peak = 0.0;
@@ -128,39 +116,17 @@ void ResponsePicture::draw_header(cairo_t* cairo, Layers layers) const {
     }
     // The legend: one entry for every kind of line in the plot, left to right.
     const double baseline = kCaptionBaseline + static_cast<double>(caption_.size()) * kRow + 4;
-    const double line_y = baseline - 4.5;
-    select_font(cairo, 10, false);
     double x = kLeft;
-    const auto entry = [&](const std::string& label, const auto& stroke) {
-        if (layers & legend) {
-            stroke();
-            cairo_move_to(cairo, std::round(x), line_y);
-            cairo_line_to(cairo, std::round(x) + kLegendLine, line_y);
-            cairo_stroke(cairo);
-            cairo_set_dash(cairo, nullptr, 0, 0);
-        }
-        if (layers & legend_text) {
-            select_font(cairo, 10, false);
-            cairo_set_source_rgb(cairo, 0, 0, 0);
-            show_text_at(cairo, x + kLegendLine + 5, baseline, label);
-        }
-        x += kLegendLine + 5 + text_width(cairo, label) + kLegendGap;
+    const auto entry = [&](const std::string& label, const TraceStroke& stroke) {
+        draw_legend_entry(cairo, x, baseline, label, stroke, (layers & legend) != 0,
+                          (layers & legend_text) != 0);
+        x += legend_entry_width(cairo, label) + kLegendGap;
     };
     for (const Trace& trace : kTraces) {
-        entry(trace.label, [&] {
-            cairo_set_source_rgb(cairo, trace.ink[0], trace.ink[1], trace.ink[2]);
-            stroke_style(cairo, trace.layer);
-        });
+        entry(trace.label, trace.stroke);
     }
-    const auto boundary = [cairo](const double* ink) {
-        return [cairo, ink] {
-            cairo_set_source_rgb(cairo, ink[0], ink[1], ink[2]);
-            cairo_set_line_width(cairo, 1.0);
-            cairo_set_dash(cairo, kBoundaryDashes, 2, 0);
-        };
-    };
-    entry("a bar begins", boundary(bar_line_ink));
-    entry("the score ends (then the actuator rings out)", boundary(end_line_ink));
+    entry("a bar begins", {bar_line_ink, 1.0, 4.0, 3.0});
+    entry("the score ends (then the actuator rings out)", {end_line_ink, 1.0, 4.0, 3.0});
 }
 
 void ResponsePicture::draw_bar_labels(cairo_t* cairo, Layers layers) const {
@@ -265,8 +231,7 @@ void ResponsePicture::draw_traces(cairo_t* cairo, Layers layers) const {
             cairo_set_source_rgb(cairo, 0.9, 0.9, 0.9);
             cairo_fill(cairo);
         }
-        cairo_set_source_rgb(cairo, trace.ink[0], trace.ink[1], trace.ink[2]);
-        stroke_style(cairo, trace.layer);
+        apply_stroke(cairo, trace.stroke);
         path(values);
         cairo_stroke(cairo);
     }
