@@ -28,13 +28,23 @@ std::map<std::string, std::string, std::less<>> written_clef_names(
 }
 
 // The written clef fitted to the actuator; as written when it cannot be fitted (said in the log).
-Clef fitted(const Clef& written, const std::string& name, const actuator::Declaration& actuator) {
+Clef fit_now(const Clef& written, const std::string& name, const actuator::Declaration& actuator) {
     try {
         return render::fit_clef(written, actuator).clef;
     } catch (const render::ClefFitError& error) {
         log::warning("clef \"" + name + "\" plays as written: cannot fit it: " + error.what());
         return written;
     }
+}
+
+// Kept in `cache` when there is one: "plays as written" is kept too (and logged once).
+Clef fitted(const Clef& written, const std::string& name, const actuator::Declaration& actuator,
+            ClefFitCache* cache) {
+    if (cache == nullptr) {
+        return fit_now(written, name, actuator);
+    }
+    return cache->fitted(name, written, actuator,
+                         [&](const Clef& clef) { return fit_now(clef, name, actuator); });
 }
 
 void log_fit(const std::string& name, const Clef& written, const actuator::Declaration& actuator) {
@@ -130,20 +140,21 @@ std::vector<BarClef> bar_clefs(const ScoreBundle& written, const DeviceClefs& cl
 
 ScoreBundle bind_device_clefs(const Registry& registry, const ScoreBundle& written,
                               const DeviceClefs& clefs,
-                              const std::map<std::string, std::string>& sent) {
+                              const std::map<std::string, std::string>& sent, ClefFitCache* cache) {
     std::map<std::string, Clef, std::less<>> device_clefs = written.clefs;  // by declaration id
     if (clefs.fit_to) {
         for (const auto& declaration : written.score.clefs) {
             if (sent.contains(declaration.href)) {
                 device_clefs.insert_or_assign(
-                    declaration.id,
-                    fitted(written.clefs.at(declaration.id), declaration.href, *clefs.fit_to));
+                    declaration.id, fitted(written.clefs.at(declaration.id), declaration.href,
+                                           *clefs.fit_to, cache));
             }
         }
     }
     for (const auto& [id, name] : written_clef_names(written, sent)) {
         if (clefs.fits(name)) {
-            device_clefs.insert_or_assign(id, fitted(registry.clef(name), name, *clefs.fit_to));
+            device_clefs.insert_or_assign(id,
+                                          fitted(registry.clef(name), name, *clefs.fit_to, cache));
             continue;
         }
         const auto device = clefs.for_written(name);

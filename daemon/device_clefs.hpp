@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "actuator/declaration.hpp"
+#include "daemon/clef_fit_cache.hpp"
 #include "daemon/registry/registry.hpp"
 #include "daemon/render/clef_fit.hpp"
 #include "score/bundle.hpp"
@@ -54,10 +55,12 @@ std::vector<BarClef> bar_clefs(const ScoreBundle& written, const DeviceClefs& cl
 // RegistryError (not_found) naming the mapping when a device clef is not in the registry,
 // DocumentError when the score's notes do not fit a device clef (a string or number it lacks).
 // With fit = auto, each clef no line maps (the sent ones too: they are written clefs) is fitted to
-// the actuator; one that cannot be fitted plays as written.
+// the actuator; one that cannot be fitted plays as written. With `cache`, each fit is looked up
+// there first and kept there (clef_fit_cache.hpp).
 ScoreBundle bind_device_clefs(const Registry& registry, const ScoreBundle& written,
                               const DeviceClefs& clefs,
-                              const std::map<std::string, std::string>& sent = {});
+                              const std::map<std::string, std::string>& sent = {},
+                              ClefFitCache* cache = nullptr);
 
 // The log of fitting (docs/clefs.md): what fitting each registry clef no line maps changed, and
 // what its fitted clef still asks that the actuator cannot give (render::clef_warnings). At start

@@ -1,14 +1,17 @@
 #include "daemon/haptics_service.hpp"
 
-#include <algorithm>
+#include <time.h>
 
+#include <algorithm>
+#include <mutex>
+
+#include "actuator/declaration.hpp"
+#include "common/log.hpp"
 #include "common/monotonic_clock.hpp"
 #include "common/number_text.hpp"
 #include "config.h"
-#include "actuator/declaration.hpp"
 #include "daemon/bus_errors.hpp"
 #include "daemon/calibration_reply.hpp"
-#include "common/log.hpp"
 #include "daemon/request_error.hpp"
 #include "dbus/haptics1_names.hpp"
 #include "dbus/name_owner_watch.hpp"
@@ -17,6 +20,21 @@
 namespace vibscore::daemon {
 
 namespace {
+
+// The CPU time of the calling thread: what a worker's job cost, charged to its caller.
+double thread_cpu_s() {
+    timespec now{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &now);
+    return static_cast<double>(now.tv_sec) + static_cast<double>(now.tv_nsec) / 1e9;
+}
+
+// A request that carries a document needs its CPU budget not overdrawn (admission.hpp: a cost
+// above 0 needs the bucket at or above it); its real CPU time is charged once its work has run.
+constexpr double kDocumentCpuProbe_s = 1e-9;
+
+Cost document_cost(std::size_t bytes) {
+    return {1.0, static_cast<double>(bytes), bytes > 0 ? kDocumentCpuProbe_s : 0.0};
+}
 
 DocumentKind kind_named(const std::string& kind) {
     const auto parsed = parse_document_kind(kind);
@@ -45,6 +63,7 @@ HapticsService::HapticsService(sdbus::IConnection& connection, const DaemonConfi
       announced_actuator_(Actuator()) {
     vanish_watch_ = dbus::watch_connections_leaving(connection, [this](const std::string& name) {
         callers_.forget(name);
+        admission_.forget(name);
         authorizer_.forget(name);
         try {
             playback_.call([name](Player& player) { player.sender_vanished(name); });
@@ -59,6 +78,7 @@ HapticsService::HapticsService(sdbus::IConnection& connection, const DaemonConfi
 }
 
 HapticsService::~HapticsService() {
+    *alive_ = false;
     unregisterAdaptor();
     host_.on_change(nullptr);
     playback_.set_listener(nullptr);
@@ -132,15 +152,21 @@ void HapticsService::driver_switched() {
                                   {"Driver", "DriverReason", "Capabilities", "Actuator"});
 }
 
-Caller HapticsService::admit_caller() {
+Caller HapticsService::admit_caller(const Cost& cost, ChargedTo* charged_to) {
     const Caller& caller = dbus::with_current_message(
         getObject(),
         [&](const sdbus::Message& message) -> const Caller& { return callers_.identify(message); });
-    if (!callers_.admit(caller.uid, monotonic_now_us())) {
-        throw RequestError(RequestError::Code::limit_exceeded,
-                           "too many requests from uid " + std::to_string(caller.uid) +
-                               "; the limit is " + number_text(callers_.requests_per_second()) +
-                               " per second for each user");
+    // The running configuration's budgets (a reload applies from the next request).
+    AdmissionBudgets budgets = config_.admission;
+    budgets.user.rate.requests = config_.requests_per_second;
+    budgets.user.burst.requests = config_.request_burst;
+    admission_.set_budgets(budgets);
+    const auto admitted = admission_.admit(caller.uid, caller.sender, cost, monotonic_now_us());
+    if (!admitted.admitted) {
+        throw RequestError(RequestError::Code::limit_exceeded, admitted.refusal);
+    }
+    if (charged_to != nullptr) {
+        *charged_to = admitted.charged_to;
     }
     return caller;
 }
@@ -162,47 +188,127 @@ void HapticsService::when_allowed(const std::shared_ptr<Reply>& reply, const Cal
         });
 }
 
+struct HapticsService::PlayWork {
+    std::optional<PlaybackRequest> request;
+    std::exception_ptr error;
+    double cpu_s = 0.0;
+};
+
 void HapticsService::Play(sdbus::Result<std::uint64_t>&& result, std::string score,
                           std::map<std::string, sdbus::Variant> options) {
     const auto reply = DeferredReply<std::uint64_t>::make(std::move(result), "Play");
     reply->start([&] {
-        const Caller caller = admit_caller();
+        // Charged before anything is read: the documents' bytes are counted, not parsed.
+        ChargedTo charged_to = ChargedTo::nothing;
+        const Caller caller =
+            admit_caller(document_cost(document_bytes(score, options)), &charged_to);
         const PlayOptions play_options = parse_play_options(options);
-        std::optional<Action> action;
-        if (needs_urgent_usage(play_options.usage)) {
-            action = Action::urgent_usage;
+        auto shared_score = std::make_shared<const std::string>(std::move(score));
+        if (!needs_urgent_usage(play_options.usage)) {
+            queue_play(reply, caller, charged_to, std::move(shared_score), play_options);
+            return;
         }
-        when_allowed(reply, caller, action,
-                     "Playing with usage " + std::string(to_string(play_options.usage)),
-                     [this, caller, score = std::move(score), play_options] {
-                         return play(caller, score, play_options);
-                     });
+        const std::string what = "Playing with usage " + std::string(to_string(play_options.usage));
+        authorizer_.decide(caller, Action::urgent_usage,
+                           [this, reply, caller, charged_to, shared_score, play_options,
+                            what](const Decision& decision) {
+                               reply->start([&] {
+                                   decision.require(what);
+                                   queue_play(reply, caller, charged_to, shared_score,
+                                              play_options);
+                               });
+                           });
     });
 }
 
-std::uint64_t HapticsService::play(const Caller& caller, const std::string& score,
-                                   const PlayOptions& options) {
+void HapticsService::queue_play(const std::shared_ptr<DeferredReply<std::uint64_t>>& reply,
+                                const Caller& caller, ChargedTo charged_to,
+                                std::shared_ptr<const std::string> score,
+                                const PlayOptions& options) {
     // A request that would be refused is refused before its score is read or rendered.
     const double cool_down_s = config_.limits.cool_down_s();
-    const auto admit = [uid = caller.uid, usage = options.usage, repeat = options.repeat,
-                        cool_down_s](Player& player) {
+    playback_.call([uid = caller.uid, usage = options.usage, repeat = options.repeat,
+                    cool_down_s](Player& player) {
         player.check_cool_down(uid, usage, repeat, cool_down_s);
         player.check_admission(usage, repeat);
+    });
+    // The worker gets a copy of what it needs of the configuration: a reload may replace the
+    // running one meanwhile. Fits made for other [clefs] are not kept.
+    if (config_.device_clefs != fit_cache_clefs_) {
+        fit_cache_.clear();
+        fit_cache_clefs_ = config_.device_clefs;
+    }
+    auto job = [this, alive = alive_, reply, caller, charged_to, score = std::move(score), options,
+                device_clefs = config_.device_clefs,
+                separation_s = config_.separation_ms / 1000.0]() mutable {
+        auto work = prepare_play(*score, options, device_clefs, separation_s);
+        score.reset();
+        // Back on the bus thread, which alone talks to the bus and the player.
+        playback_.to_bus([this, alive = std::move(alive), reply = std::move(reply), caller,
+                          charged_to, options, work = std::move(work)] {
+            if (!*alive) {
+                return;
+            }
+            admission_.charge_after(caller.uid, caller.sender, charged_to, {0.0, 0.0, work->cpu_s},
+                                    monotonic_now_us());
+            reply->finish([&] {
+                if (work->error) {
+                    std::rethrow_exception(work->error);
+                }
+                return start_play(caller, std::move(*work->request), options);
+            });
+        });
     };
-    playback_.call(admit);
-    PlaybackRequest request =
-        make_playback_request(find_score_to_play(registry_, score, options, config_.device_clefs),
-                              options, config_.separation_ms / 1000.0);
+    auto& lane = Admission::exempt(caller.uid) ? exempt_work_ : work_;
+    switch (lane.push(caller.uid, caller.sender, std::move(job))) {
+        case FairWorkQueue::Pushed::queued:
+            return;
+        case FairWorkQueue::Pushed::connection_full:
+            throw RequestError(RequestError::Code::limit_exceeded,
+                               "connection " + caller.sender + " (uid " +
+                                   std::to_string(caller.uid) + ") already has " +
+                                   std::to_string(lane.options().per_connection) +
+                                   " Plays waiting for the worker, the most one connection may");
+        case FairWorkQueue::Pushed::queue_full:
+            throw RequestError(RequestError::Code::limit_exceeded,
+                               std::to_string(lane.options().total) +
+                                   " Plays are waiting for the worker, the most it holds");
+    }
+}
+
+std::shared_ptr<HapticsService::PlayWork> HapticsService::prepare_play(
+    const std::string& score, const PlayOptions& options, const DeviceClefs& device_clefs,
+    double separation_s) {
+    auto work = std::make_shared<PlayWork>();
+    const double cpu_before = thread_cpu_s();
+    try {
+        std::shared_lock lock(registry_lock_);
+        auto found = find_score_to_play(registry_, score, options, device_clefs, &fit_cache_);
+        lock.unlock();
+        work->request = make_playback_request(found, options, separation_s);
+    } catch (...) {
+        work->error = std::current_exception();
+    }
+    work->cpu_s = thread_cpu_s() - cpu_before;
+    return work;
+}
+
+std::uint64_t HapticsService::start_play(const Caller& caller, PlaybackRequest request,
+                                         const PlayOptions& options) {
     request.owner = caller.uid;
     request.sender = caller.sender;
     request.max_on_time_s = config_.limits.max_on_time(options.usage);
     const auto label = request.label;
     // Asked again with the play: the caller's previous playback may have been cut off while
     // this one's score was rendered.
-    const auto id = playback_.call([admit, request = std::move(request)](Player& player) mutable {
-        admit(player);
-        return player.play(std::move(request));
-    });
+    const double cool_down_s = config_.limits.cool_down_s();
+    const auto id =
+        playback_.call([uid = caller.uid, usage = options.usage, repeat = options.repeat,
+                        cool_down_s, request = std::move(request)](Player& player) mutable {
+            player.check_cool_down(uid, usage, repeat, cool_down_s);
+            player.check_admission(usage, repeat);
+            return player.play(std::move(request));
+        });
     log::debug("playback " + std::to_string(id) + ": " + label + " (" +
                    std::string(to_string(options.usage)) + ") for uid " +
                    std::to_string(caller.uid),
@@ -284,10 +390,15 @@ void HapticsService::StopAll(sdbus::Result<>&& result) {
 void HapticsService::Compose(sdbus::Result<>&& result, std::string name, std::string document) {
     const auto reply = DeferredReply<>::make(std::move(result), "Compose");
     reply->start([&] {
-        const Caller caller = admit_caller();
+        const Caller caller = admit_caller(document_cost(document.size()));
         when_allowed(reply, caller, Action::compose, "Compose",
                      [this, caller, name = std::move(name), document = std::move(document)] {
+                         std::unique_lock lock(registry_lock_);
                          const auto stored = registry_.compose(name, document);
+                         lock.unlock();
+                         if (stored == DocumentKind::clef) {
+                             fit_cache_.clear();  // the fits of the clef composed over are stale
+                         }
                          log::info("uid " + std::to_string(caller.uid) + " composed " +
                                        std::string(to_string(stored)) + " \"" + name + "\"",
                                    {{"CALLER_UID", std::to_string(caller.uid)}, {"SCORE", name}});
@@ -306,7 +417,13 @@ void HapticsService::Delete(sdbus::Result<>&& result, std::string kind, std::str
         const Caller caller = admit_caller();
         const auto which = kind_named(kind);
         when_allowed(reply, caller, Action::compose, "Delete", [this, caller, which, name] {
-            registry_.remove(which, name);
+            {
+                const std::unique_lock lock(registry_lock_);
+                registry_.remove(which, name);
+            }
+            if (which == DocumentKind::clef) {
+                fit_cache_.clear();
+            }
             log::info("uid " + std::to_string(caller.uid) + " deleted " +
                           std::string(to_string(which)) + " \"" + name + "\"",
                       {{"CALLER_UID", std::to_string(caller.uid)}, {"SCORE", name}});
@@ -343,7 +460,7 @@ std::string HapticsService::Origin(const std::string& kind, const std::string& n
 std::vector<sdbus::Struct<std::string, std::string>> HapticsService::BarClefs(
     const std::string& score) {
     return guarded("BarClefs", [&] {
-        admit_caller();
+        admit_caller(document_cost(document_bytes(score, PlayOptions{})));
         std::vector<sdbus::Struct<std::string, std::string>> bars;
         for (auto& bar : bar_clefs(find_score_to_play(registry_, score, PlayOptions{}).bundle,
                                    config_.device_clefs)) {

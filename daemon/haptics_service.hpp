@@ -5,19 +5,23 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <shared_mutex>
 #include <string>
 #include <vector>
 
 #include "daemon/actuator_host.hpp"
+#include "daemon/admission.hpp"
 #include "daemon/authority.hpp"
 #include "daemon/calibration_reply.hpp"
 #include "daemon/calibrator.hpp"
 #include "daemon/callers.hpp"
+#include "daemon/clef_fit_cache.hpp"
 #include "daemon/config.hpp"
 #include "daemon/deferred_reply.hpp"
 #include "daemon/play_request.hpp"
 #include "daemon/playback_thread.hpp"
 #include "daemon/registry/registry.hpp"
+#include "daemon/work_queue.hpp"
 #include "haptics1-adaptor.h"
 
 namespace vibscore::daemon {
@@ -27,7 +31,11 @@ namespace vibscore::daemon {
 // thread) the player and the actuator host, and turns what they report into signals. Every
 // failure leaves as a named D-Bus error (bus_errors.hpp); nothing a caller sends can stop the
 // daemon. Methods that may need polkit's answer reply when it comes (DeferredReply), so the bus
-// thread never waits for one caller's authorization while others call.
+// thread never waits for one caller's authorization while others call. Every method is admitted
+// by work (admission.hpp): its cost is charged to its connection's and its user's budgets before
+// anything is read. Play's document work (parsing, binding, fitting, rendering) runs on a fair
+// worker (work_queue.hpp), never on the bus thread; its result comes back to the bus thread,
+// which starts the playback and replies.
 class HapticsService final : public sdbus::AdaptorInterfaces<org::vibscore::Haptics1_adaptor>,
                              public PlayerListener {
   public:
@@ -73,8 +81,10 @@ class HapticsService final : public sdbus::AdaptorInterfaces<org::vibscore::Hapt
     void Intensity(const double& value) override;
     std::string Version() override;
 
-    // The caller of the method being handled; counts the request against its user's rate.
-    Caller admit_caller();
+    // The caller of the method being handled, admitted with `cost` (one request by default);
+    // throws RequestError (limit_exceeded) naming the budget it is over. `charged_to`: where the
+    // cost went, to charge the work's CPU time to the same.
+    Caller admit_caller(const Cost& cost = {1.0, 0.0, 0.0}, ChargedTo* charged_to = nullptr);
     // Runs `then` under `reply` once `caller` may do `action` (at once when no action is needed
     // or the answer is known; when polkit answers otherwise); a refusal is the reply instead.
     // `then` runs later, so it owns what it uses.
@@ -82,7 +92,19 @@ class HapticsService final : public sdbus::AdaptorInterfaces<org::vibscore::Hapt
     void when_allowed(const std::shared_ptr<Reply>& reply, const Caller& caller,
                       std::optional<Action> action, std::string what, Then then);
 
-    std::uint64_t play(const Caller& caller, const std::string& score, const PlayOptions& options);
+    // What Play's worker hands back to the bus thread.
+    struct PlayWork;
+    // Refuses what the player would refuse (cool-down, arbitration) before any document work,
+    // then queues that work for the worker, which replies through `reply` when it is done.
+    void queue_play(const std::shared_ptr<DeferredReply<std::uint64_t>>& reply,
+                    const Caller& caller, ChargedTo charged_to,
+                    std::shared_ptr<const std::string> score, const PlayOptions& options);
+    // On the worker: the score found, bound, fitted and rendered into a request.
+    std::shared_ptr<PlayWork> prepare_play(const std::string& score, const PlayOptions& options,
+                                           const DeviceClefs& device_clefs, double separation_s);
+    // On the bus thread again: the request handed to the player.
+    std::uint64_t start_play(const Caller& caller, PlaybackRequest request,
+                             const PlayOptions& options);
     Player::StopResult stop(const Caller& caller, std::uint64_t playback_id, bool privileged);
     void set_intensity(const Caller& caller, double value);
     void start_calibration(const std::shared_ptr<DeferredReply<CalibrationReply>>& reply,
@@ -103,6 +125,18 @@ class HapticsService final : public sdbus::AdaptorInterfaces<org::vibscore::Hapt
     std::map<std::string, std::string> announced_actuator_;
     sdbus::Slot vanish_watch_;  // NameOwnerChanged: a caller left the bus
     Calibrator* calibrator_ = nullptr;
+
+    Admission admission_;  // the bus thread's
+    // Compose and Delete (bus thread) change the registry; the workers read it.
+    std::shared_mutex registry_lock_;
+    ClefFitCache fit_cache_;
+    DeviceClefs fit_cache_clefs_;  // the [clefs] the cache was filled for: another empties it
+    // False once the service is gone: a worker's result that comes back later is dropped.
+    std::shared_ptr<bool> alive_ = std::make_shared<bool>(true);
+    // Last, so they are stopped before anything their jobs use: root's and the daemon's own
+    // work on a lane of their own (their head-room), everyone else's on the fair one.
+    FairWorkQueue exempt_work_{FairWorkQueue::Options{1, 64, 256}};
+    FairWorkQueue work_{FairWorkQueue::Options{}};
 };
 
 }  // namespace vibscore::daemon

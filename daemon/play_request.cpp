@@ -72,8 +72,27 @@ PlayOptions parse_play_options(const std::map<std::string, sdbus::Variant>& opti
     return parsed;
 }
 
+std::size_t document_bytes(const std::string& score, const PlayOptions& options) {
+    std::size_t bytes = is_inline_document(score) ? score.size() : 0;
+    for (const auto& [href, document] : options.clef_documents) {
+        bytes += href.size() + document.size();
+    }
+    return bytes;
+}
+
+std::size_t document_bytes(const std::string& score,
+                           const std::map<std::string, sdbus::Variant>& options) {
+    PlayOptions counted;
+    const auto clefs = options.find("clefs");
+    if (clefs != options.end() && dbus::variant_signature(clefs->second) == "a{ss}") {
+        counted.clef_documents = clefs->second.get<std::map<std::string, std::string>>();
+    }
+    return document_bytes(score, counted);
+}
+
 ScoreToPlay find_score_to_play(const Registry& registry, const std::string& score,
-                               const PlayOptions& options, const DeviceClefs& device_clefs) {
+                               const PlayOptions& options, const DeviceClefs& device_clefs,
+                               ClefFitCache* fit_cache) {
     const std::string& clef_override = options.clef;
     ScoreToPlay found;
     if (is_inline_document(score)) {
@@ -93,8 +112,8 @@ ScoreToPlay find_score_to_play(const Registry& registry, const std::string& scor
             bind_clefs(ParsedScore{found.bundle.score, found.bundle.where}, found.bundle.file,
                        [&](const ClefDeclaration&, const SourceLocation&) { return clef; });
     } else if (!device_clefs.empty()) {
-        found.bundle =
-            bind_device_clefs(registry, found.bundle, device_clefs, options.clef_documents);
+        found.bundle = bind_device_clefs(registry, found.bundle, device_clefs,
+                                         options.clef_documents, fit_cache);
     }
     return found;
 }

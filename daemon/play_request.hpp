@@ -6,10 +6,10 @@
 #include <map>
 #include <string>
 
+#include "common/usage.hpp"
 #include "daemon/device_clefs.hpp"
 #include "daemon/player.hpp"
 #include "daemon/registry/registry.hpp"
-#include "common/usage.hpp"
 #include "score/bundle.hpp"
 
 // The pure part of Play: the caller's options checked, the score it names found, and that score
@@ -45,8 +45,18 @@ struct ScoreToPlay {
 // sent along with the score play as sent: they are the caller's choice, as an override is.
 // Throws RegistryError (not_found, invalid_document, limit_exceeded) as the registry does,
 // RequestError (invalid) for clef documents sent with a registry name.
+// With `fit_cache`, clefs fitted to the actuator are looked up and kept there.
 ScoreToPlay find_score_to_play(const Registry& registry, const std::string& score,
-                               const PlayOptions& options, const DeviceClefs& device_clefs = {});
+                               const PlayOptions& options, const DeviceClefs& device_clefs = {},
+                               ClefFitCache* fit_cache = nullptr);
+
+// The bytes of the documents a Play carries, its cost at admission (admission.hpp): the inline
+// score's and each clef document sent along; 0 for a registry score's name. Counted, not read.
+std::size_t document_bytes(const std::string& score, const PlayOptions& options);
+// The same from Play's options as they came over the bus, before they are checked: "clefs" counts
+// when it is a dictionary of strings.
+std::size_t document_bytes(const std::string& score,
+                           const std::map<std::string, sdbus::Variant>& options);
 
 // The player's request: the score performed from the start bar, whose cues the player reads as
 // it plays them, with the caller's usage, repeat and intensity (owner and sender are the
