@@ -8,36 +8,19 @@
 #include <stdexcept>
 #include <vector>
 
+#include "client/feedback_link.hpp"
 #include "client/offline_verbs.hpp"
 #include "common/closest_name.hpp"
 #include "common/quoted_text.hpp"
+#include "dbus/feedback1_names.hpp"
 #include "dbus/haptics1_names.hpp"
 #include "dbus/sdbus_compat.hpp"
 #include "feedback/user_scores.hpp"
-#include "feedback1-proxy.h"
 #include "haptics1-proxy.h"
 
 namespace vibscore::client {
 
 namespace {
-
-constexpr const char* kFeedbackName = "org.sigxcpu.Feedback";
-constexpr const char* kFeedbackPath = "/org/sigxcpu/Feedback";
-
-class FeedbackLink : public sdbus::ProxyInterfaces<org::vibscore::Feedback1_proxy> {
-  public:
-    explicit FeedbackLink(std::unique_ptr<sdbus::IConnection> connection)
-        : ProxyInterfaces(*connection, dbus::service_name(kFeedbackName),
-                          dbus::object_path(kFeedbackPath)),
-          connection_(std::move(connection)) {
-        registerProxy();
-    }
-    ~FeedbackLink() { unregisterProxy(); }
-
-  private:
-    void onEventScoresChanged() override {}
-    std::unique_ptr<sdbus::IConnection> connection_;
-};
 
 // vibscored's registry, asked which scores it holds.
 class Registry : public sdbus::ProxyInterfaces<org::vibscore::Haptics1_proxy> {
@@ -102,7 +85,7 @@ bool not_reachable(const sdbus::Error& error) {
 std::string why(const sdbus::Error& error) {
     return error.getName() == "org.freedesktop.DBus.Error.UnknownInterface" ||
                    error.getName() == "org.freedesktop.DBus.Error.UnknownMethod"
-               ? "org.sigxcpu.Feedback is served by another program (feedbackd?)"
+               ? std::string(feedback1::kBusName) + " is served by another program (feedbackd?)"
                : "vibscore-feedback cannot be reached on the session bus";
 }
 
@@ -209,8 +192,8 @@ int assign(const AssignRequest& request, std::ostream& out, std::ostream& err) {
         } catch (const sdbus::Error& error) {
             if (!not_reachable(error)) {
                 err << "vibscore: " << error.getMessage() << "\n";
-                return error.getName() == "org.freedesktop.DBus.Error.InvalidArgs" ? exit_usage
-                                                                                   : exit_failed;
+                return error.getName() == feedback1::errors::kInvalidArgs ? exit_usage
+                                                                          : exit_failed;
             }
             reason = why(error);
         }

@@ -4,10 +4,12 @@
 #include <exception>
 #include <memory>
 #include <stdexcept>
+#include <string_view>
 
+#include "common/log.hpp"
 #include "common/monotonic_clock.hpp"
 #include "common/quoted_text.hpp"
-#include "common/log.hpp"
+#include "dbus/feedback1_names.hpp"
 #include "dbus/name_owner_watch.hpp"
 #include "dbus/sdbus_compat.hpp"
 
@@ -15,11 +17,18 @@ namespace vibscore::feedback {
 
 namespace {
 
-constexpr const char* kObjectPath = "/org/sigxcpu/Feedback";
-constexpr const char* kInvalidArgs = "org.freedesktop.DBus.Error.InvalidArgs";
-constexpr const char* kFailed = "org.freedesktop.DBus.Error.Failed";
-constexpr const char* kLimitExceeded = "org.vibscore.Feedback1.Error.LimitExceeded";
-constexpr const char* kBusy = "org.vibscore.Feedback1.Error.Busy";
+using feedback1::errors::kBusy;
+using feedback1::errors::kFailed;
+using feedback1::errors::kInvalidArgs;
+using feedback1::errors::kLimitExceeded;
+
+// The generated adaptors serve the interfaces the names header spells: checked where both meet.
+static_assert(std::string_view(org::sigxcpu::Feedback_adaptor::INTERFACE_NAME) ==
+              feedback1::kFeedbackdInterface);
+static_assert(std::string_view(org::sigxcpu::Feedback::Haptic_adaptor::INTERFACE_NAME) ==
+              feedback1::kHapticInterface);
+static_assert(std::string_view(org::vibscore::Feedback1_adaptor::INTERFACE_NAME) ==
+              feedback1::kInterface);
 
 sdbus::Error invalid_args(const std::string& message) {
     return dbus::bus_error(kInvalidArgs, message);
@@ -54,7 +63,7 @@ void read_hints(const std::map<std::string, sdbus::Variant>& hints, Trigger& tri
 FeedbackService::FeedbackService(sdbus::IConnection& session_bus, sdbus::IConnection& system_bus,
                                  daemon::EventLoop& loop, Theme theme, FeedbackSettings settings,
                                  std::optional<std::filesystem::path> user_scores)
-    : AdaptorInterfaces(session_bus, dbus::object_path(kObjectPath)),
+    : AdaptorInterfaces(session_bus, dbus::object_path(feedback1::kObjectPath)),
       haptics_(system_bus, {[this](std::uint64_t playback, const std::string&) {
                                 table_.playback_finished(playback);
                             },

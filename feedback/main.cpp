@@ -15,6 +15,7 @@
 #include "common/log.hpp"
 #include "common/usage.hpp"
 #include "config.h"
+#include "dbus/feedback1_names.hpp"
 #include "dbus/sdbus_compat.hpp"
 #include "feedback/feedback_service.hpp"
 #include "feedback/feedbackd_theme.hpp"
@@ -26,8 +27,6 @@ using namespace vibscore;
 using namespace vibscore::feedback;
 
 namespace {
-
-constexpr const char* kBusName = "org.sigxcpu.Feedback";
 
 struct Options {
     std::string theme;
@@ -76,16 +75,16 @@ int serve(const Options& options) {
     }
     FeedbackService service(*session_bus, *system_bus, loop, theme, std::move(settings),
                             user_scores);
-    dbus::request_name(*session_bus, kBusName);
+    dbus::request_name(*session_bus, feedback1::kBusName);
     daemon::BusLoopBinding session_binding(loop, *session_bus);
     daemon::BusLoopBinding system_binding(loop, *system_bus);
 
     auto on_term = loop.on_signal(SIGTERM, [&] { loop.exit(0); });
     auto on_int = loop.on_signal(SIGINT, [&] { loop.exit(0); });
-    log::info("vibscore-feedback " VIBSCORE_VERSION " ready on " + std::string(kBusName) +
-              ", profile " + options.profile);
+    log::info("vibscore-feedback " VIBSCORE_VERSION " ready on " +
+              std::string(feedback1::kBusName) + ", profile " + options.profile);
     const int code = loop.run();
-    dbus::release_name(*session_bus, kBusName);
+    dbus::release_name(*session_bus, feedback1::kBusName);
     return code;
 }
 

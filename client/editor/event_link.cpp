@@ -2,41 +2,18 @@
 
 #include <sdbus-c++/sdbus-c++.h>
 
-#include "dbus/sdbus_compat.hpp"
+#include "client/feedback_link.hpp"
 #include "feedback/feedbackd_theme.hpp"
 #include "feedback/profile.hpp"
 #include "feedback/theme.hpp"
 #include "feedback/user_scores.hpp"
-#include "feedback1-proxy.h"
 #include "json/build_tree.hpp"
 
 namespace vibscore::editor {
 
-namespace {
-
-constexpr const char* kFeedbackName = "org.sigxcpu.Feedback";
-constexpr const char* kFeedbackPath = "/org/sigxcpu/Feedback";
-
-}  // namespace
-
-class EventLink::Live : public sdbus::ProxyInterfaces<org::vibscore::Feedback1_proxy> {
-  public:
-    explicit Live(std::unique_ptr<sdbus::IConnection> connection)
-        : ProxyInterfaces(*connection, dbus::service_name(kFeedbackName),
-                          dbus::object_path(kFeedbackPath)),
-          connection_(std::move(connection)) {
-        registerProxy();
-    }
-    ~Live() { unregisterProxy(); }
-
-  private:
-    void onEventScoresChanged() override {}
-    std::unique_ptr<sdbus::IConnection> connection_;
-};
-
 EventLink::EventLink() {
     try {
-        auto live = std::make_unique<Live>(sdbus::createSessionBusConnection());
+        auto live = std::make_unique<client::FeedbackLink>(sdbus::createSessionBusConnection());
         live->EventScores();  // vibscore-feedback answers, or the file is used
         live_ = std::move(live);
     } catch (const sdbus::Error&) {

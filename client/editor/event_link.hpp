@@ -7,6 +7,10 @@
 
 #include "client/editor/events.hpp"
 
+namespace vibscore::client {
+class FeedbackLink;
+}
+
 namespace vibscore::editor {
 
 // Which score each event of the feedback theme plays for this user, and choosing one: through
@@ -29,8 +33,7 @@ class EventLink {
     bool live() const { return live_ != nullptr; }
 
   private:
-    class Live;
-    std::unique_ptr<Live> live_;
+    std::unique_ptr<client::FeedbackLink> live_;  // client/feedback_link.hpp
 };
 
 }  // namespace vibscore::editor
