@@ -4,20 +4,9 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "common/trim.hpp"
+
 namespace vibscore::actuator::calibration::text {
-
-namespace {
-
-std::string trimmed(const std::string& s) {
-    const auto begin = s.find_first_not_of(" \t\r");
-    if (begin == std::string::npos) {
-        return "";
-    }
-    const auto end = s.find_last_not_of(" \t\r");
-    return s.substr(begin, end - begin + 1);
-}
-
-}  // namespace
 
 std::vector<CsvLine> csv_lines(const std::string& text) {
     std::vector<CsvLine> lines;
@@ -28,7 +17,7 @@ std::vector<CsvLine> csv_lines(const std::string& text) {
         const std::string raw =
             text.substr(start, end == std::string::npos ? std::string::npos : end - start);
         ++number;
-        const std::string line = trimmed(raw);
+        const std::string line = trim(raw);
         if (!line.empty()) {
             CsvLine out;
             out.number = number;
@@ -37,7 +26,7 @@ std::vector<CsvLine> csv_lines(const std::string& text) {
             std::size_t from = 0;
             while (true) {
                 const auto comma = line.find(',', from);
-                out.fields.push_back(trimmed(line.substr(
+                out.fields.push_back(trim(line.substr(
                     from, comma == std::string::npos ? std::string::npos : comma - from)));
                 if (comma == std::string::npos) {
                     break;

@@ -10,25 +10,17 @@
 #include <stdexcept>
 #include <vector>
 
-#include "common/number_text.hpp"
-#include "daemon/config.hpp"
-#include "common/log.hpp"
 #include "common/atomic_file.hpp"
+#include "common/log.hpp"
+#include "common/number_text.hpp"
+#include "common/trim.hpp"
+#include "daemon/config.hpp"
 
 namespace vibscore::daemon {
 
 namespace {
 
 using actuator::Kind;
-
-std::string trim(const std::string& text) {
-    const auto first = text.find_first_not_of(" \t\r");
-    if (first == std::string::npos) {
-        return "";
-    }
-    const auto last = text.find_last_not_of(" \t\r");
-    return text.substr(first, last - first + 1);
-}
 
 // A number within [actuator]'s limit for `limit.key`, scaled from the key's units.
 double limited(const actuator::Limit& limit, const std::string& value, const std::string& where) {

@@ -4,6 +4,7 @@
 #include "common/closest_name.hpp"
 #include "common/number_text.hpp"
 #include "common/quoted_text.hpp"
+#include "common/trim.hpp"
 
 namespace vibscore {
 namespace {
@@ -16,6 +17,25 @@ TEST(NumberText, PrintsTheShortestDecimalThatReadsBackTheSame) {
     EXPECT_EQ(number_text(0.1), "0.1");
     EXPECT_EQ(number_text(2.0 / 3.0), "0.6666666666666666");
     EXPECT_EQ(number_text(0.0), "0");
+}
+
+TEST(FixedText, RoundsToItsPlacesAndDropsTrailingZeros) {
+    EXPECT_EQ(fixed_text(96.64, 1), "96.6");
+    EXPECT_EQ(fixed_text(96.66, 1), "96.7");
+    EXPECT_EQ(fixed_text(175.0, 1), "175");
+    EXPECT_EQ(fixed_text(1.204, 2), "1.2");
+    EXPECT_EQ(fixed_text(0.04, 1), "0");  // the last value that rounds to nothing
+    EXPECT_EQ(fixed_text(0.06, 1), "0.1");
+    EXPECT_EQ(fixed_text(1000.0, 0), "1000");  // no point: no zeros of the number dropped
+    EXPECT_EQ(fixed_text(1e300, 1).size(), 301u);
+}
+
+TEST(HzAndMsText, WriteATenthOfAHertzAndOfAMillisecond) {
+    EXPECT_EQ(hz_text(175.0), "175 Hz");
+    EXPECT_EQ(hz_text(96.625), "96.6 Hz");
+    EXPECT_EQ(ms_text(0.040), "40 ms");
+    EXPECT_EQ(ms_text(0.0374), "37.4 ms");
+    EXPECT_EQ(ms_text(0.00004), "0 ms");
 }
 
 TEST(RoundedText, PrintsAtMostSixDigitsWithoutTrailingZerosOrExponents) {
@@ -77,6 +97,25 @@ TEST(ClosestName, FindsTheNameATypoWasMeantToBe) {
 TEST(ClosestName, OffersNothingWhenNoNameIsClose) {
     EXPECT_EQ(closest_name("frobnicate", {"list", "play"}), std::nullopt);
     EXPECT_EQ(closest_name("x", {}), std::nullopt);
+}
+
+TEST(Trim, DropsSpacesTabsAndCarriageReturnsAtBothEndsOnly) {
+    EXPECT_EQ(trim("  kind = lra \t\r"), "kind = lra");
+    EXPECT_EQ(trim("\tx"), "x");
+    EXPECT_EQ(trim("x\r"), "x");
+    EXPECT_EQ(trim(" a \t b "), "a \t b");  // blanks inside stay
+    EXPECT_EQ(trim("x"), "x");
+}
+
+TEST(Trim, OfNothingOrOnlyBlanksIsEmpty) {
+    EXPECT_EQ(trim(""), "");
+    EXPECT_EQ(trim(" "), "");
+    EXPECT_EQ(trim(" \t\r \r"), "");
+}
+
+TEST(Trim, KeepsNewlinesAndOtherWhitespaceWhichAreNotBlanks) {
+    EXPECT_EQ(trim("\nx\n"), "\nx\n");
+    EXPECT_EQ(trim(" \v\fx "), "\v\fx");
 }
 
 }  // namespace
