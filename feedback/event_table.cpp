@@ -4,10 +4,31 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "common/quoted_text.hpp"
 #include "common/log.hpp"
+#include "common/quoted_text.hpp"
 
 namespace vibscore::feedback {
+
+std::vector<std::string> parse_app_id_list(const std::string& list) {
+    std::vector<std::string> items;
+    std::size_t start = 0;
+    while (start <= list.size()) {
+        const auto comma = std::min(list.find(',', start), list.size());
+        if (comma > start) {
+            items.push_back(list.substr(start, comma - start));
+        }
+        start = comma + 1;
+    }
+    return items;
+}
+
+std::string app_id_list(const std::vector<std::string>& app_ids) {
+    std::string list;
+    for (const auto& id : app_ids) {
+        list += (list.empty() ? "" : ",") + id;
+    }
+    return list;
+}
 
 EventTable::EventTable(Haptics& haptics, Theme theme, FeedbackSettings settings,
                        Callbacks callbacks)

@@ -40,8 +40,15 @@ struct FeedbackSettings {
     // max-haptic-strength: no vibration is stronger (0..1).
     double max_haptic_strength = 1.0;
     // allow-important: the app ids whose "important" hint overrides the profile.
+    // feedbackd 0.8.2's default, and vibscore-feedback's --allow-important default too.
     std::vector<std::string> allow_important = {"org.sigxcpu.FbdAlertSlider", "org.gnome.clocks"};
 };
+
+// allow-important as a command line gives it, "a,b": its app ids, in order. Empty items ("",
+// ",,", a trailing comma) name none, so "" is the empty list.
+std::vector<std::string> parse_app_id_list(const std::string& list);
+// The inverse: the ids joined by commas ("" for none), to show a default on the command line.
+std::string app_id_list(const std::vector<std::string>& app_ids);
 
 // A TriggerFeedback call.
 struct Trigger {

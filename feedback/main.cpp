@@ -4,7 +4,6 @@
 
 #include <sdbus-c++/sdbus-c++.h>
 
-#include <algorithm>
 #include <csignal>
 #include <filesystem>
 #include <iostream>
@@ -28,27 +27,15 @@ using namespace vibscore::feedback;
 
 namespace {
 
+// The command line's defaults are FeedbackSettings' (feedbackd's), written once there.
 struct Options {
     std::string theme;
-    std::string profile = "full";
-    std::string haptic_usage = "touch";
-    double max_haptic_strength = 1.0;
-    std::string allow_important = "org.sigxcpu.FbdAlertSlider,org.gnome.clocks";
+    std::string profile = std::string(to_string(FeedbackSettings().profile));
+    std::string haptic_usage = FeedbackSettings().haptic_usage;
+    double max_haptic_strength = FeedbackSettings().max_haptic_strength;
+    std::string allow_important = app_id_list(FeedbackSettings().allow_important);
     bool verbose = false;
 };
-
-std::vector<std::string> split_list(const std::string& list) {
-    std::vector<std::string> items;
-    std::size_t start = 0;
-    while (start <= list.size()) {
-        const auto comma = std::min(list.find(',', start), list.size());
-        if (comma > start) {
-            items.push_back(list.substr(start, comma - start));
-        }
-        start = comma + 1;
-    }
-    return items;
-}
 
 int serve(const Options& options) {
     const Theme theme = load_theme(options.theme, ThemeSearch::from_environment());
@@ -66,7 +53,7 @@ int serve(const Options& options) {
     settings.profile = *parse_profile(options.profile);
     settings.haptic_usage = options.haptic_usage;
     settings.max_haptic_strength = options.max_haptic_strength;
-    settings.allow_important = split_list(options.allow_important);
+    settings.allow_important = parse_app_id_list(options.allow_important);
     std::optional<std::filesystem::path> user_scores;
     try {
         user_scores = user_scores_path();

@@ -369,5 +369,26 @@ TEST_F(AnEventTable, VibratesInQuietButNotInSilentNorWhenVibscoredRefuses) {
     EXPECT_FALSE(table.vibrate(":1.7", "a", {{1.0, 100}}));
 }
 
+TEST(AppIdList, ReadsTheIdsOfACommaSeparatedListInOrder) {
+    EXPECT_EQ(parse_app_id_list("org.gnome.clocks"),
+              (std::vector<std::string>{"org.gnome.clocks"}));
+    EXPECT_EQ(parse_app_id_list("a,b,c"), (std::vector<std::string>{"a", "b", "c"}));
+}
+
+TEST(AppIdList, EmptyItemsNameNoneSoAnEmptyListAllowsNone) {
+    EXPECT_TRUE(parse_app_id_list("").empty());
+    EXPECT_TRUE(parse_app_id_list(",").empty());
+    EXPECT_TRUE(parse_app_id_list(",,").empty());
+    EXPECT_EQ(parse_app_id_list(",a,,b,"), (std::vector<std::string>{"a", "b"}));
+}
+
+TEST(AppIdList, WritesBackWhatItReadsSoTheCommandLineDefaultIsTheSettingsDefault) {
+    EXPECT_EQ(app_id_list({}), "");
+    EXPECT_EQ(app_id_list({"a"}), "a");
+    const auto defaults = FeedbackSettings().allow_important;
+    EXPECT_EQ(app_id_list(defaults), "org.sigxcpu.FbdAlertSlider,org.gnome.clocks");
+    EXPECT_EQ(parse_app_id_list(app_id_list(defaults)), defaults);
+}
+
 }  // namespace
 }  // namespace vibscore::feedback
