@@ -43,6 +43,24 @@ double Physics::lra_gain(double frequency_hz, double resonance_hz, double q) {
     return (1.0 / q) / std::sqrt(detuning * detuning + damping * damping);
 }
 
+std::optional<Physics::GainBand> Physics::lra_band(double gain, double resonance_hz, double q) {
+    // lra_gain(f) >= gain with y = (f/f0)^2:  y^2 + (1/Q^2 - 2) y + 1 - 1/(Q gain)^2 <= 0.
+    const double inv_q2 = 1.0 / (q * q);
+    const double b = inv_q2 - 2.0;
+    const double c = 1.0 - inv_q2 / (gain * gain);
+    const double discriminant = b * b - 4.0 * c;
+    if (discriminant < 0.0) {
+        return std::nullopt;
+    }
+    const double y_high = (-b + std::sqrt(discriminant)) / 2.0;
+    const double y_low = (-b - std::sqrt(discriminant)) / 2.0;
+    if (y_high <= 0.0) {
+        return std::nullopt;
+    }
+    return GainBand{resonance_hz * std::sqrt(std::max(0.0, y_low)),
+                    resonance_hz * std::sqrt(y_high)};
+}
+
 double Physics::frequency_of(const Drive& drive) const {
     if (!is_lra()) {
         return 0.0;

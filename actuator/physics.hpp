@@ -94,6 +94,13 @@ class Physics {
 
     // The resonator's amplitude response normalised to 1 at f0 (above).
     static double lra_gain(double frequency_hz, double resonance_hz, double q);
+    // lra_gain solved backwards: the frequencies where it is at least `gain` (> 0), from
+    // low_hz (0 when it reaches down to DC) to high_hz; nothing when no frequency gives that much.
+    struct GainBand {
+        double low_hz;
+        double high_hz;
+    };
+    static std::optional<GainBand> lra_band(double gain, double resonance_hz, double q);
 
   private:
     // The envelope's rate -(1/tau + i delta) and its steady value under a drive.

@@ -39,4 +39,25 @@ std::string rounded_text(double value, int significant) {
     return text;
 }
 
+std::string fixed_text(double value, int places) {
+    char buffer[400];  // %f of the largest double has 309 digits before the point
+    std::snprintf(buffer, sizeof buffer, "%.*f", places, value);
+    std::string text = buffer;
+    if (text.find('.') != std::string::npos) {
+        text.erase(text.find_last_not_of('0') + 1);
+        if (text.back() == '.') {
+            text.pop_back();
+        }
+    }
+    return text;
+}
+
+std::string hz_text(double hz) {
+    return fixed_text(hz, 1) + " Hz";
+}
+
+std::string ms_text(double seconds) {
+    return fixed_text(seconds * 1000.0, 1) + " ms";
+}
+
 }  // namespace vibscore

@@ -5,8 +5,8 @@
 #include <cstdio>
 #include <optional>
 
-#include "common/number_text.hpp"
 #include "actuator/physics.hpp"
+#include "common/number_text.hpp"
 #include "daemon/render/clef_fit.hpp"
 
 namespace vibscore::render {
@@ -17,14 +17,6 @@ std::string two_places(double value) {
     char text[32];
     std::snprintf(text, sizeof text, "%.2f", value);
     return text;
-}
-
-std::string ms(double seconds) {
-    return number_text(std::round(seconds * 10000.0) / 10.0) + " ms";
-}
-
-std::string hz(double value) {
-    return number_text(std::round(value * 10.0) / 10.0) + " Hz";
 }
 
 double strongest_of(const Clef& clef) {
@@ -67,8 +59,8 @@ void check_sine(const Clef& clef, const actuator::Declaration& declaration,
     if (declaration.kind == actuator::Kind::erm) {
         if (clef.strings.size() > 1) {
             warnings.push_back("strings 1-" + std::to_string(clef.strings.size()) + " (" +
-                               hz(clef.strings.front().frequency) + " to " +
-                               hz(clef.strings.back().frequency) +
+                               hz_text(clef.strings.front().frequency) + " to " +
+                               hz_text(clef.strings.back().frequency) +
                                "): an ERM has no pitch, they all feel alike (vibscore clef fit "
                                "makes them roughness)");
         }
@@ -78,17 +70,18 @@ void check_sine(const Clef& clef, const actuator::Declaration& declaration,
         const double f = clef.strings[s].frequency;
         const double full = physics.steady_strength({1.0, f});
         if (full < strongest) {
-            warnings.push_back(
-                "string " + std::to_string(s + 1) + " (" + hz(f) + "): full drive gives strength " +
-                two_places(full) + ", less than the clef's strongest number (" +
-                number_text(strongest) + "); the LRA resonates at " + hz(declaration.resonance_hz));
+            warnings.push_back("string " + std::to_string(s + 1) + " (" + hz_text(f) +
+                               "): full drive gives strength " + two_places(full) +
+                               ", less than the clef's strongest number (" +
+                               number_text(strongest) + "); the LRA resonates at " +
+                               hz_text(declaration.resonance_hz));
         }
         if (s > 0) {
             const double a = clef.strings[s - 1].frequency;
             const double ratio = std::max(a, f) / std::min(a, f);
             if (ratio < kDistinctPitchRatio) {
                 warnings.push_back("strings " + std::to_string(s) + " and " +
-                                   std::to_string(s + 1) + " (" + hz(a) + ", " + hz(f) +
+                                   std::to_string(s + 1) + " (" + hz_text(a) + ", " + hz_text(f) +
                                    "): frequency ratio " + two_places(ratio) +
                                    ", closer than a person tells apart (" +
                                    number_text(kDistinctPitchRatio) + ")");
@@ -131,18 +124,18 @@ void check_shape(const Clef& clef, const actuator::Declaration& declaration,
         const auto& string = clef.strings[s];
         if (const auto wiggle = shortest_wiggle(string); wiggle && *wiggle * clef.tempo < follows) {
             warnings.push_back("string " + std::to_string(s + 1) + ": a " +
-                               ms(*wiggle * clef.tempo) + " rise or fall, faster than the " +
+                               ms_text(*wiggle * clef.tempo) + " rise or fall, faster than the " +
                                (declaration.kind == actuator::Kind::lra ? "LRA" : "ERM") +
-                               " follows (" + ms(follows) + ")");
+                               " follows (" + ms_text(follows) + ")");
         }
         if (const auto pulse = shortest_pulse(string);
             pulse && *pulse * clef.tempo < reach * (1.0 - 1e-9)) {
             const double seconds = *pulse * clef.tempo;
             const double got =
                 actuator::Physics::strength(physics.advance({}, {drive, 0.0}, seconds));
-            warnings.push_back("string " + std::to_string(s + 1) + ": " + ms(seconds) +
+            warnings.push_back("string " + std::to_string(s + 1) + ": " + ms_text(seconds) +
                                " pulses reach strength " + two_places(got) + " of " +
-                               number_text(strongest) + " (it takes " + ms(reach) + ")");
+                               number_text(strongest) + " (it takes " + ms_text(reach) + ")");
         }
     }
 }

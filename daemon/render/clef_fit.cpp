@@ -2,12 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <numeric>
 
-#include "common/number_text.hpp"
 #include "actuator/physics.hpp"
+#include "common/number_text.hpp"
 #include "daemon/render/waveform.hpp"
 #include "score/limits.hpp"
 
@@ -21,25 +20,6 @@ constexpr double kLeastWiggleSwing = 0.05;
 constexpr std::size_t kSmoothGrid = 4096;
 constexpr std::size_t kSmoothPoints = 256;
 
-// `value` to `places` decimals, trailing zeros left out ("96.6", "1.2", "175").
-std::string rounded(double value, int places) {
-    char text[64];
-    std::snprintf(text, sizeof text, "%.*f", places, value);
-    std::string out = text;
-    if (out.find('.') != std::string::npos) {
-        out.erase(out.find_last_not_of('0') + 1);
-        if (out.back() == '.') {
-            out.pop_back();
-        }
-    }
-    return out;
-}
-std::string hz(double value) {
-    return rounded(value, 1) + " Hz";
-}
-std::string ms(double seconds) {
-    return rounded(seconds * 1000.0, 1) + " ms";
-}
 std::string kind_name(const actuator::Declaration& declaration) {
     return declaration.kind == actuator::Kind::lra ? "LRA" : "ERM";
 }
@@ -56,10 +36,10 @@ std::vector<double> fitted_numbers(const Clef& written, const actuator::Declarat
     std::vector<double> numbers = written.numbers;
     for (std::size_t n = 0; n < numbers.size(); ++n) {
         if (numbers[n] > reachable) {
-            notes.push_back("number " + std::to_string(n + 1) + ": strength " +
-                            number_text(numbers[n]) + " is beyond full drive (" +
-                            rounded(reachable, 3) + " with rated-drive " +
-                            number_text(declaration.rated_drive) + "): " + rounded(reachable, 3));
+            notes.push_back(
+                "number " + std::to_string(n + 1) + ": strength " + number_text(numbers[n]) +
+                " is beyond full drive (" + fixed_text(reachable, 3) + " with rated-drive " +
+                number_text(declaration.rated_drive) + "): " + fixed_text(reachable, 3));
             numbers[n] = reachable;
         }
     }
@@ -102,7 +82,7 @@ ClefString square_wave(double period_s, double tempo_s, std::size_t string) {
     if (2 * halves > limits::points_per_string) {
         throw ClefFitError("string " + std::to_string(string) + ": a quarter note of " +
                            number_text(tempo_s) + " s holds " + std::to_string(halves / 2) +
-                           " periods of " + ms(period_s) + ", more than the " +
+                           " periods of " + ms_text(period_s) + ", more than the " +
                            std::to_string(limits::points_per_string) + " points a string may have");
     }
     for (std::size_t k = 0; k < halves; ++k) {
@@ -150,7 +130,7 @@ ClefFit roughness(const Clef& written, const actuator::Declaration& declaration,
     for (std::size_t s = 0; s < written.strings.size(); ++s) {
         const double period = fit.periods_s.empty() ? 0.0 : fit.periods_s[s];
         fit.clef.strings.push_back(square_wave(period, written.tempo, s + 1));
-        periods += (s > 0 ? ", " : "") + (period > 0.0 ? ms(period) : std::string("steady"));
+        periods += (s > 0 ? ", " : "") + (period > 0.0 ? ms_text(period) : std::string("steady"));
     }
     fit.notes.push_back("strings: " + why + ": they become roughness at the " +
                         kind_name(declaration) + "'s own frequency, square-wave periods " +
@@ -169,11 +149,12 @@ ClefFit fit_sine(const Clef& written, const actuator::Declaration& declaration, 
     fit.band = full_strength_band(declaration, wanted);
     if (!fit.band) {
         return roughness(written, declaration, std::move(fit),
-                         "the LRA gives strength " + rounded(wanted, 3) + " at no frequency from " +
-                             hz(kLowestPitchHz) + " to " + hz(kHighestPitchHz));
+                         "the LRA gives strength " + fixed_text(wanted, 3) +
+                             " at no frequency from " + hz_text(kLowestPitchHz) + " to " +
+                             hz_text(kHighestPitchHz));
     }
     const Band band = *fit.band;
-    const std::string band_text = hz(band.low_hz) + " to " + hz(band.high_hz);
+    const std::string band_text = hz_text(band.low_hz) + " to " + hz_text(band.high_hz);
     if (playable_as_written(written, band)) {
         for (const auto& string : written.strings) {
             fit.frequencies_hz.push_back(string.frequency);
@@ -187,18 +168,18 @@ ClefFit fit_sine(const Clef& written, const actuator::Declaration& declaration, 
         fit.strings = ClefFit::Strings::pitch;
         fit.frequencies_hz = {f};
         fit.clef.strings[0].frequency = f;
-        fit.notes.push_back("string 1: " + hz(written.strings[0].frequency) + " -> " + hz(f) +
-                            " (full strength " + band_text + ")");
+        fit.notes.push_back("string 1: " + hz_text(written.strings[0].frequency) + " -> " +
+                            hz_text(f) + " (full strength " + band_text + ")");
         return fit;
     }
     const double span = band.high_hz / band.low_hz;
     const double needed = std::pow(kDistinctPitchRatio, static_cast<double>(n - 1));
     if (span < needed) {
         return roughness(written, declaration, std::move(fit),
-                         "full strength only " + band_text + " (ratio " + rounded(span, 2) +
+                         "full strength only " + band_text + " (ratio " + fixed_text(span, 2) +
                              "), too narrow for " + std::to_string(n) + " strings " +
                              number_text(kDistinctPitchRatio) + " apart (needs " +
-                             rounded(needed, 2) + ")");
+                             fixed_text(needed, 2) + ")");
     }
     // Spread across the band geometrically, keeping the written order of pitch.
     std::vector<std::size_t> order(n);
@@ -216,11 +197,11 @@ ClefFit fit_sine(const Clef& written, const actuator::Declaration& declaration, 
     std::string moves;
     for (std::size_t s = 0; s < n; ++s) {
         fit.clef.strings[s].frequency = fit.frequencies_hz[s];
-        moves += (s > 0 ? ", " : "") + hz(written.strings[s].frequency) + " -> " +
-                 hz(fit.frequencies_hz[s]);
+        moves += (s > 0 ? ", " : "") + hz_text(written.strings[s].frequency) + " -> " +
+                 hz_text(fit.frequencies_hz[s]);
     }
     fit.notes.push_back("strings: full strength " + band_text + ", strings spread " +
-                        rounded(ratio, 2) + " apart: " + moves);
+                        fixed_text(ratio, 2) + " apart: " + moves);
     return fit;
 }
 
@@ -238,9 +219,9 @@ ClefFit fit_shape(const Clef& written, const actuator::Declaration& declaration,
         fit.strings = ClefFit::Strings::smoothed;
         fit.clef.strings[s] = smoothed(written.type, written.strings[s], follows / written.tempo);
         fit.notes.push_back("string " + std::to_string(s + 1) + ": a " +
-                            ms(*wiggle * written.tempo) + " rise or fall is faster than the " +
-                            kind_name(declaration) + " follows (" + ms(follows) +
-                            "): smoothed over " + ms(follows));
+                            ms_text(*wiggle * written.tempo) + " rise or fall is faster than the " +
+                            kind_name(declaration) + " follows (" + ms_text(follows) +
+                            "): smoothed over " + ms_text(follows));
     }
     return fit;
 }
@@ -255,22 +236,12 @@ std::optional<Band> full_strength_band(const actuator::Declaration& declaration,
     const double g = strength * declaration.rated_drive;  // the gain full drive needs
     Band band{kLowestPitchHz, kHighestPitchHz};
     if (g > 0.0) {
-        // actuator::Physics::lra_gain(f) >= g solved for f, with y = (f/f0)^2:
-        //   y^2 + (1/Q^2 - 2) y + 1 - 1/(Q g)^2 <= 0.
-        const double inv_q2 = 1.0 / (declaration.q * declaration.q);
-        const double b = inv_q2 - 2.0;
-        const double c = 1.0 - inv_q2 / (g * g);
-        const double discriminant = b * b - 4.0 * c;
-        if (discriminant < 0.0) {
+        const auto reaching = actuator::Physics::lra_band(g, f0, declaration.q);
+        if (!reaching) {
             return std::nullopt;
         }
-        const double y_high = (-b + std::sqrt(discriminant)) / 2.0;
-        const double y_low = (-b - std::sqrt(discriminant)) / 2.0;
-        if (y_high <= 0.0) {
-            return std::nullopt;
-        }
-        band.low_hz = std::max(band.low_hz, f0 * std::sqrt(std::max(0.0, y_low)));
-        band.high_hz = std::min(band.high_hz, f0 * std::sqrt(y_high));
+        band.low_hz = std::max(band.low_hz, reaching->low_hz);
+        band.high_hz = std::min(band.high_hz, reaching->high_hz);
     }
     if (band.low_hz > band.high_hz) {
         return std::nullopt;

@@ -125,6 +125,23 @@ TEST(ActuatorPhysics, AnLraIsWeakerOffResonanceByItsGainCurve) {
     EXPECT_NEAR(Physics::lra_gain(235.0, 175.0, 15.0), 0.0825, 0.0005);
 }
 
+TEST(ActuatorPhysics, TheGainBandIsTheGainCurveSolvedBackwards) {
+    for (const double gain : {0.1, 0.5, 0.9, 1.0}) {
+        const auto band = Physics::lra_band(gain, 175.0, 15.0);
+        ASSERT_TRUE(band) << gain;
+        EXPECT_LT(band->low_hz, 175.0);
+        EXPECT_GT(band->high_hz, 175.0);
+        EXPECT_NEAR(Physics::lra_gain(band->low_hz, 175.0, 15.0), gain, 1e-9) << gain;
+        EXPECT_NEAR(Physics::lra_gain(band->high_hz, 175.0, 15.0), gain, 1e-9) << gain;
+    }
+    // The curve peaks a little above 1 just below f0 (at Q 15: 1 / sqrt(1 - 1/(4 Q^2))).
+    const double peak = 1.0 / std::sqrt(1.0 - 1.0 / (4.0 * 15.0 * 15.0));
+    EXPECT_TRUE(Physics::lra_band(peak * (1.0 - 1e-9), 175.0, 15.0));
+    EXPECT_FALSE(Physics::lra_band(peak * (1.0 + 1e-9), 175.0, 15.0));
+    // A gain the curve keeps down to DC starts the band at 0 Hz (Q 1: G(0) = 1).
+    EXPECT_EQ(Physics::lra_band(0.5, 175.0, 1.0)->low_hz, 0.0);
+}
+
 TEST(ActuatorPhysics, OffResonanceAnLraBuildsUpBeatingAtTheDetuning) {
     const Physics physics(lra());
     const double f = 185.0;
