@@ -25,6 +25,25 @@ inline std::string largest_inline_score() {
            "</VibScore>";
 }
 
+// An ordinary inline score of about `bytes` (at most 1 MiB, the document limit): bars of four
+// 32nd notes through lra-phone, about 45 bytes a note, so 1 MiB is some 23,000 notes (about
+// 5,800 bars, under 10 minutes): issue 33's probe sent 1 MiB inline scores.
+inline std::string inline_score_of(std::size_t bytes) {
+    const std::string head =
+        "<VibScore><Title>flood</Title><Clef id=\"l\" href=\"lra-phone.clef.xml\"/>";
+    const std::string tail = "</VibScore>";
+    std::string bars;
+    for (int i = 0; head.size() + bars.size() + tail.size() + 300 < bytes; ++i) {
+        bars += "<Bar clef=\"l\">";
+        for (int note = 0; note < 4; ++note) {
+            bars += "<Note length=\"32th\" number=\"" + std::to_string(1 + (i + note) % 9) +
+                    "\" string=\"" + std::to_string(1 + (i + note) % 6) + "\"/>";
+        }
+        bars += "</Bar>";
+    }
+    return head + bars + tail;
+}
+
 // The process that owns `name` on the fixture's bus; 0 when none does.
 inline pid_t owner_pid(const testing::DaemonFixture& daemon,
                        const std::string& name = "org.vibscore.Haptics1") {
