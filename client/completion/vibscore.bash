@@ -1,5 +1,12 @@
-# bash completion for vibscore. Registry names come from the running daemon (vibscore list);
-# when it is not running, only files are offered.
+# bash completion for vibscore. The verbs and their options come from the client's own table
+# (vibscore --completion-words), so they are those of its --help; registry names come from the
+# running daemon (vibscore list); when it is not running, only files are offered. What follows
+# an option or a verb (file patterns, formats, registry names) is said here.
+
+# One line per command: its words, then its options, a valued one ending in '='.
+_vibscore_table() {
+    "$1" --completion-words 2>/dev/null
+}
 
 _vibscore_registry() {
     "$1" list "$2" 2>/dev/null | cut -f1
@@ -29,11 +36,12 @@ _vibscore() {
     cur=${COMP_WORDS[COMP_CWORD]}
     prev=${COMP_WORDS[COMP_CWORD-1]}
     program=${COMP_WORDS[0]}
-    local verbs="check render info play stop list get compose delete show edit drivers driver convert assign clef calibrate"
+    local table verbs= valued= options= subverbs= word
+    local -a fields
+    table=$(_vibscore_table "$program")
     # What convert reads (--from) and writes (--to).
     local readable="score ahap android-json android-xml rtttl midi"
     local writable="score ahap android-json android-xml android-envelope midi"
-    local valued="--usage|--clef|--clefs|--out|-o|--output|--rate|--repeat|--intensity|--width|--buttons|--keymap|--button-map|--from|--to|--track|--svg|--png|--actuator|--kind|--estimate"
 
     verb=
     for ((i = 1; i < COMP_CWORD; i++)); do
@@ -42,6 +50,23 @@ _vibscore() {
             *) verb=${COMP_WORDS[i]}; break ;;
         esac
     done
+
+    # The verbs; of the one typed, its options and sub-verbs (clef: fit); every valued option.
+    while read -ra fields; do
+        [[ ${#fields[@]} -eq 0 ]] && continue
+        [[ " $verbs " == *" ${fields[0]} "* ]] || verbs+=" ${fields[0]}"
+        for word in "${fields[@]:1}"; do
+            [[ $word == -*= ]] && valued+="|${word%=}"
+            if [[ ${fields[0]} == "$verb" ]]; then
+                if [[ $word == -* ]]; then
+                    options+=" ${word%=}"
+                else
+                    subverbs+=" $word"
+                fi
+            fi
+        done
+    done <<< "$table"
+    valued=${valued#|}
 
     if [[ -z $verb ]]; then
         COMPREPLY=($(compgen -W "$verbs --help --version" -- "$cur"))
@@ -94,26 +119,12 @@ _vibscore() {
         --buttons)
             _vibscore_files "${cur:-/dev/input/}" '*'
             return ;;
-        --rate|--repeat|--intensity|--width|--keymap|--button-map|--track)
-            return ;;
+        *)
+            # Any other valued option takes a value of its own (a number, a key map).
+            [[ -n $valued && $prev == @($valued) ]] && return ;;
     esac
 
     if [[ $cur == -* ]]; then
-        local options="--help"
-        case $verb in
-            check) options+=" --clefs --actuator" ;;
-            info) options+=" --clefs" ;;
-            render) options+=" --rate --out --plot --width --svg --png --clefs --actuator" ;;
-            play) options+=" --usage --repeat --clef --intensity --wait --clefs" ;;
-            stop) options+=" --all" ;;
-            compose) options+=" --clefs" ;;
-            show) options+=" --width --colour --color --svg --png --clefs --actuator" ;;
-            convert) options+=" --from --to --clef --clefs --track --loop" ;;
-            edit) options+=" --buttons --keymap --button-map --grab --clef" ;;
-            assign) options+=" --default --list --force" ;;
-            clef) options+=" --actuator -o --output --clefs" ;;
-            calibrate) options+=" --apply --plan --estimate --kind --actuator -o --output --png --svg" ;;
-        esac
         COMPREPLY=($(compgen -W "$options" -- "$cur"))
         return
     fi
@@ -121,12 +132,18 @@ _vibscore() {
     # How many positional words the verb already has.
     local position=0
     for ((i = i + 1; i < COMP_CWORD; i++)); do
-        if [[ ${COMP_WORDS[i]} == @($valued) ]]; then
+        if [[ -n $valued && ${COMP_WORDS[i]} == @($valued) ]]; then
             ((i++))
         elif [[ ${COMP_WORDS[i]} != -* ]]; then
             ((position++))
         fi
     done
+
+    # A verb made of sub-verbs (clef) first takes one of them.
+    if [[ -n $subverbs && $position -eq 0 ]]; then
+        COMPREPLY=($(compgen -W "$subverbs" -- "$cur"))
+        return
+    fi
 
     case $verb in
         check|render|info)
@@ -155,9 +172,7 @@ _vibscore() {
             fi ;;
         clef)
             # clef fit CLEF: a registry clef or a clef file.
-            if [[ $position -eq 0 ]]; then
-                COMPREPLY=($(compgen -W "fit" -- "$cur"))
-            elif [[ $position -eq 1 ]]; then
+            if [[ $position -eq 1 ]]; then
                 COMPREPLY=($(compgen -W "$(_vibscore_registry "$program" clefs)" -- "$cur"))
                 _vibscore_files "$cur" '*.xml'
             fi ;;
