@@ -6,66 +6,10 @@
 #include <iterator>
 #include <unordered_map>
 
-#include "client/editor/button_scheme.hpp"
 #include "client/editor/editor_model.hpp"
+#include "client/editor/session_actions.hpp"
 
 namespace vibscore::editor {
-
-// What the session around the model does for its actions: ButtonScheme's friend, so the table
-// below can name them without the scheme exposing its modes.
-struct SessionActions {
-    static Request choose_clef(ButtonScheme& scheme, EditorModel& model) {
-        scheme.open_clef_menu(model);
-        return {};
-    }
-    static Request edit_clefs(ButtonScheme& scheme, EditorModel& model) {
-        scheme.open_clef_list(model);
-        return {};
-    }
-    static Request play_from_bar(ButtonScheme&, EditorModel& model) {
-        return {Request::Kind::play, {}, model.cursor().bar};
-    }
-    static Request play_from_start(ButtonScheme&, EditorModel&) {
-        return {Request::Kind::play, {}, 0};
-    }
-    static Request save(ButtonScheme& scheme, EditorModel&) {
-        scheme.asked_for_event_ = false;
-        // A new score's first save asks what it is for, as save as does.
-        if (scheme.never_saved_ && !scheme.events_->empty()) {
-            scheme.open_use_for(false);
-            return {};
-        }
-        scheme.pending_event_.clear();
-        return scheme.save_under(scheme.destination_, false);
-    }
-    static Request save_as(ButtonScheme& scheme, EditorModel& model) {
-        scheme.asked_for_event_ = false;
-        if (!scheme.events_->empty()) {
-            scheme.open_use_for(true);
-            return {};
-        }
-        scheme.pending_event_.clear();
-        scheme.pending_save_as_ = true;
-        scheme.begin_name_entry(model, false);
-        return {};
-    }
-    static Request use_for_event(ButtonScheme& scheme, EditorModel&) {
-        scheme.open_event_choice();
-        return {};
-    }
-    static Request open(ButtonScheme& scheme, EditorModel&) {
-        scheme.open_score_list();
-        return {};
-    }
-    static Request new_score(ButtonScheme&, EditorModel&) { return {Request::Kind::new_score}; }
-    static Request tap_rhythm(ButtonScheme& scheme, EditorModel& model) {
-        scheme.taps_ = {};
-        scheme.mode_ = ButtonScheme::Mode::tapping;
-        model.clear_message();
-        return {};
-    }
-    static Request quit(ButtonScheme& scheme, EditorModel& model) { return scheme.ask_quit(model); }
-};
 
 namespace {
 
@@ -156,6 +100,22 @@ bool set_length(EditorModel& model, int length) {
     return model.set_length_value(length);
 }
 
+// An action the session does (session_actions.hpp).
+template <Request (SessionActions::*method)(EditorModel&)>
+constexpr SessionFunction ask() {
+    return [](SessionActions& session, EditorModel& model) { return (session.*method)(model); };
+}
+// Playing and a new score need nothing of the session: only a request to the world.
+Request play_from_bar(SessionActions&, EditorModel& model) {
+    return {Request::Kind::play, {}, model.cursor().bar};
+}
+Request play_from_start(SessionActions&, EditorModel&) {
+    return {Request::Kind::play, {}, 0};
+}
+Request new_score(SessionActions&, EditorModel&) {
+    return {Request::Kind::new_score};
+}
+
 // One record per action, in the order of Action (checked below); within a menu group, the
 // order of the menu.
 constexpr ActionRecord kActions[] = {
@@ -174,7 +134,7 @@ constexpr ActionRecord kActions[] = {
           call<&EditorModel::insert_blank>()),
     model(Action::set_length, "set length", shifted_digit_keys(), none, "", set_length),
     session(Action::tap_rhythm, "tap a rhythm", key('t'), enter, "tap a rhythm",
-            &SessionActions::tap_rhythm),
+            ask<&SessionActions::tap_rhythm>()),
 
     model(Action::decrescendo, "decrescendo", key('d'), hairpins, "decrescendo  >",
           set_dynamics<Dynamics::decrescendo>),
@@ -199,9 +159,9 @@ constexpr ActionRecord kActions[] = {
     model(Action::delete_symbol, "delete", key(KEY_DC), symbol_bar, "delete",
           call<&EditorModel::delete_at_cursor>()),
     session(Action::choose_clef, "bar clef", key('k'), symbol_bar, "bar clef...",
-            &SessionActions::choose_clef),
+            ask<&SessionActions::choose_clef>()),
     session(Action::edit_clefs, "edit clefs", key('K'), symbol_bar, "edit clefs...",
-            &SessionActions::edit_clefs),
+            ask<&SessionActions::edit_clefs>()),
 
     model(Action::strings_up, "strings up", key(KEY_SR), shift, "strings up", shift_strings<+1>),
     model(Action::strings_down, "strings down", key(KEY_SF), shift, "strings down",
@@ -219,9 +179,9 @@ constexpr ActionRecord kActions[] = {
     model(Action::paste, "paste", key(ctrl('V')), block, "paste", call<&EditorModel::paste>()),
 
     session(Action::play_or_stop, "play", key(' '), play_go_undo, "play from this bar",
-            &SessionActions::play_from_bar),
+            play_from_bar),
     session(Action::play_from_start, "play from the start", no_keys, play_go_undo,
-            "play from the start", &SessionActions::play_from_start),
+            "play from the start", play_from_start),
     model(Action::to_first_bar, "to the first bar", key(KEY_HOME), play_go_undo, "to the first bar",
           call_void<&EditorModel::to_first_bar>()),
     model(Action::to_last_bar, "to the last bar", key(KEY_END), play_go_undo, "to the last bar",
@@ -229,14 +189,14 @@ constexpr ActionRecord kActions[] = {
     model(Action::undo, "undo", key(ctrl('Z')), play_go_undo, "undo", call<&EditorModel::undo>()),
     model(Action::redo, "redo", key(ctrl('Y')), play_go_undo, "redo", call<&EditorModel::redo>()),
 
-    session(Action::save, "save", key(ctrl('S')), file, "save", &SessionActions::save),
-    session(Action::save_as, "save as", no_keys, file, "save as...", &SessionActions::save_as),
+    session(Action::save, "save", key(ctrl('S')), file, "save", ask<&SessionActions::save>()),
+    session(Action::save_as, "save as", no_keys, file, "save as...",
+            ask<&SessionActions::save_as>()),
     session(Action::use_for_event, "use for event", key('u'), file, "use for event...",
-            &SessionActions::use_for_event),
-    session(Action::open, "open", key(ctrl('O')), file, "open...", &SessionActions::open),
-    session(Action::new_score, "new", key(ctrl('N')), file, "new score",
-            &SessionActions::new_score),
-    session(Action::quit, "quit", keys(ctrl('Q'), 'q'), file, "quit", &SessionActions::quit),
+            ask<&SessionActions::use_for_event>()),
+    session(Action::open, "open", key(ctrl('O')), file, "open...", ask<&SessionActions::open>()),
+    session(Action::new_score, "new", key(ctrl('N')), file, "new score", new_score),
+    session(Action::quit, "quit", keys(ctrl('Q'), 'q'), file, "quit", ask<&SessionActions::quit>()),
 };
 
 // The table is checked when it compiles: a record for every action, in order; each done by the
@@ -365,6 +325,19 @@ std::optional<Command> command_for_key(int code) {
 
 bool each_action_done_by_one() {
     return each_done_by_one();
+}
+
+// A keyboard command on the model: here, beside the table it looks the action up in, so the
+// model's own file needs nothing of the table (the table stands above the model it calls).
+bool EditorModel::apply(const Command& command) {
+    if (static_cast<int>(command.action) < 0 || static_cast<int>(command.action) >= action_count) {
+        return refuse("no such editing function");
+    }
+    const auto& record = record_of(command.action);
+    if (record.model == nullptr) {
+        return refuse(std::string(record.name) + " is not an editing function");
+    }
+    return record.model(*this, command.value);
 }
 
 }  // namespace vibscore::editor

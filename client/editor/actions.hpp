@@ -10,8 +10,8 @@
 
 namespace vibscore::editor {
 
-class ButtonScheme;
 class EditorModel;
+class SessionActions;
 struct Request;
 
 // The groups of the menu Back, Select opens, in their order; Left/Right jump between them.
@@ -44,9 +44,9 @@ inline constexpr std::size_t kMostKeys = 10;
 // An editing function of the model (the score, cursor, block, clipboard and undo): true when
 // done, false with the model's message when refused.
 using ModelFunction = bool (*)(EditorModel& model, int value);
-// A function of the session around the model: a menu or list to open, or a request to the
-// daemon and the files (play, save, open, quit).
-using SessionFunction = Request (*)(ButtonScheme& scheme, EditorModel& model);
+// A function of the session around the model (session_actions.hpp): a menu or list to open, or a
+// request to the daemon and the files (play, save, open, quit).
+using SessionFunction = Request (*)(SessionActions& session, EditorModel& model);
 
 // One action: everything the keyboard, the menu and the dispatch know of it, in one record, as
 // tmux keeps a command in one cmd_entry, so a label, a key and what they do cannot drift apart.

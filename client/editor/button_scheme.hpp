@@ -1,9 +1,12 @@
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -15,40 +18,15 @@
 #include "client/editor/entry_steps.hpp"
 #include "client/editor/events.hpp"
 #include "client/editor/menu.hpp"
+#include "client/editor/modes.hpp"
 #include "client/editor/name_entry.hpp"
+#include "client/editor/request.hpp"
+#include "client/editor/session_actions.hpp"
 #include "client/editor/shared_value.hpp"
+#include "client/editor/status_line.hpp"
 #include "client/editor/tap_rhythm.hpp"
 
 namespace vibscore::editor {
-
-// What the editor asks of the world around the model after a key or button.
-struct Request {
-    enum class Kind {
-        none,
-        play,
-        stop,
-        save,
-        save_as,
-        open,
-        new_score,
-        quit,
-        save_and_quit,
-        keep_event,    // "keep as it was": give `event` back the score `name` ("" the theme's)
-        hear_clef,     // play string `string` at number `number` through the clef `document`
-        save_clef,     // store the clef `document` as `name` and use it for the cursor's bar
-        store_clef,    // store the clef `document` as `name`: bars already use it (a tempo clef)
-        assign_event,  // the score as saved plays for `event` from now on (no save, no copy)
-    };
-    Kind kind = Kind::none;
-    std::string name;        // open: the registry name or file; save_as: the name to save under
-    std::size_t bar = 0;     // play: the first bar
-    bool then_quit = false;  // save_as: quit once saved
-    std::string event;       // save, save_as: once saved, `event` plays it ("use for ...")
-    std::string document;    // hear_clef, save_clef, store_clef: the clef as a VibClef document
-    int string = 0;          // hear_clef
-    int number = 0;
-    bool operator==(const Request&) const = default;
-};
 
 // A name that saving under would replace something: what it is decides how the editor asks.
 struct TakenName {
@@ -81,28 +59,10 @@ struct TakenName {
 // it, or cancel. A shipped file never changes: the stored score shadows it.
 // Keyboard commands (thesis Fig. 4.3) go through command(): they drop the symbol being
 // entered or close a menu first.
-class ButtonScheme {
+class ButtonScheme : public SessionActions {
   public:
-    enum class Mode {
-        browse,
-        browse_choices,  // Back from browsing: play, go to the first or last bar, the menu
-        entry,
-        menu,
-        clef_menu,
-        open_menu,
-        quit_menu,
-        name_entry,    // save as: typing the name
-        replace_menu,  // the name is taken: another name, replace it, cancel
-        tapping,       // a rhythm tapped on Select (tap_rhythm.hpp)
-        use_for,       // saving: which event the score is for, or none
-        assigned,      // saved for an event: ok, or keep the event as it was
-        no_events,     // "use for event...": why there are none (the service not running)
-        clef_list,     // "edit clefs...": which clef
-        clef_edit,     // a clef's window (clef_editor.hpp)
-        clef_name,     // saving the clef: its new name
-        clef_close,    // closing an edited clef: save as, drop the changes, cancel
-        playing
-    };
+    // The modes (modes.hpp), each with one record in the mode table (mode_table.cpp).
+    using Mode = editor::Mode;
 
     using Time = TapRecorder::Time;
 
@@ -113,7 +73,7 @@ class ButtonScheme {
     void release(Button button, Time at);
     Request command(const Command& command, EditorModel& model);
     // While a name is asked for (save as, a clef's new name), a keyboard's printable keys type it.
-    bool typing_a_name() const { return mode_ == Mode::name_entry || mode_ == Mode::clef_name; }
+    bool typing_a_name() const;
     Request type_key(char c, EditorModel& model);
 
     Mode mode() const { return mode_; }
@@ -174,44 +134,146 @@ class ButtonScheme {
         int highlighted = 0;
     };
     MenuView menu_view(const EditorModel& model) const;
-    // One line saying what the buttons do now.
+    // One line saying what the buttons do now (the mode's status text).
     std::string hint(const EditorModel& model) const;
 
     // Every part of the state, compared by value (as EditorModel's).
     bool operator==(const ButtonScheme&) const = default;
 
-  private:
-    friend struct SessionActions;  // the session's part of the action table (actions.cpp)
+    // --- the mode table -------------------------------------------------------------------
+    // A step of the scheme's own that a button takes in a mode (a list's highlight, a layer's
+    // own buttons, ending a rhythm). `at`: when the button went down, if known.
+    using Step = Request (ButtonScheme::*)(Button button, EditorModel& model,
+                                           std::optional<Time> at);
+    // What one button does in one mode: first it goes to the mode `then` (if any), then it
+    // carries out `action` from the action table (what the menu and the keyboard do for it) or
+    // takes `step`. A button that does none of these is unused, and its `does` is "".
+    struct ButtonUse {
+        std::string_view does;  // in words, as the hints say it ("string up", "choose")
+        std::optional<Mode> then;
+        Action action = Action::end;  // Action::end: no action
+        Step step = nullptr;
 
-    Request browse(Button button, EditorModel& model);
-    Request browse_choices(Button button, EditorModel& model);
-    Request entry(Button button, EditorModel& model);
-    Request main_menu_press(Button button, EditorModel& model);
-    Request list_press(Button button, EditorModel& model);
+        constexpr bool used() const {
+            return then.has_value() || action != Action::end || step != nullptr;
+        }
+    };
+    // What a keyboard command (an action's key) does in a mode.
+    enum class Keyboard {
+        leave,      // the mode is left (a symbol being entered dropped), then the action done
+        stop,       // playback stops; nothing else
+        typing,     // a name is being typed: the key is refused, with what names take
+        clef_open,  // a clef is open: the key is refused, with how to close it
+    };
+    // One mode: what each of the six buttons does, what the status line says and what is
+    // drawn, in one record, as the action table keeps an action's key, menu line and function
+    // in one (tmux drives every mode's keys from such records).
+    struct ModeRecord {
+        Mode mode;
+        std::string_view name;
+        std::array<ButtonUse, std::size(all_buttons)> buttons;  // in the order of Button
+        // The status line's text: `hint` when it never changes, else `live_hint`'s.
+        std::string_view hint;
+        std::string (ButtonScheme::*live_hint)(const EditorModel& model) const = nullptr;
+        // What is drawn over the staff (nullptr: nothing).
+        MenuView (ButtonScheme::*menu)(const EditorModel& model) const = nullptr;
+        // How many lines Up and Down move through, in a list (nullptr: no list).
+        int (ButtonScheme::*choices)(const EditorModel& model) const = nullptr;
+        Keyboard keyboard = Keyboard::leave;
+        bool news_shown = false;   // what the last action did shows on the status line
+        bool clef_window = false;  // a clef's window is open (clef_editor())
+    };
+    // Every mode's record, in the order of Mode (checked when the table compiles).
+    static std::span<const ModeRecord> modes();
+    static const ModeRecord& mode_record(Mode mode);
+
+  private:
+    const ModeRecord& record() const { return mode_record(mode_); }
+
+    // The session's part of the action table (session_actions.hpp).
+    Request choose_clef(EditorModel& model) override;
+    Request edit_clefs(EditorModel& model) override;
+    Request save(EditorModel& model) override;
+    Request save_as(EditorModel& model) override;
+    Request use_for_event(EditorModel& model) override;
+    Request open(EditorModel& model) override;
+    Request tap_rhythm(EditorModel& model) override;
+    Request quit(EditorModel& model) override;
+
+    // Steps the mode table gives buttons (Step).
+    Request stop(Button, EditorModel&, std::optional<Time>);
+    Request begin_entry_step(Button, EditorModel& model, std::optional<Time>);
+    Request open_choices(Button, EditorModel& model, std::optional<Time>);
+    Request entry(Button button, EditorModel& model, std::optional<Time>);
+    Request menu_step(Button button, EditorModel& model, std::optional<Time>);
+    Request menu_group(Button button, EditorModel& model, std::optional<Time>);
+    Request menu_choose(Button, EditorModel& model, std::optional<Time>);
+    Request list_step(Button button, EditorModel& model, std::optional<Time>);
+    Request list_back_to_menu(Button, EditorModel& model, std::optional<Time>);
+    Request list_back_to_browse(Button, EditorModel& model, std::optional<Time>);
+    Request choose_bar_clef(Button, EditorModel& model, std::optional<Time>);
+    Request choose_score(Button, EditorModel& model, std::optional<Time>);
+    Request choose_quit(Button, EditorModel& model, std::optional<Time>);
+    Request name_press(Button button, EditorModel&, std::optional<Time>);
+    Request replace_choose(Button, EditorModel& model, std::optional<Time>);
+    Request tap_note(Button, EditorModel&, std::optional<Time> at);
+    Request tap_rest(Button, EditorModel&, std::optional<Time> at);
+    Request finish_tapping(Button, EditorModel& model, std::optional<Time> at);
+    Request drop_tapping(Button, EditorModel& model, std::optional<Time>);
+    Request use_for_choose(Button, EditorModel& model, std::optional<Time>);
+    Request assigned_choose(Button, EditorModel& model, std::optional<Time>);
+    Request clef_list_choose(Button, EditorModel& model, std::optional<Time>);
+    Request clef_edit_press(Button button, EditorModel&, std::optional<Time>);
+    Request clef_name_press(Button button, EditorModel&, std::optional<Time>);
+    Request clef_close_choose(Button, EditorModel&, std::optional<Time>);
+
+    // Status texts that change (ModeRecord::live_hint).
+    std::string browse_hint(const EditorModel& model) const;
+    std::string entry_hint(const EditorModel& model) const;
+    std::string name_hint(const EditorModel& model) const;
+    std::string replace_hint(const EditorModel& model) const;
+    std::string tapping_hint(const EditorModel& model) const;
+    std::string use_for_hint(const EditorModel& model) const;
+    std::string clef_edit_hint(const EditorModel& model) const;
+
+    // What is drawn (ModeRecord::menu).
+    MenuView main_menu_view(const EditorModel& model) const;
+    MenuView clef_menu_view(const EditorModel& model) const;
+    MenuView open_menu_view(const EditorModel& model) const;
+    MenuView quit_menu_view(const EditorModel& model) const;
+    MenuView name_view(const EditorModel& model) const;
+    MenuView clef_list_view(const EditorModel& model) const;
+    MenuView clef_name_view(const EditorModel& model) const;
+    MenuView clef_close_view(const EditorModel& model) const;
+    MenuView use_for_view(const EditorModel& model) const;
+    MenuView no_events_view(const EditorModel& model) const;
+    MenuView assigned_view(const EditorModel& model) const;
+    MenuView replace_view(const EditorModel& model) const;
+
+    // How many lines a list has (ModeRecord::choices).
+    int bar_clef_choices(const EditorModel& model) const;
+    int score_choices(const EditorModel& model) const;
+    int three_choices(const EditorModel& model) const;
+    int two_choices(const EditorModel& model) const;
+    int event_choices(const EditorModel& model) const;
+    int clef_choices(const EditorModel& model) const;
+
     // An action from the menu or a key: the session's own, or the model's (actions.hpp).
     Request perform(const Command& command, EditorModel& model);
     void open_clef_menu(const EditorModel& model);
     void open_score_list();
     Request ask_quit(const EditorModel& model);
     void leave_layers(EditorModel& model);
-    Request name_press(Button button);
-    bool choosing(Button button, int size, Mode back_to);
-    Request replace_press(Button button, const EditorModel& model);
+    // Back from a list begun while entering (a new bar's clef) goes on entering.
+    bool entering_after_list(EditorModel& model);
     // Saves under `name`, or asks first when it is taken.
     Request save_under(const std::string& name, bool then_quit);
     void begin_name_entry(const EditorModel& model, bool then_quit);
     void begin_entry(EditorModel& model,
                      EditorModel::Continuing continuing = EditorModel::Continuing::no);
-    Request tap(Button button, EditorModel& model, std::optional<Time> at);
     void open_use_for(bool save_as);
     void open_clef_list(EditorModel& model);
-    Request clef_list_press(Button button, EditorModel& model);
-    Request clef_edit_press(Button button);
-    Request clef_name_press(Button button);
-    Request clef_close_press(Button button);
     void begin_clef_name();
-    Request use_for_press(Button button, EditorModel& model);
-    Request assigned_press(Button button, EditorModel& model);
     Request end_tapping(EditorModel& model);
 
     Mode mode_ = Mode::browse;
@@ -240,5 +302,12 @@ class ButtonScheme {
     ClefEditor clef_editor_;
     bool then_quit_ = false;  // quit once the pending save is done
 };
+
+// What the status line shows now. `news` is what the last action did: shown while browsing or
+// entering; in a menu, a list or browsing's other choices the hint wins over it (what was
+// undone before opening the list says nothing about the list). While playing, the bar being
+// played (`playing`), not the bar playback started from.
+StatusParts status_of(const EditorModel& model, const ButtonScheme& scheme, const std::string& news,
+                      std::optional<Position> playing = std::nullopt);
 
 }  // namespace vibscore::editor

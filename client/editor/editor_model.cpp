@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <set>
 
-#include "client/editor/actions.hpp"
 #include "client/editor/recurrence.hpp"
 
 namespace vibscore::editor {
@@ -887,19 +886,6 @@ bool EditorModel::insert_bars(const std::vector<Bar>& bars) {
     cursor_ = {first, 0};
     land();
     return true;
-}
-
-// --- keyboard commands --------------------------------------------------------------------
-
-bool EditorModel::apply(const Command& command) {
-    if (static_cast<int>(command.action) < 0 || static_cast<int>(command.action) >= action_count) {
-        return refuse("no such editing function");
-    }
-    const auto& record = record_of(command.action);
-    if (record.model == nullptr) {
-        return refuse(std::string(record.name) + " is not an editing function");
-    }
-    return record.model(*this, command.value);
 }
 
 }  // namespace vibscore::editor

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cctype>
 
-#include "client/editor/button_scheme.hpp"
 #include "client/editor/editor_model.hpp"
 #include "client/editor/score_edits.hpp"
 
@@ -88,29 +87,6 @@ std::string symbol_entered(const EditorModel& model) {
         return "rest " + shouted(length_words(rest->length), unlike.length);
     }
     return "";
-}
-
-StatusParts status_of(const EditorModel& model, const ButtonScheme& scheme, const std::string& news,
-                      std::optional<Position> playing) {
-    using Mode = ButtonScheme::Mode;
-    const Mode mode = scheme.mode();
-    if (mode == Mode::playing) {
-        // "playing bar 1" read as "now in bar 1" while the cursor moved through bar 4: the bar
-        // is the one playing now.
-        std::string hint = scheme.hint(model);
-        if (playing) {
-            hint = "playing bar " + std::to_string(playing->bar + 1) + "/" +
-                   std::to_string(model.score().bars.size()) + ": any button stops";
-        }
-        return {model.modified(), "", "", hint, 0, 0};
-    }
-    const bool news_shown = mode == Mode::browse || mode == Mode::entry;
-    return {model.modified(),
-            news_shown ? news : "",
-            mode == Mode::entry ? symbol_entered(model) : "",
-            scheme.hint(model),
-            model.cursor().bar + 1,
-            model.score().bars.size()};
 }
 
 }  // namespace vibscore::editor

@@ -27,13 +27,7 @@ struct StatusParts {
 std::string status_line(const StatusParts& parts, int width);
 
 class EditorModel;
-class ButtonScheme;
-// What the status line shows now. `news` is what the last action did: shown while browsing or
-// entering; in a menu, a list or browsing's other choices the hint wins over it (what was
-// undone before opening the list says nothing about the list). While playing, the bar being
-// played (`playing`), not the bar playback started from.
-StatusParts status_of(const EditorModel& model, const ButtonScheme& scheme, const std::string& news,
-                      std::optional<Position> playing = std::nullopt);
+
 // The keyboard's number keys in one line for a full keyboard's screen (80 columns): the keys a
 // newcomer cannot guess from the buttons' hints.
 std::string keyboard_hint();
