@@ -259,9 +259,7 @@ TEST_F(ClefRule, StopSaysWhetherAnythingOfYoursWasPlaying) {
     const auto output = work.path() / "playing.out";
     testing::Process playing(command("VIBSCORE", {"play", "ringtone", "--repeat", "-1", "--wait"}),
                              output);
-    for (int i = 0; i < 500 && testing::read_file(output).find("bar 1") == std::string::npos; ++i) {
-        std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    }
+    testing::wait_until_file_contains(output, "bar 1");
     const auto stopped = vibscore({"stop"});
     EXPECT_EQ(stopped.out, "stopped your playback\n");
     EXPECT_EQ(playing.wait(), 0);
@@ -361,10 +359,7 @@ TEST(Readme, EveryCommandItShowsWorksVerbatim) {
             // "Ctrl-C stops it": it plays until interrupted, then says so and succeeds.
             const auto output = checkout.path() / "interrupted.out";
             testing::Process playing({"/bin/bash", "-c", checkout.shell("exec " + line)}, output);
-            for (int i = 0;
-                 i < 500 && testing::read_file(output).find("bar 1") == std::string::npos; ++i) {
-                std::this_thread::sleep_for(std::chrono::milliseconds(20));
-            }
+            testing::wait_until_file_contains(output, "bar 1");
             playing.signal(SIGINT);
             EXPECT_EQ(playing.wait(), 0) << line << "\n" << testing::read_file(output);
             EXPECT_THAT(testing::read_file(output), HasSubstr(" stopped\n")) << line;

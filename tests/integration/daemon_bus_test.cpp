@@ -17,6 +17,7 @@
 #include "daemon/render/cue_schedule.hpp"
 #include "daemon/render/performance.hpp"
 #include "tests/support/daemon_fixture.hpp"
+#include "tests/support/wait_until.hpp"
 
 namespace vibscore {
 namespace {
@@ -131,11 +132,14 @@ TEST_F(DaemonBus, BusctlMonitorSeesThePlaybackSignals) {
         {"/usr/bin/env", "DBUS_SYSTEM_BUS_ADDRESS=" + daemon.bus_address(), "/usr/bin/busctl",
          "--system", "monitor", "--match=type='signal',interface='org.vibscore.Haptics1'"},
         log);
-    std::this_thread::sleep_for(std::chrono::milliseconds(300));  // let it subscribe
+    // busctl says so once the bus has made it a monitor.
+    ASSERT_TRUE(testing::wait_until_file_contains(log, "Monitoring bus message stream."))
+        << testing::read_file(log);
     auto client = daemon.client();
     const auto id = client->Play("touch-click", options());
     ASSERT_TRUE(client->wait_finished(id));
-    std::this_thread::sleep_for(std::chrono::milliseconds(200));
+    EXPECT_TRUE(testing::wait_until_file_contains(log, "STRING \"completed\""))
+        << testing::read_file(log);
     monitor.signal(SIGTERM);
     monitor.wait();
     std::ifstream in(log);
@@ -156,7 +160,9 @@ TEST_F(DaemonBus, BusctlStopSilencesARepeatingPlaybackAtOnce) {
     const auto id =
         client->Play("ringtone", options({{"repeat", sdbus::Variant(std::int32_t{-1})},
                                           {"usage", sdbus::Variant(std::string("ringtone"))}}));
-    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    ASSERT_TRUE(client->wait_for([&](const testing::SeenSignal& seen) {
+        return seen.name == "PlaybackStarted" && seen.id == id;
+    }));
     const auto stopped = daemon.call({"Stop", "t", std::to_string(id)});
     ASSERT_EQ(stopped.exit_code, 0) << stopped.err;
     std::string reason;
@@ -374,7 +380,10 @@ TEST_F(DaemonBus, SigtermSwitchesTheActuatorOffAndExitsCleanly) {
     auto client = daemon.client();
     const auto id =
         client->Play("ringtone", options({{"repeat", sdbus::Variant(std::int32_t{-1})}}));
-    std::this_thread::sleep_for(std::chrono::milliseconds(30));
+    ASSERT_TRUE(testing::wait_until([&] {
+        const auto rows = daemon.trace_rows();
+        return !rows.empty() && rows.back().amplitude > 0.0;
+    }));  // playing: the actuator is on
     EXPECT_EQ(daemon.stop_daemon(), 0);
     EXPECT_EQ(daemon.trace_rows().back().amplitude, 0.0);
     EXPECT_NE(daemon.daemon_log().find("stopping"), std::string::npos);
@@ -389,11 +398,10 @@ TEST_F(DaemonBus, SafeOffSwitchesTheActuatorOffAfterTheDaemonWasKilledMidNote) {
         "<Bar clef=\"l\"><Note length=\"whole\" number=\"9\" string=\"6\"/></Bar></VibScore>";
     auto client = daemon.client();
     client->Play(kLongNote, options());
-    for (int i = 0;
-         i < 500 && (daemon.trace_rows().empty() || daemon.trace_rows().back().amplitude == 0.0);
-         ++i) {
-        std::this_thread::sleep_for(std::chrono::milliseconds(2));
-    }
+    testing::wait_until([&] {
+        const auto rows = daemon.trace_rows();
+        return !rows.empty() && rows.back().amplitude > 0.0;
+    });  // the assertions below say what it found
     daemon.kill_daemon();
     const auto killed = daemon.trace_rows();
     ASSERT_FALSE(killed.empty());
@@ -453,7 +461,8 @@ TEST_F(DaemonBus, AcknowledgedComposesSurviveSigkillMidStream) {
             }
         }
     });
-    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    // Killed mid-stream, once each of the seven names has been rewritten at least once.
+    testing::wait_until([&] { return acknowledged.load() > 14; });
     daemon.kill_daemon();
     stop = true;
     writer.join();
@@ -488,9 +497,7 @@ TEST_F(DaemonBus, SighupReloadsTheDriverAndKeepsServingOnABadFile) {
     const auto erm_trace = daemon.store().parent_path() / "erm-trace.csv";
     daemon.write_config("", "model = erm\ntrace = " + erm_trace.string());
     daemon.signal_daemon(SIGHUP);
-    for (int i = 0; i < 200 && !std::filesystem::exists(erm_trace); ++i) {
-        std::this_thread::sleep_for(std::chrono::milliseconds(10));
-    }
+    testing::wait_until([&] { return std::filesystem::exists(erm_trace); });
     ASSERT_TRUE(std::filesystem::exists(erm_trace)) << daemon.daemon_log();
     EXPECT_NE(daemon.daemon_log().find("configuration reloaded"), std::string::npos);
     const auto id = client->Play("touch-click", options());
@@ -501,10 +508,8 @@ TEST_F(DaemonBus, SighupReloadsTheDriverAndKeepsServingOnABadFile) {
 
     daemon.write_config("separation-ms = lots", "");
     daemon.signal_daemon(SIGHUP);
-    for (int i = 0; i < 200 && daemon.daemon_log().find("reload failed") == std::string::npos;
-         ++i) {
-        std::this_thread::sleep_for(std::chrono::milliseconds(10));
-    }
+    testing::wait_until(
+        [&] { return daemon.daemon_log().find("reload failed") != std::string::npos; });
     EXPECT_NE(daemon.daemon_log().find("reload failed, keeping the running configuration: "),
               std::string::npos);
     EXPECT_NE(daemon.daemon_log().find("separation-ms = \"lots\""), std::string::npos);
@@ -544,11 +549,10 @@ TEST_F(DaemonDeviceClefs, EachBarPlaysThroughTheMappedClefAsBarClefsAndInfoShow)
     daemon.write_config("", "");
     daemon.signal_daemon(SIGHUP);
     std::string shown;
-    for (int i = 0; i < 200 && shown.find("\"lra-phone\" \"lra-phone\"") == std::string::npos;
-         ++i) {
-        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    testing::wait_until([&] {
         shown = daemon.call({"BarClefs", "s", "success"}).out;
-    }
+        return shown.find("\"lra-phone\" \"lra-phone\"") != std::string::npos;
+    });
     EXPECT_EQ(shown, "a(ss) 1 \"lra-phone\" \"lra-phone\"\n") << daemon.daemon_log();
     EXPECT_NE(daemon.daemon_log().find("device clefs: none"), std::string::npos);
 }
@@ -628,10 +632,7 @@ std::unique_ptr<testing::Process> waiting_client(const std::filesystem::path& ou
     auto waiting = std::make_unique<testing::Process>(
         vibscore_command({"play", "ringtone", "--usage", "ringtone", "--repeat", "-1", "--wait"}),
         output);
-    for (int i = 0; i < 1000 && testing::read_file(output).find(": bar 1") == std::string::npos;
-         ++i) {
-        std::this_thread::sleep_for(std::chrono::milliseconds(10));
-    }
+    testing::wait_until_file_contains(output, ": bar 1");
     EXPECT_NE(testing::read_file(output).find(": bar 1"), std::string::npos)
         << testing::read_file(output);
     return waiting;
@@ -762,6 +763,14 @@ TEST_F(DaemonWithPolkit, AStoppedPolkitHoldsOnlyTheCallsThatAskedIt) {
     daemon.polkit().signal(SIGSTOP);
     std::vector<std::unique_ptr<testing::Process>> askers;
     const auto dir = daemon.store().parent_path();
+    // Watches vibscored ask polkit, so that root calls once all five askers are held there.
+    const auto checks = dir / "checks.log";
+    testing::Process monitor(
+        {"/usr/bin/env", "DBUS_SYSTEM_BUS_ADDRESS=" + daemon.bus_address(), "/usr/bin/busctl",
+         "--system", "monitor", "--match=type='method_call',member='CheckAuthorization'"},
+        checks);
+    ASSERT_TRUE(testing::wait_until_file_contains(checks, "Monitoring bus message stream."))
+        << testing::read_file(checks);
     for (int i = 0; i < 5; ++i) {
         askers.push_back(std::make_unique<testing::Process>(
             std::vector<std::string>{"/usr/bin/setpriv",
@@ -786,7 +795,15 @@ TEST_F(DaemonWithPolkit, AStoppedPolkitHoldsOnlyTheCallsThatAskedIt) {
                                      "ringtone"},
             dir / ("asker" + std::to_string(i) + ".log")));
     }
-    std::this_thread::sleep_for(std::chrono::milliseconds(300));  // all five are waiting
+    ASSERT_TRUE(testing::wait_until([&] {
+        const auto text = testing::read_file(checks);
+        std::size_t asked = 0;
+        for (auto at = text.find("Member=CheckAuthorization"); at != std::string::npos;
+             at = text.find("Member=CheckAuthorization", at + 1)) {
+            ++asked;
+        }
+        return asked >= askers.size();
+    })) << testing::read_file(checks);  // all five are waiting
     auto root = daemon.client();
     const auto started = std::chrono::steady_clock::now();
     for (int i = 0; i < 10; ++i) {

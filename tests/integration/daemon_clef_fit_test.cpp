@@ -14,6 +14,7 @@
 #include "score/clef_xml.hpp"
 #include "tests/support/daemon_fixture.hpp"
 #include "tests/support/run_command.hpp"
+#include "tests/support/wait_until.hpp"
 
 namespace vibscore {
 namespace {
@@ -47,13 +48,7 @@ testing::CommandResult vibscore(const std::vector<std::string>& args) {
 }
 
 bool wait_for_log(const DaemonFixture& daemon, const std::string& text) {
-    for (int i = 0; i < 500; ++i) {
-        if (daemon.daemon_log().find(text) != std::string::npos) {
-            return true;
-        }
-        std::this_thread::sleep_for(std::chrono::milliseconds(10));
-    }
-    return false;
+    return testing::wait_until([&] { return daemon.daemon_log().find(text) != std::string::npos; });
 }
 
 TEST(DaemonClefFit, FitsEachUnmappedClefToTheDeclaredActuatorAndSaysSoEverywhere) {

@@ -78,13 +78,7 @@ std::vector<TraceRow> play_one_note(DaemonFixture& daemon) {
 }
 
 bool wait_for_log(const DaemonFixture& daemon, const std::string& text) {
-    for (int i = 0; i < 500; ++i) {
-        if (daemon.daemon_log().find(text) != std::string::npos) {
-            return true;
-        }
-        std::this_thread::sleep_for(std::chrono::milliseconds(10));
-    }
-    return false;
+    return testing::wait_until([&] { return daemon.daemon_log().find(text) != std::string::npos; });
 }
 
 TEST(DaemonFeel, ADeclaredErmIsOverdrivenHeldAndBrakedAsTheModelSays) {

@@ -7,6 +7,7 @@
 #include <thread>
 
 #include "tests/support/daemon_fixture.hpp"
+#include "tests/support/wait_until.hpp"
 
 namespace vibscore {
 namespace {
@@ -85,10 +86,8 @@ TEST_F(DriverSwitch, ADriverThatFailsToOpenLeavesThePreviousOneRunning) {
                             "\n[trace]\npath = /nonexistent/dir/log\n",
                         "trace = " + daemon.trace().string());
     daemon.signal_daemon(SIGHUP);
-    for (int i = 0;
-         i < 200 && daemon.daemon_log().find("configuration reloaded") == std::string::npos; ++i) {
-        std::this_thread::sleep_for(std::chrono::milliseconds(10));
-    }
+    testing::wait_until(
+        [&] { return daemon.daemon_log().find("configuration reloaded") != std::string::npos; });
     const auto failed = daemon.call({"SwitchDriver", "s", "trace"});
     EXPECT_NE(failed.exit_code, 0);
     EXPECT_THAT(failed.err, HasSubstr("cannot open /nonexistent/dir/log"));
@@ -157,10 +156,8 @@ TEST_F(DriverSwitch, DriverAutoWithNoDeviceRunsSimAndWarnsWhatItSearched) {
     daemon.write_config("driver = auto\n[evdev]\ninput-dir = " + input.path().string(),
                         "trace = " + daemon.trace().string());
     daemon.signal_daemon(SIGHUP);
-    for (int i = 0;
-         i < 200 && daemon.daemon_log().find("configuration reloaded") == std::string::npos; ++i) {
-        std::this_thread::sleep_for(std::chrono::milliseconds(10));
-    }
+    testing::wait_until(
+        [&] { return daemon.daemon_log().find("configuration reloaded") != std::string::npos; });
     EXPECT_EQ(property("Driver"), "s \"sim\"\n");
     EXPECT_THAT(property("DriverReason"),
                 HasSubstr("vibscored.conf:4) found no actuator, so driver sim plays (nothing "
