@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "actuator/physics.hpp"
+#include "actuator/timeline.hpp"
 #include "daemon/render/cue_schedule.hpp"
 
 namespace vibscore::render {
@@ -24,14 +24,16 @@ actuator::Drive drive_of(const Cue& cue, double dt) {
 std::vector<double> produced_strength(const actuator::Declaration& declaration,
                                       const std::vector<Cue>& drives, double rate_hz,
                                       std::size_t count, double step_s) {
-    const actuator::Physics physics(declaration);
+    // The physics is stepped by actuator::Timeline, the sim backend's model too: this loop only
+    // says which drive is in force when. Each boundary (a drive's time, a ramp's step, a sample)
+    // is a command, so the state moves on from boundary to boundary.
+    actuator::Timeline timeline(declaration);
     std::vector<double> strength;
     strength.reserve(count);
-    actuator::State state;
     std::size_t next = 0;
     const Cue* current = nullptr;
     double now = 0.0;
-    // Advances the state to `t`, taking every drive on the way at its own time.
+    // Moves to `t`, taking every drive on the way at its own time.
     const auto move_to = [&](double t) {
         while (now < t) {
             double until = t;
@@ -41,23 +43,21 @@ std::vector<double> produced_strength(const actuator::Declaration& declaration,
             if (current != nullptr && current->ramp_s > 0.0) {
                 until = std::min(until, now + step_s);
             }
-            if (until > now) {
-                const actuator::Drive drive =
-                    current ? drive_of(*current, now - current->at) : actuator::Drive{};
-                state = physics.advance(state, drive, until - now);
-                now = until;
-            }
+            now = until;
             while (next < drives.size() && drives[next].at <= now) {
                 if (drives[next].kind == Cue::Kind::drive) {
                     current = &drives[next];
                 }
                 ++next;
             }
+            if (current != nullptr) {
+                timeline.command(now, drive_of(*current, now - current->at));
+            }
         }
     };
     for (std::size_t k = 0; k < count; ++k) {
         move_to(static_cast<double>(k) / rate_hz);
-        strength.push_back(actuator::Physics::strength(state));
+        strength.push_back(timeline.response_at(now));
     }
     return strength;
 }

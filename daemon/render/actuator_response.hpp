@@ -10,7 +10,8 @@ namespace vibscore::render {
 
 // The strength a declared actuator produces when it is sent `drives` (drive cues as the player
 // sends them: amplitude -1..1 of full scale; a ramp followed in steps of `step_s`), sampled at
-// `rate_hz` from time 0 for `count` samples. Exact between drives (actuator::Physics).
+// `rate_hz` from time 0 for `count` samples. Exact between drives: actuator::Timeline steps the
+// physics, as it does for the sim backend.
 std::vector<double> produced_strength(const actuator::Declaration& declaration,
                                       const std::vector<Cue>& drives, double rate_hz,
                                       std::size_t count, double step_s = 0.005);
