@@ -79,7 +79,7 @@ int serve(const Options& options) {
 
 int main(int argc, char** argv) {
     Options options;
-    options.theme = default_feedback_theme().string();
+    options.theme = default_feedback_theme(data_locations()).string();
     CLI::App app(
         "The feedbackd API (org.sigxcpu.Feedback) on the session bus, played through "
         "vibscored. Run with no arguments it serves the bus DBUS_SESSION_BUS_ADDRESS "

@@ -69,12 +69,12 @@ fs::path shipped_clefs_folder() {
     return data_locations().clefs;
 }
 
-fs::path default_feedback_theme() {
+fs::path default_feedback_theme(const DataLocations& located) {
     const char* chosen = std::getenv("FEEDBACK_THEME");
     if (chosen != nullptr && *chosen != '\0') {
         return chosen;
     }
-    return data_locations().feedback_theme;
+    return located.feedback_theme;
 }
 
 }  // namespace vibscore

@@ -38,8 +38,9 @@ DataLocations data_locations();
 std::filesystem::path shipped_clefs_folder();
 
 // The theme vibscore-feedback reads when started without --theme: $FEEDBACK_THEME when set
-// and not empty, else data_locations().feedback_theme. The editor and `vibscore assign` read
-// the same one when vibscore-feedback does not answer.
-std::filesystem::path default_feedback_theme();
+// and not empty, else `located.feedback_theme` (for vibscore-feedback, data_locations()'s). The
+// editor, when vibscore-feedback does not answer, passes installed_data(): the theme of the
+// installed service it tells the user to start.
+std::filesystem::path default_feedback_theme(const DataLocations& located);
 
 }  // namespace vibscore

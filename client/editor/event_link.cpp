@@ -38,8 +38,10 @@ std::vector<EventScore> EventLink::events() {
     try {
         std::vector<Diagnostic> warnings;
         const auto theme =
-            // The theme vibscore-feedback reads when it starts: the same rule.
-            feedback::load_theme(default_feedback_theme().string(),
+            // The theme the installed vibscore-feedback reads when it starts, as before the
+            // locator: an editor run from its build tree without the service offers no events
+            // of its checkout's theme (the editor's end-to-end tests rely on it).
+            feedback::load_theme(default_feedback_theme(installed_data()).string(),
                                  feedback::ThemeSearch::from_environment());
         const auto chosen = feedback::read_user_scores(feedback::user_scores_path(), warnings);
         for (const auto& [event, levels] : theme.events()) {

@@ -16,8 +16,8 @@ namespace vibscore::editor {
 // Which score each event of the feedback theme plays for this user, and choosing one: through
 // vibscore-feedback on the session bus (org.vibscore.Feedback1: EventScores, AssignScore), or,
 // when it is not running, the user's file it reads when it starts and the theme it would read
-// (default_feedback_theme(): $FEEDBACK_THEME, else the installed default, or the checkout's for
-// an editor run from its build tree), as `vibscore assign` does. Calls throw
+// ($FEEDBACK_THEME, else the installed default: default_feedback_theme(installed_data())), as
+// `vibscore assign` does. Calls throw
 // std::runtime_error saying why in words.
 class EventLink {
   public:

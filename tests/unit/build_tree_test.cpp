@@ -163,12 +163,14 @@ class FeedbackThemeVariable {
 
 TEST(DefaultFeedbackTheme, IsFeedbackThemeWhenSetEvenToAFileThatIsNotThere) {
     const FeedbackThemeVariable set("/nonexistent/theme.json");
-    EXPECT_EQ(default_feedback_theme(), fs::path("/nonexistent/theme.json"));
+    EXPECT_EQ(default_feedback_theme(data_locations()), fs::path("/nonexistent/theme.json"));
+    EXPECT_EQ(default_feedback_theme(installed_data()), fs::path("/nonexistent/theme.json"));
 }
 
 TEST(DefaultFeedbackTheme, IsTheLocatedThemeWhenFeedbackThemeIsEmpty) {
     const FeedbackThemeVariable empty("");
-    EXPECT_EQ(default_feedback_theme(), data_locations().feedback_theme);
+    EXPECT_EQ(default_feedback_theme(data_locations()), data_locations().feedback_theme);
+    EXPECT_EQ(default_feedback_theme(installed_data()), fs::path(VIBSCORE_FEEDBACK_THEME));
 }
 
 // This test program lies in the build tree of the checkout whose files the tests use.
