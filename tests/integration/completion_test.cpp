@@ -2,6 +2,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <optional>
 #include <string>
@@ -48,6 +49,26 @@ TEST_F(Completion, OffersVerbsOptionsAndTheDaemonsNames) {
     EXPECT_EQ(complete("vibscore get "), "clef\nscore\n");
     EXPECT_EQ(complete("vibscore driver tr"), "trace\n");
     EXPECT_THAT(complete("vibscore list "), Not(HasSubstr("ringtone")));
+}
+
+// The verbs, each verb's options and which options take a value come from the client's verb table
+// (vibscore --completion-words), not from a list in the script.
+TEST_F(Completion, OffersTheVerbTablesVerbsAndEachVerbsOwnOptions) {
+    const auto words = "\n" + complete("vibscore ");
+    for (const char* verb : {"check", "render", "convert", "clef", "info", "play", "stop", "list",
+                             "get", "compose", "delete", "drivers", "driver", "show", "assign",
+                             "calibrate", "edit", "--help", "--version"}) {
+        EXPECT_THAT(words, HasSubstr(std::string("\n") + verb + "\n")) << verb;
+    }
+    EXPECT_EQ(std::count(words.begin(), words.end(), '\n'), 20) << words;
+    EXPECT_EQ(complete("vibscore drivers --"), "--help\n");
+    EXPECT_EQ(complete("vibscore calibrate --e"), "--estimate\n");
+    EXPECT_EQ(complete("vibscore stop --"), "--all\n--help\n");
+    // A valued option's value is not the score: the score is still the first word.
+    EXPECT_THAT(complete("vibscore play --repeat 2 notification-"),
+                HasSubstr("notification-message\n"));
+    // A flag takes none: the kind is the first word, the name the second.
+    EXPECT_THAT(complete("vibscore get --device clef lra-"), HasSubstr("lra-phone\n"));
 }
 
 TEST_F(Completion, OffersAssignItsOptionsTheUsersEventsAndTheRegistrysScores) {
