@@ -163,14 +163,12 @@ TEST(DriverModules, AModuleStuckInApplyCostsCallersTheDeviceErrorNotTheBus) {
 
     // The first cue goes to the module on the playback thread, which never comes back from it.
     daemon.call({"Play", "sa{sv}", "ringtone", "0"});
-    const auto asked = std::chrono::steady_clock::now();
     const auto stopped = daemon.call({"StopAll"});
-    const auto waited = std::chrono::steady_clock::now() - asked;
     EXPECT_NE(stopped.exit_code, 0);
+    // Bounded by the daemon's call timeout (2 s), not by the module, which never returns: the
+    // daemon's own answer says so (a call held by the module would end in busctl's timeout
+    // instead), so no stopwatch is needed.
     EXPECT_THAT(stopped.err, HasSubstr("the playback thread is still stuck"));
-    // Bounded by the daemon's call timeout (2 s), not by the module; the bound here is loose
-    // because the sanitizer builds and a loaded CI machine are slow.
-    EXPECT_LT(waited, std::chrono::seconds(15));
 
     // What needs no actuator still answers, at once, for anyone.
     const auto listed = daemon.call({"List", "s", "score"}, kNobody);

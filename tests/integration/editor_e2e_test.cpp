@@ -20,6 +20,8 @@
 #include "tests/hil/score_expectations.hpp"
 #include "tests/support/editor_support.hpp"
 #include "tests/support/feedback_fixture.hpp"
+#include "tests/support/pace.hpp"
+#include "tests/support/wait_until.hpp"
 
 namespace vibscore {
 namespace {
@@ -54,26 +56,19 @@ class TmuxPane {
     void key(const std::string& name) const { tmux({"send-keys", "-t", "editor", name}); }
     // The exit status of the pane's command once it has ended ("" if it runs on).
     std::string wait_exit(std::chrono::milliseconds timeout = std::chrono::seconds(5)) const {
-        const auto deadline = std::chrono::steady_clock::now() + timeout;
-        while (std::chrono::steady_clock::now() < deadline) {
-            const auto status = testing::read_file(status_);
-            if (!status.empty() && status.back() == '\n') {
-                return status.substr(0, status.size() - 1);
-            }
-            std::this_thread::sleep_for(std::chrono::milliseconds(10));
-        }
-        return "";
+        std::string status;
+        const bool ended = testing::wait_until(
+            [&] {
+                status = testing::read_file(status_);
+                return !status.empty() && status.back() == '\n';
+            },
+            timeout);
+        return ended ? status.substr(0, status.size() - 1) : "";
     }
     bool wait_for_text(const std::string& text,
                        std::chrono::milliseconds timeout = std::chrono::seconds(10)) const {
-        const auto deadline = std::chrono::steady_clock::now() + timeout;
-        while (std::chrono::steady_clock::now() < deadline) {
-            if (screen().find(text) != std::string::npos) {
-                return true;
-            }
-            std::this_thread::sleep_for(std::chrono::milliseconds(20));
-        }
-        return false;
+        return testing::wait_until([&] { return screen().find(text) != std::string::npos; },
+                                   timeout);
     }
 
   private:
@@ -115,8 +110,9 @@ void send(const TmuxPane& pane, const std::vector<Button>& presses) {
     for (const Button button : presses) {
         pane.key(tmux_key(button));
         // ncurses reads the keys in order either way; a pause keeps a Backspace from being read
-        // as part of the arrow key sequence that follows it.
-        std::this_thread::sleep_for(std::chrono::milliseconds(15));
+        // as part of the arrow key sequence that follows it. The pause is the simulated user's
+        // typing pace (nothing is waited for), so it goes through pace_for.
+        testing::pace_for(std::chrono::milliseconds(15));
     }
 }
 
@@ -391,9 +387,7 @@ TEST_F(EditorEndToEnd, AFileOpenedSavesWithoutAskingAndSaveAsWritesANewFileBesid
     EXPECT_NE(pane.screen().find("\u2191\u2193choose S:save"), std::string::npos) << pane.screen();
     send(pane, {Button::down, Button::select});
     const auto beside = dir.path() / "buzz-2.score.xml";
-    for (int i = 0; i < 500 && !std::filesystem::exists(beside); ++i) {
-        std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    }
+    testing::wait_until([&] { return std::filesystem::exists(beside); });
     ASSERT_TRUE(std::filesystem::exists(beside)) << pane.screen();
     EXPECT_EQ(pane.screen().find("exists"), std::string::npos) << pane.screen();
     const auto saved = read_score(testing::read_file(beside), "buzz-2").score;
@@ -424,15 +418,16 @@ TEST_F(EditorEndToEnd, ARhythmTappedOnEnterBecomesNotesOnTheGridAndIsSaved) {
     for (const Button button : {Button::back, Button::select, Button::select}) {
         copy.press(button);
     }
+    // The taps' spacing is the rhythm under test: paced against the start, not waited for.
     const auto began = std::chrono::steady_clock::now();
     for (int k = 0; k < 8; ++k) {
-        std::this_thread::sleep_until(began + std::chrono::milliseconds(400 * k));
+        testing::pace_until(began + std::chrono::milliseconds(400 * k));
         pane.key("Enter");
         copy.press_at(Button::select, std::chrono::milliseconds(400 * k));
     }
     // Counted on the line as they come.
     ASSERT_TRUE(pane.wait_for_text("8 taps S:note")) << pane.screen();
-    std::this_thread::sleep_until(began + std::chrono::milliseconds(400 * 8));
+    testing::pace_until(began + std::chrono::milliseconds(400 * 8));
     send(pane, {Button::back});
     copy.press_at(Button::back, std::chrono::milliseconds(400 * 8));
     ASSERT_TRUE(pane.wait_for_text("8 notes, clef lra-phone-150bpm (0.40 s)")) << pane.screen();
