@@ -4,18 +4,11 @@
 #include <sstream>
 
 #include "common/quoted_text.hpp"
+#include "common/trim.hpp"
 
 namespace vibscore {
 
 namespace {
-
-std::string trim(const std::string& text) {
-    const auto begin = text.find_first_not_of(" \t\r");
-    if (begin == std::string::npos) {
-        return {};
-    }
-    return text.substr(begin, text.find_last_not_of(" \t\r") - begin + 1);
-}
 
 // Where a comment begins: '#' or ';' at the start of a line or after a blank, as the shipped
 // file and the docs write them ("carrier-hz = 20000  # erm only"). npos: no comment.
