@@ -8,7 +8,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "client/feedback_link.hpp"
+#include "client/editor/feedback_link.hpp"
 #include "client/offline_verbs.hpp"
 #include "common/closest_name.hpp"
 #include "common/quoted_text.hpp"

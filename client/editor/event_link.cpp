@@ -2,7 +2,7 @@
 
 #include <sdbus-c++/sdbus-c++.h>
 
-#include "client/feedback_link.hpp"
+#include "client/editor/feedback_link.hpp"
 #include "feedback/feedbackd_theme.hpp"
 #include "feedback/profile.hpp"
 #include "feedback/theme.hpp"
