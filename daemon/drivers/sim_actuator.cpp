@@ -4,9 +4,11 @@
 #include <cmath>
 #include <stdexcept>
 #include <utility>
+#include <vector>
 
-#include "daemon/drivers/driver_settings.hpp"
 #include "common/log.hpp"
+#include "common/quoted_text.hpp"
+#include "daemon/drivers/driver_settings.hpp"
 
 namespace vibscore::drivers {
 
@@ -20,6 +22,39 @@ std::string meter_label(Kind kind) {
 
 // The [sim] keys that describe the simulated actuator itself.
 constexpr const char* kModelKeys[] = {"model", "resonance-hz", "q", "spin-up-ms", "spin-down-ms"};
+
+// The undeclared sim's model, as [actuator] would declare it: `model` for its kind, then the
+// declaration's keys of that kind with the declaration's defaults and limits. A key of the other
+// kind is refused, as in [actuator]: it would describe no actuator the sim simulates.
+void read_model(DriverSettings& read, const std::map<std::string, std::string>& settings,
+                actuator::Declaration& model) {
+    model.kind = read.choice("model", "lra", {"erm", "lra"}) == "erm" ? Kind::erm : Kind::lra;
+    const auto read_ms = [&](const actuator::Limit& limit, double& seconds) {
+        seconds = read.number(limit.key, seconds * 1000.0, limit.min, limit.max) / 1000.0;
+    };
+    const auto read_number = [&](const actuator::Limit& limit, double& value) {
+        value = read.number(limit.key, value, limit.min, limit.max);
+    };
+    const bool erm = model.kind == Kind::erm;
+    const std::vector<const char*> other_kind =
+        erm ? std::vector{actuator::kResonanceHz.key, actuator::kQ.key}
+            : std::vector{actuator::kSpinUpMs.key, actuator::kSpinDownMs.key};
+    for (const char* key : other_kind) {
+        if (const auto found = settings.find(key); found != settings.end()) {
+            throw SettingError(key, std::string("sim setting ") + key + " = " +
+                                        quoted_text(found->second) +
+                                        " is for model = " + (erm ? "lra" : "erm") +
+                                        "; this sim is model = " + (erm ? "erm" : "lra"));
+        }
+    }
+    if (erm) {
+        read_ms(actuator::kSpinUpMs, model.spin_up_s);
+        read_ms(actuator::kSpinDownMs, model.spin_down_s);
+    } else {
+        read_number(actuator::kResonanceHz, model.resonance_hz);
+        read_number(actuator::kQ, model.q);
+    }
+}
 
 // [sim] true-*: the actuator as it truly is, apart from what is declared; and its accelerometer.
 void read_truth(DriverSettings& read, SimSettings& sim) {
@@ -53,14 +88,10 @@ void read_truth(DriverSettings& read, SimSettings& sim) {
 }  // namespace
 
 actuator::Declaration undeclared_sim_actuator() {
+    // The declaration's own defaults (actuator/declaration.hpp): one set of numbers.
     actuator::Declaration declaration;
     declaration.kind = Kind::lra;
-    declaration.rated_drive = 1.0;
-    declaration.spin_up_s = 0.050;
-    declaration.spin_down_s = 0.080;
-    declaration.resonance_hz = 175.0;
-    declaration.q = 8.0;
-    declaration.compensation = false;
+    declaration.compensation = false;  // nothing is declared, so nothing is compensated
     return declaration;
 }
 
@@ -186,14 +217,7 @@ std::unique_ptr<Actuator> make_sim_actuator(const std::map<std::string, std::str
         sim.actuator = *declared;
         sim.declared = true;
     } else {
-        auto& model = sim.actuator;
-        model.kind = read.choice("model", "lra", {"erm", "lra"}) == "erm" ? Kind::erm : Kind::lra;
-        model.resonance_hz = read.number("resonance-hz", model.resonance_hz, 1.0, 1000.0);
-        model.q = read.number("q", model.q, 0.1, 1000.0);
-        model.spin_up_s =
-            read.number("spin-up-ms", model.spin_up_s * 1000.0, 0.1, 10000.0) / 1000.0;
-        model.spin_down_s =
-            read.number("spin-down-ms", model.spin_down_s * 1000.0, 0.1, 10000.0) / 1000.0;
+        read_model(read, settings, sim.actuator);
     }
     read_truth(read, sim);
     if (auto trace = read.text("trace")) {

@@ -9,8 +9,8 @@
 #include <string>
 #include <string_view>
 
-#include "common/monotonic_clock.hpp"
 #include "actuator/timeline.hpp"
+#include "common/monotonic_clock.hpp"
 #include "daemon/drivers/actuator.hpp"
 #include "daemon/drivers/sim_accelerometer.hpp"
 #include "daemon/drivers/terminal_meter.hpp"
@@ -18,8 +18,9 @@
 
 namespace vibscore::drivers {
 
-// The actuator [sim] simulates when vibscored.conf declares none ([actuator] absent): an LRA at
-// 175 Hz with Q 8, strength 1 at full drive, as before the declaration existed.
+// The actuator [sim] simulates when vibscored.conf declares none ([actuator] absent) and [sim]
+// sets no model: an LRA with the declaration's defaults (175 Hz, Q 15; an ERM: spin-up 40 ms,
+// spin-down 80 ms), strength 1 at full drive, uncompensated.
 actuator::Declaration undeclared_sim_actuator();
 
 struct SimSettings {
@@ -91,12 +92,12 @@ class SimActuator : public Actuator {
 // Builds a SimActuator from the string settings of the daemon's configuration:
 //   trace         path of a CSV trace of every drive (default none)
 //   meter         true | false: live meter on stderr (default false)
-// and, only when no actuator is declared ([actuator] absent), the simulated actuator's own:
-//   model         erm | lra (default lra)
-//   resonance-hz  LRA resonance f0 (default 175)
-//   q             LRA quality factor (default 8)
-//   spin-up-ms    ERM spin-up time constant (default 50)
-//   spin-down-ms  ERM spin-down time constant (default 80)
+// and, only when no actuator is declared ([actuator] absent), the simulated actuator's own, as
+// [actuator] would declare it (the same keys, defaults and limits, actuator/declaration.hpp):
+//   model         erm | lra (default lra): [actuator]'s kind
+//   resonance-hz, q          an LRA's (default 175, 15)
+//   spin-up-ms, spin-down-ms an ERM's (default 40, 80)
+// a key of the other model being refused, as in [actuator];
 // and, declared or not, how the simulated actuator truly is when it should differ (what
 // `vibscore calibrate` then measures): true-resonance-hz, true-q, true-spin-up-ms,
 // true-spin-down-ms (default: as declared), and its accelerometer: accelerometer-rate-hz

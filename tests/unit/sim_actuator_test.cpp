@@ -92,8 +92,9 @@ TEST(SimActuator, FeedsTheModelAndCountsCommands) {
     sim.apply({0.5, 0.0});
     EXPECT_EQ(sim.command_count(), 1u);
     EXPECT_DOUBLE_EQ(sim.model().target(), 0.5);
-    clock.now_ns += 50'000'000;
-    EXPECT_NEAR(sim.model().response_at(1.050), 0.5 * (1.0 - std::exp(-1.0)), 1e-9);
+    // One spin-up time constant later (the declaration's default, 40 ms; the sim's own was 50).
+    clock.now_ns += 40'000'000;
+    EXPECT_NEAR(sim.model().response_at(1.040), 0.5 * (1.0 - std::exp(-1.0)), 1e-9);
     sim.off();
     EXPECT_EQ(sim.command_count(), 2u);
     EXPECT_EQ(sim.model().target(), 0.0);
@@ -232,7 +233,8 @@ TEST(SimActuator, TraceHasAHeaderAndOneLinePerCommand) {
     EXPECT_EQ(first.frequency_hz, 175.0);
     EXPECT_EQ(first.response, 0.0);  // nothing moved before the first command
 
-    const double tau = actuator::lra_time_constant_s(175.0, 8.0);
+    // The undeclared sim's Q is the declaration's default, 15 (the sim's own was 8).
+    const double tau = actuator::lra_time_constant_s(175.0, 15.0);
     EXPECT_EQ(second.amplitude, 1.0);
     EXPECT_EQ(second.frequency_hz, 350.0);
     EXPECT_NEAR(second.response, 0.8 * (1.0 - std::exp(-0.020 / tau)), 1e-12);
@@ -374,15 +376,67 @@ TEST(SimActuator, MeterShowsWhereTheActuatorIsHeading) {
     EXPECT_EQ(text.back(), '\n');
 }
 
-TEST(MakeSimActuator, DefaultsToAnLraWithoutTraceOrMeter) {
+// The undeclared sim is the declaration's defaults (issue 30: one set of numbers). It used to be
+// Q 8 and an ERM spin-up of 50 ms, numbers of its own that [actuator] never defaulted to.
+TEST(MakeSimActuator, DefaultsToAnLraWithTheDeclarationsNumbersWithoutTraceOrMeter) {
     const auto actuator = make_sim_actuator({});
     const auto& sim = dynamic_cast<const SimActuator&>(*actuator);
     const auto& model = sim.model().physics().declaration();
+    const actuator::Declaration defaults;
     EXPECT_EQ(model.kind, actuator::Kind::lra);
-    EXPECT_EQ(model.resonance_hz, 175.0);
-    EXPECT_EQ(model.q, 8.0);
+    EXPECT_EQ(model.resonance_hz, defaults.resonance_hz);
+    EXPECT_EQ(model.q, defaults.q);
+    EXPECT_EQ(model.q, 15.0);
     EXPECT_EQ(model.rated_drive, 1.0);
     EXPECT_FALSE(sim.capabilities().reverse);
+    const auto erm = make_sim_actuator({{"model", "erm"}});
+    const auto& erm_model = dynamic_cast<const SimActuator&>(*erm).model().physics().declaration();
+    EXPECT_EQ(erm_model.spin_up_s, defaults.spin_up_s);
+    EXPECT_EQ(erm_model.spin_up_s, 0.040);
+    EXPECT_EQ(erm_model.spin_down_s, defaults.spin_down_s);
+}
+
+// [sim]'s model keys are [actuator]'s: its limits, first value allowed and first refused.
+TEST(MakeSimActuator, TheModelKeysHaveTheDeclarationsLimits) {
+    const auto model_of = [](const std::map<std::string, std::string>& settings) {
+        const auto made = make_sim_actuator(settings);
+        return dynamic_cast<const SimActuator&>(*made).model().physics().declaration();
+    };
+    EXPECT_EQ(model_of({{"resonance-hz", "10"}}).resonance_hz, 10.0);
+    EXPECT_EQ(model_of({{"resonance-hz", "1000"}}).resonance_hz, 1000.0);
+    EXPECT_EQ(model_of({{"q", "1"}}).q, 1.0);
+    EXPECT_EQ(model_of({{"q", "500"}}).q, 500.0);
+    EXPECT_EQ(model_of({{"model", "erm"}, {"spin-up-ms", "1"}}).spin_up_s, 0.001);
+    EXPECT_EQ(model_of({{"model", "erm"}, {"spin-down-ms", "10000"}}).spin_down_s, 10.0);
+    for (const auto& [key, value] :
+         std::vector<std::pair<std::string, std::string>>{{"resonance-hz", "9.99"},
+                                                          {"resonance-hz", "1000.01"},
+                                                          {"q", "0.99"},
+                                                          {"q", "500.01"}}) {
+        try {
+            make_sim_actuator({{key, value}});
+            ADD_FAILURE() << key << " = " << value << " accepted";
+        } catch (const SettingError& error) {
+            EXPECT_EQ(error.key(), key);
+            EXPECT_THAT(error.what(),
+                        HasSubstr(key + " = \"" + value + "\": expected a number from"));
+        }
+    }
+    for (const auto& [key, value] : std::vector<std::pair<std::string, std::string>>{
+             {"spin-up-ms", "0.99"}, {"spin-up-ms", "5000.01"}, {"spin-down-ms", "10000.01"}}) {
+        EXPECT_THROW(make_sim_actuator({{"model", "erm"}, {key, value}}), SettingError) << key;
+    }
+}
+
+TEST(MakeSimActuator, RefusesAKeyOfTheOtherModelAsTheDeclarationDoes) {
+    try {
+        make_sim_actuator({{"model", "erm"}, {"q", "12"}});
+        FAIL();
+    } catch (const SettingError& error) {
+        EXPECT_EQ(std::string(error.what()),
+                  "sim setting q = \"12\" is for model = lra; this sim is model = erm");
+    }
+    EXPECT_THROW(make_sim_actuator({{"spin-up-ms", "40"}}), SettingError);
 }
 
 TEST(MakeSimActuator, SimulatesTheDeclaredActuatorAndRefusesASecondDeclaration) {
@@ -409,20 +463,21 @@ TEST(MakeSimActuator, SimulatesTheDeclaredActuatorAndRefusesASecondDeclaration) 
 TEST(MakeSimActuator, ReadsEverySetting) {
     TempDir dir;
     const auto trace = dir.path() / "trace.csv";
+    // An ERM's keys and an LRA's in two sims: a key of the other model is refused (above).
     const auto actuator = make_sim_actuator({{"model", "erm"},
-                                             {"resonance-hz", "205.5"},
-                                             {"q", "12"},
-                                             {"spin-up-ms", "40"},
+                                             {"spin-up-ms", "35"},
                                              {"spin-down-ms", "120"},
                                              {"trace", trace.string()},
                                              {"meter", "false"}});
     const auto& model = dynamic_cast<const SimActuator&>(*actuator).model().physics().declaration();
     EXPECT_EQ(model.kind, actuator::Kind::erm);
-    EXPECT_EQ(model.resonance_hz, 205.5);
-    EXPECT_EQ(model.q, 12.0);
-    EXPECT_DOUBLE_EQ(model.spin_up_s, 0.040);
+    EXPECT_DOUBLE_EQ(model.spin_up_s, 0.035);
     EXPECT_DOUBLE_EQ(model.spin_down_s, 0.120);
     EXPECT_TRUE(std::filesystem::exists(trace));
+    const auto lra = make_sim_actuator({{"model", "lra"}, {"resonance-hz", "205.5"}, {"q", "12"}});
+    const auto& lra_model = dynamic_cast<const SimActuator&>(*lra).model().physics().declaration();
+    EXPECT_EQ(lra_model.resonance_hz, 205.5);
+    EXPECT_EQ(lra_model.q, 12.0);
 }
 
 TEST(MakeSimActuator, RejectsBadValuesNamingKeyAndValue) {
