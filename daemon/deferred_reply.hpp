@@ -2,12 +2,25 @@
 
 #include <sdbus-c++/sdbus-c++.h>
 
+#include <exception>
 #include <memory>
 #include <utility>
 
 #include "daemon/bus_errors.hpp"
 
 namespace vibscore::daemon {
+
+namespace detail {
+// The type a method's body returns: its one result, or void.
+template <typename... Results>
+struct BodyResult {
+    using type = void;
+};
+template <typename Result>
+struct BodyResult<Result> {
+    using type = Result;
+};
+}  // namespace detail
 
 // One method call's reply, kept until its answer is known: for the methods that wait for polkit
 // without holding the bus thread (the generated adaptor hands them a sdbus::Result). Exactly one
@@ -38,6 +51,12 @@ class DeferredReply : public std::enable_shared_from_this<DeferredReply<Results.
         } catch (const sdbus::Error& error) {
             result_.returnError(error);
         }
+    }
+
+    // Replies with the named D-Bus error for `error` (bus_errors.hpp).
+    void fail(std::exception_ptr error) {
+        finish([&]() ->
+               typename detail::BodyResult<Results...>::type { std::rethrow_exception(error); });
     }
 
     // Runs `body`, which arranges for finish() to be called (now or later); what it throws is

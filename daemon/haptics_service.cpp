@@ -152,10 +152,34 @@ void HapticsService::driver_switched() {
                                   {"Driver", "DriverReason", "Capabilities", "Actuator"});
 }
 
-Caller HapticsService::admit_caller(const Cost& cost, ChargedTo* charged_to) {
-    const Caller& caller = dbus::with_current_message(
+Caller HapticsService::identify_caller() {
+    return dbus::with_current_message(
         getObject(),
         [&](const sdbus::Message& message) -> const Caller& { return callers_.identify(message); });
+}
+
+// A refused megabyte has already cost the bus and the bus thread its reading; answering it at
+// once would let a caller that waits for its answers send hundreds a second.
+constexpr auto kRefusalDelay = std::chrono::seconds(1);
+
+template <typename Reply>
+void HapticsService::refuse_later(const std::shared_ptr<Reply>& reply, const Caller& caller,
+                                  const RequestError& refusal) {
+    const bool queued =
+        refusals_.add(caller.sender, DelayedTasks::Clock::now() + kRefusalDelay,
+                      [reply, alive = alive_, message = std::string(refusal.what())] {
+                          if (*alive) {
+                              reply->fail(std::make_exception_ptr(
+                                  RequestError(RequestError::Code::limit_exceeded, message)));
+                          }
+                      });
+    if (!queued) {
+        throw refusal;
+    }
+}
+
+Caller HapticsService::admit_caller(const Cost& cost, ChargedTo* charged_to) {
+    const Caller caller = identify_caller();
     // The running configuration's budgets (a reload applies from the next request).
     AdmissionBudgets budgets = config_.admission;
     budgets.user.rate.requests = config_.requests_per_second;
@@ -200,22 +224,31 @@ void HapticsService::Play(sdbus::Result<std::uint64_t>&& result, std::string sco
     reply->start([&] {
         // Charged before anything is read: the documents' bytes are counted, not parsed.
         ChargedTo charged_to = ChargedTo::nothing;
-        const Caller caller =
-            admit_caller(document_cost(document_bytes(score, options)), &charged_to);
+        const auto bytes = document_bytes(score, options);
+        Caller caller;
+        try {
+            caller = admit_caller(document_cost(bytes), &charged_to);
+        } catch (const RequestError& refusal) {
+            if (bytes == 0 || refusal.code() != RequestError::Code::limit_exceeded) {
+                throw;
+            }
+            refuse_later(reply, identify_caller(), refusal);
+            return;
+        }
         const PlayOptions play_options = parse_play_options(options);
         auto shared_score = std::make_shared<const std::string>(std::move(score));
         if (!needs_urgent_usage(play_options.usage)) {
-            queue_play(reply, caller, charged_to, std::move(shared_score), play_options);
+            queue_play(reply, caller, charged_to, std::move(shared_score), play_options, bytes > 0);
             return;
         }
         const std::string what = "Playing with usage " + std::string(to_string(play_options.usage));
         authorizer_.decide(caller, Action::urgent_usage,
-                           [this, reply, caller, charged_to, shared_score, play_options,
-                            what](const Decision& decision) {
+                           [this, reply, caller, charged_to, shared_score, play_options, what,
+                            bytes](const Decision& decision) {
                                reply->start([&] {
                                    decision.require(what);
-                                   queue_play(reply, caller, charged_to, shared_score,
-                                              play_options);
+                                   queue_play(reply, caller, charged_to, shared_score, play_options,
+                                              bytes > 0);
                                });
                            });
     });
@@ -224,7 +257,7 @@ void HapticsService::Play(sdbus::Result<std::uint64_t>&& result, std::string sco
 void HapticsService::queue_play(const std::shared_ptr<DeferredReply<std::uint64_t>>& reply,
                                 const Caller& caller, ChargedTo charged_to,
                                 std::shared_ptr<const std::string> score,
-                                const PlayOptions& options) {
+                                const PlayOptions& options, bool carries_document) {
     // A request that would be refused is refused before its score is read or rendered.
     const double cool_down_s = config_.limits.cool_down_s();
     playback_.call([uid = caller.uid, usage = options.usage, repeat = options.repeat,
@@ -259,7 +292,9 @@ void HapticsService::queue_play(const std::shared_ptr<DeferredReply<std::uint64_
             });
         });
     };
-    auto& lane = Admission::exempt(caller.uid) ? exempt_work_ : work_;
+    auto& lane = Admission::exempt(caller.uid) ? exempt_work_
+                 : carries_document            ? document_work_
+                                               : registry_work_;
     switch (lane.push(caller.uid, caller.sender, std::move(job))) {
         case FairWorkQueue::Pushed::queued:
             return;

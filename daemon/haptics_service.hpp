@@ -11,6 +11,7 @@
 
 #include "daemon/actuator_host.hpp"
 #include "daemon/admission.hpp"
+#include "daemon/admission_delay.hpp"
 #include "daemon/authority.hpp"
 #include "daemon/calibration_reply.hpp"
 #include "daemon/calibrator.hpp"
@@ -21,6 +22,7 @@
 #include "daemon/play_request.hpp"
 #include "daemon/playback_thread.hpp"
 #include "daemon/registry/registry.hpp"
+#include "daemon/request_error.hpp"
 #include "daemon/work_queue.hpp"
 #include "haptics1-adaptor.h"
 
@@ -85,6 +87,13 @@ class HapticsService final : public sdbus::AdaptorInterfaces<org::vibscore::Hapt
     // throws RequestError (limit_exceeded) naming the budget it is over. `charged_to`: where the
     // cost went, to charge the work's CPU time to the same.
     Caller admit_caller(const Cost& cost = {1.0, 0.0, 0.0}, ChargedTo* charged_to = nullptr);
+    // The caller of the method being handled, not yet admitted.
+    Caller identify_caller();
+    // Refuses a request that carried a document (admission.hpp) through `reply` about a second
+    // later (admission_delay.hpp), or at once when its connection already has one waiting.
+    template <typename Reply>
+    void refuse_later(const std::shared_ptr<Reply>& reply, const Caller& caller,
+                      const RequestError& refusal);
     // Runs `then` under `reply` once `caller` may do `action` (at once when no action is needed
     // or the answer is known; when polkit answers otherwise); a refusal is the reply instead.
     // `then` runs later, so it owns what it uses.
@@ -96,9 +105,12 @@ class HapticsService final : public sdbus::AdaptorInterfaces<org::vibscore::Hapt
     struct PlayWork;
     // Refuses what the player would refuse (cool-down, arbitration) before any document work,
     // then queues that work for the worker, which replies through `reply` when it is done.
+    // `carries_document`: an inline score or clefs sent along (the caller's document, parsed on
+    // the worker for documents), else a registry score's name (the worker for those).
     void queue_play(const std::shared_ptr<DeferredReply<std::uint64_t>>& reply,
                     const Caller& caller, ChargedTo charged_to,
-                    std::shared_ptr<const std::string> score, const PlayOptions& options);
+                    std::shared_ptr<const std::string> score, const PlayOptions& options,
+                    bool carries_document);
     // On the worker: the score found, bound, fitted and rendered into a request.
     std::shared_ptr<PlayWork> prepare_play(const std::string& score, const PlayOptions& options,
                                            const DeviceClefs& device_clefs, double separation_s);
@@ -133,10 +145,15 @@ class HapticsService final : public sdbus::AdaptorInterfaces<org::vibscore::Hapt
     DeviceClefs fit_cache_clefs_;  // the [clefs] the cache was filled for: another empties it
     // False once the service is gone: a worker's result that comes back later is dropped.
     std::shared_ptr<bool> alive_ = std::make_shared<bool>(true);
+    DelayedTasks refusals_{
+        [this](std::function<void()> task) { playback_.to_bus(std::move(task)); }};
     // Last, so they are stopped before anything their jobs use: root's and the daemon's own
-    // work on a lane of their own (their head-room), everyone else's on the fair one.
+    // work on a lane of their own (their head-room); everyone else's on two fair ones, so that
+    // a Play of a registry score (no caller's document: its work is bounded by what the registry
+    // holds) never waits behind the parse of someone's megabyte.
     FairWorkQueue exempt_work_{FairWorkQueue::Options{1, 64, 256}};
-    FairWorkQueue work_{FairWorkQueue::Options{}};
+    FairWorkQueue registry_work_{FairWorkQueue::Options{}};
+    FairWorkQueue document_work_{FairWorkQueue::Options{}};
 };
 
 }  // namespace vibscore::daemon
