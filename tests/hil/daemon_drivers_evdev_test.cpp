@@ -14,6 +14,7 @@
 #include "tests/hil/score_expectations.hpp"
 #include "tests/hil/uinput_vibrator.hpp"
 #include "tests/support/daemon_fixture.hpp"
+#include "tests/support/wait_until.hpp"
 
 namespace vibscore::hil {
 namespace {
@@ -66,10 +67,8 @@ std::vector<ExpectedPlay> expected_plays(const std::vector<render::Cue>& drives,
 // reports the playback finished, but the device's service thread may read it a moment after the
 // report arrives here (seen on a loaded host: the final stop of 318 plays missing).
 std::vector<FfEvent> timeline_after_the_last_stop(const UinputVibrator& vibrator) {
-    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(5);
-    while (!vibrator.playing().empty() && std::chrono::steady_clock::now() < deadline) {
-        std::this_thread::sleep_for(std::chrono::milliseconds(2));
-    }
+    vibscore::testing::wait_until([&] { return vibrator.playing().empty(); },
+                                  std::chrono::seconds(5), std::chrono::milliseconds(2));
     return vibrator.timeline();
 }
 

@@ -20,6 +20,7 @@
 #include "tests/hil/score_expectations.hpp"
 #include "tests/hil/uinput_vibrator.hpp"
 #include "tests/support/daemon_fixture.hpp"
+#include "tests/support/wait_until.hpp"
 
 namespace vibscore::hil {
 namespace {
@@ -318,10 +319,7 @@ TEST(DaemonFeel, EvdevOverdrivesWithFullMagnitudeAndBrakesWithANegativeOne) {
     const auto drives = planned(score, lra, true);
     ASSERT_EQ(drives.size(), 4u);
     play_to_the_end(daemon, score);
-    const auto deadline = Clock::now() + 5s;
-    while (!vibrator.playing().empty() && Clock::now() < deadline) {
-        std::this_thread::sleep_for(2ms);
-    }
+    vibscore::testing::wait_until([&] { return vibrator.playing().empty(); }, 5s, 2ms);
     // Each start the device saw, with the magnitude of the effect it started.
     std::map<int, ff_effect> uploaded;
     std::vector<std::pair<Clock::time_point, int>> starts;

@@ -9,6 +9,7 @@
 #include <system_error>
 
 #include "common/unique_fd.hpp"
+#include "tests/support/pace.hpp"
 
 namespace vibscore::hil {
 
@@ -80,7 +81,8 @@ void GpioLinesSampler::run(const std::vector<std::filesystem::path>& files,
             first_sample_.notify_all();
         }
         before = now;
-        std::this_thread::sleep_for(period);
+        // The sampling period: the instrument's own rate, not a wait for anything.
+        vibscore::testing::pace_for(period);
     }
 }
 

@@ -9,6 +9,8 @@
 #include "tests/hil/gpio_sim_chip.hpp"
 #include "tests/hil/gpio_uapi.hpp"
 #include "tests/hil/gpio_value_trace.hpp"
+#include "tests/support/pace.hpp"
+#include "tests/support/wait_until.hpp"
 
 namespace vibscore::hil {
 namespace {
@@ -84,11 +86,8 @@ TEST(GpioSmoke, TheSamplerRecordsEveryEdgeOfALineInOrder) {
     for (int i = 0; i < 6; ++i) {
         const int value = (i + 1) % 2;
         line.set_values({value});
-        const auto deadline = Clock::now() + 5s;
-        while (sampler.changes().size() < static_cast<std::size_t>(i) + 2 &&
-               Clock::now() < deadline) {
-            std::this_thread::sleep_for(1ms);
-        }
+        vibscore::testing::wait_until(
+            [&] { return sampler.changes().size() >= static_cast<std::size_t>(i) + 2; }, 5s, 1ms);
     }
     const auto transitions = sampler.changes();
     ASSERT_EQ(transitions.size(), 7u);
@@ -105,7 +104,8 @@ TEST(GpioSmoke, TheSamplerMeasuresTheDutyCycleOfASoftwarePwm) {
     GpioSimChip sim({1});
     GpioUapiLines line(sim.chip_path(), {0}, Direction::output);
     GpioLinesSampler sampler(sim, {0});
-    std::this_thread::sleep_for(5ms);
+    // Sampling steadily (the constructor returned at its first sample) before the first rise.
+    ASSERT_TRUE(vibscore::testing::wait_until([&] { return sampler.samples() >= 2; }, 5s, 1ms));
 
     // 8 Hz at 33 %: the driver's own clock says how long the line was really high. Pulses are
     // long enough that the sampler cannot miss one even when TCG stalls it for a while.
@@ -114,10 +114,10 @@ TEST(GpioSmoke, TheSamplerMeasuresTheDutyCycleOfASoftwarePwm) {
     for (int period = 0; period < 6; ++period) {
         line.set_values({1});
         const auto rise = Clock::now();
-        std::this_thread::sleep_until(rise + 40ms);
+        vibscore::testing::pace_until(rise + 40ms);  // the software PWM under test: paced
         line.set_values({0});
         driven_high += Clock::now() - rise;
-        std::this_thread::sleep_for(80ms);
+        vibscore::testing::pace_for(80ms);
     }
     const auto end = Clock::now();
 

@@ -14,6 +14,7 @@
 #include "daemon/sensors/open_accelerometer.hpp"
 #include "tests/hil/iio_dummy_accelerometer.hpp"
 #include "tests/hil/kernel_files.hpp"
+#include "tests/support/pace.hpp"
 #include "tests/support/wait_until.hpp"
 
 namespace vibscore::hil {
@@ -97,7 +98,7 @@ TEST(IioAccelerometer, ThePolledReaderReadsRawTimesScaleAtItsDefaultRate) {
     const std::int64_t before = monotonic_now_ns();
     reader->start();
     // A 50 ms recording (its length, not a wait for something): about 20 readings at 400 Hz.
-    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    vibscore::testing::pace_for(std::chrono::milliseconds(50));
     const auto readings = reader->stop();
     const std::int64_t after = monotonic_now_ns();
     ASSERT_GE(readings.size(), 2u);

@@ -5,6 +5,7 @@
 #include <system_error>
 
 #include "tests/hil/kernel_files.hpp"
+#include "tests/support/pace.hpp"
 
 namespace vibscore::hil {
 
@@ -70,7 +71,8 @@ void IioDummyAccelerometer::start_firing(std::chrono::microseconds period) {
                 write_attribute(trigger_ / "trigger_now", "1");
                 ++fired_;
                 next += period;
-                std::this_thread::sleep_until(next);
+                // The device's sample rate: a period kept, not a wait for anything.
+                vibscore::testing::pace_until(next);
             }
         } catch (const std::exception&) {
             // The trigger refused: the test sees fewer scans than fired and says so.

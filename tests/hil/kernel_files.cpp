@@ -9,6 +9,7 @@
 #include <thread>
 
 #include "common/unique_fd.hpp"
+#include "tests/support/wait_until.hpp"
 
 namespace vibscore::hil {
 
@@ -51,13 +52,10 @@ std::string read_attribute(const std::filesystem::path& file) {
 }
 
 void wait_for_path(const std::filesystem::path& path, std::chrono::milliseconds timeout) {
-    const auto deadline = std::chrono::steady_clock::now() + timeout;
-    while (!std::filesystem::exists(path)) {
-        if (std::chrono::steady_clock::now() > deadline) {
-            throw std::runtime_error(path.string() + " did not appear within " +
-                                     std::to_string(timeout.count()) + " ms");
-        }
-        std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    if (!vibscore::testing::wait_until([&] { return std::filesystem::exists(path); }, timeout,
+                                       std::chrono::milliseconds(2))) {
+        throw std::runtime_error(path.string() + " did not appear within " +
+                                 std::to_string(timeout.count()) + " ms");
     }
 }
 

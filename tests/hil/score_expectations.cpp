@@ -9,6 +9,7 @@
 #include "daemon/render/cue_schedule.hpp"
 #include "daemon/render/performance.hpp"
 #include "tests/support/support.hpp"
+#include "tests/support/wait_until.hpp"
 
 namespace vibscore::hil {
 
@@ -71,14 +72,7 @@ double median(std::vector<double> values) {
 }
 
 bool eventually(const std::function<bool()>& condition, std::chrono::milliseconds timeout) {
-    const auto deadline = std::chrono::steady_clock::now() + timeout;
-    while (!condition()) {
-        if (std::chrono::steady_clock::now() >= deadline) {
-            return false;
-        }
-        std::this_thread::sleep_for(std::chrono::milliseconds(1));
-    }
-    return true;
+    return vibscore::testing::wait_until(condition, timeout, std::chrono::milliseconds(1));
 }
 
 }  // namespace vibscore::hil

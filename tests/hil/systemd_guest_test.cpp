@@ -17,6 +17,7 @@
 #include "tests/hil/gpio_sim_chip.hpp"
 #include "tests/hil/uinput_vibrator.hpp"
 #include "tests/support/run_command.hpp"
+#include "tests/support/wait_until.hpp"
 
 namespace vibscore::hil {
 namespace {
@@ -48,14 +49,7 @@ std::string out_of(const std::string& command) {
 
 bool eventually(const std::function<bool()>& condition,
                 std::chrono::milliseconds timeout = std::chrono::seconds(10)) {
-    const auto deadline = std::chrono::steady_clock::now() + timeout;
-    while (!condition()) {
-        if (std::chrono::steady_clock::now() > deadline) {
-            return false;
-        }
-        std::this_thread::sleep_for(std::chrono::milliseconds(50));
-    }
-    return true;
+    return vibscore::testing::wait_until(condition, timeout, std::chrono::milliseconds(50));
 }
 
 std::string main_pid() {

@@ -13,6 +13,7 @@
 
 #include "common/unique_fd.hpp"
 #include "daemon/drivers/evdev_discovery.hpp"
+#include "tests/support/wait_until.hpp"
 
 namespace vibscore::hil {
 
@@ -32,18 +33,21 @@ std::string phys_of(const fs::path& node) {
 }  // namespace
 
 std::optional<fs::path> find_virtual_vibra(std::chrono::milliseconds timeout) {
-    const auto deadline = std::chrono::steady_clock::now() + timeout;
-    while (std::chrono::steady_clock::now() < deadline) {
-        std::error_code error;
-        for (const auto& entry : fs::directory_iterator("/dev/input", error)) {
-            if (entry.path().filename().string().starts_with("event") &&
-                phys_of(entry.path()) == drivers::kVirtualVibraPhys) {
-                return entry.path();
+    std::optional<fs::path> found;
+    vibscore::testing::wait_until(
+        [&] {
+            std::error_code error;
+            for (const auto& entry : fs::directory_iterator("/dev/input", error)) {
+                if (entry.path().filename().string().starts_with("event") &&
+                    phys_of(entry.path()) == drivers::kVirtualVibraPhys) {
+                    found = entry.path();
+                    return true;
+                }
             }
-        }
-        std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    }
-    return std::nullopt;
+            return false;
+        },
+        timeout, std::chrono::milliseconds(20));
+    return found;
 }
 
 FeedbackdVibraMark::FeedbackdVibraMark(const fs::path& event_node, const fs::path& udev_data) {

@@ -23,6 +23,7 @@
 #include "tests/support/daemon_fixture.hpp"
 #include "tests/support/feedback_fixture.hpp"
 #include "tests/support/run_command.hpp"
+#include "tests/support/wait_until.hpp"
 
 namespace vibscore::hil {
 namespace {
@@ -241,7 +242,10 @@ TEST_F(VirtualVibraTest, AClientClosingItsFileLeavesNothingPlaying) {
     ASSERT_TRUE(client->wait_for([](const SeenSignal& signal) {
         return signal.name == "PlaybackStarted" && signal.text.starts_with("virtual-vibra");
     })) << daemon.daemon_log();
-    std::this_thread::sleep_for(100ms);
+    // Closed while it drives the actuator, not before the first drive.
+    ASSERT_TRUE(vibscore::testing::wait_until([&] {
+        return loudest(daemon.trace_rows(), 0) > 0.0;
+    })) << daemon.daemon_log();
     ff.close();
     ASSERT_TRUE(client->wait_for(
         [](const SeenSignal& signal) { return signal.name == "PlaybackFinished"; }, 3s))
@@ -261,17 +265,23 @@ TEST_F(VirtualVibraTest, DebiansFftestPlaysItsRumble) {
         GTEST_SKIP() << "no fftest (package joystick)";
     }
     testing::TempDir dir;
-    testing::Process fftest({"/usr/bin/fftest", node->string()}, dir.path() / "fftest.log", true);
+    testing::Process fftest({"/usr/bin/stdbuf", "-oL", "/usr/bin/fftest", node->string()},
+                            dir.path() / "fftest.log", true);
     // fftest sets the gain to 75 %, uploads its effects, then plays the one whose number it
     // reads: 4 is the strong rumble (0x8000 for 5 s after 1 s). What the device cannot do
     // (spring, damper) the kernel refuses, and fftest reports it.
-    std::this_thread::sleep_for(1s);
+    // fftest asks for the number once its effects are uploaded; its stdout is a file, so it is
+    // line-buffered (stdbuf) for the question to show when it is asked.
+    ASSERT_TRUE(vibscore::testing::wait_until_file_contains(dir.path() / "fftest.log",
+                                                            "Enter effect number"))
+        << testing::read_file(dir.path() / "fftest.log");
     fftest.write_stdin("4\n");
     ASSERT_TRUE(client->wait_for([](const SeenSignal& signal) {
         return signal.name == "PlaybackStarted" && signal.text.starts_with("virtual-vibra");
     })) << testing::read_file(dir.path() / "fftest.log")
         << daemon.daemon_log();
-    std::this_thread::sleep_for(1500ms);
+    // The rumble starts 1 s after the play: wait until it drives the actuator.
+    vibscore::testing::wait_until([&] { return loudest(daemon.trace_rows(), 0) > 0.0; });
     const auto rows = daemon.trace_rows();
     // 0x8000 of 0xffff, at the master gain of 75 % fftest sets first.
     EXPECT_NEAR(loudest(rows, 0), 0.375, 0.01) << testing::read_file(dir.path() / "fftest.log");
