@@ -5,7 +5,7 @@
 
 #include "client/clef_search.hpp"
 #include "actuator/declaration.hpp"
-#include "daemon/render/clef_fit.hpp"
+#include "daemon/render/fitting/clef_fit.hpp"
 
 namespace vibscore::client {
 

@@ -11,7 +11,7 @@
 
 #include "client/bus_verbs.hpp"
 #include "client/editor/daemon_errors.hpp"
-#include "daemon/render/clef_fit.hpp"
+#include "daemon/render/fitting/clef_fit.hpp"
 #include "dbus/haptics1_names.hpp"
 #include "dbus/sdbus_compat.hpp"
 #include "score/clef_xml.hpp"

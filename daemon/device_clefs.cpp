@@ -3,8 +3,8 @@
 #include <cstddef>
 
 #include "common/log.hpp"
-#include "daemon/render/clef_check.hpp"
-#include "daemon/render/clef_fit.hpp"
+#include "daemon/render/fitting/clef_check.hpp"
+#include "daemon/render/fitting/clef_fit.hpp"
 
 namespace vibscore::daemon {
 

@@ -10,7 +10,7 @@
 #include "actuator/declaration.hpp"
 #include "daemon/clef_fit_cache.hpp"
 #include "daemon/registry/registry.hpp"
-#include "daemon/render/clef_fit.hpp"
+#include "daemon/render/fitting/clef_fit.hpp"
 #include "score/bundle.hpp"
 
 // Device clefs (thesis §4.4): a score names the clefs it was written for, and the integrator maps

@@ -9,7 +9,7 @@
 
 #include <thread>
 
-#include "daemon/render/clef_fit.hpp"
+#include "daemon/render/fitting/clef_fit.hpp"
 #include "score/bundle.hpp"
 #include "score/clef_xml.hpp"
 #include "tests/support/daemon_fixture.hpp"

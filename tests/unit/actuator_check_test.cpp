@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "daemon/render/actuator_check.hpp"
+#include "daemon/render/fitting/actuator_check.hpp"
 #include "daemon/render/actuator_response.hpp"
-#include "daemon/render/clef_check.hpp"
+#include "daemon/render/fitting/clef_check.hpp"
 #include "score/clef_xml.hpp"
 #include "tests/support/example_actuators.hpp"
 #include "tests/support/run_command.hpp"

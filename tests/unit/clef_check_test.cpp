@@ -5,8 +5,8 @@
 
 #include <algorithm>
 
-#include "daemon/render/clef_check.hpp"
-#include "daemon/render/clef_fit.hpp"
+#include "daemon/render/fitting/clef_check.hpp"
+#include "daemon/render/fitting/clef_fit.hpp"
 #include "score/bundle.hpp"
 #include "score/clef_xml.hpp"
 #include "tests/support/example_actuators.hpp"

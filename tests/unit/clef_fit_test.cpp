@@ -7,7 +7,7 @@
 #include <filesystem>
 
 #include "actuator/physics.hpp"
-#include "daemon/render/clef_fit.hpp"
+#include "daemon/render/fitting/clef_fit.hpp"
 #include "score/bundle.hpp"
 #include "score/clef_xml.hpp"
 #include "score/document_error.hpp"

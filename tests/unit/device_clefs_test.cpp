@@ -10,7 +10,7 @@
 #include "daemon/config.hpp"
 #include "daemon/device_clefs.hpp"
 #include "daemon/play_request.hpp"
-#include "daemon/render/clef_fit.hpp"
+#include "daemon/render/fitting/clef_fit.hpp"
 #include "daemon/render/cue_schedule.hpp"
 #include "score/clef_xml.hpp"
 #include "tests/support/run_command.hpp"

@@ -1,4 +1,4 @@
-#include "daemon/render/clef_check.hpp"
+#include "daemon/render/fitting/clef_check.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 
 #include "actuator/physics.hpp"
 #include "common/number_text.hpp"
-#include "daemon/render/clef_fit.hpp"
+#include "daemon/render/fitting/clef_fit.hpp"
 
 namespace vibscore::render {
 

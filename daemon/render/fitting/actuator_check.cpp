@@ -1,4 +1,4 @@
-#include "daemon/render/actuator_check.hpp"
+#include "daemon/render/fitting/actuator_check.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -9,7 +9,7 @@
 #include "common/number_text.hpp"
 #include "actuator/physics.hpp"
 #include "daemon/render/actuator_response.hpp"
-#include "daemon/render/clef_check.hpp"
+#include "daemon/render/fitting/clef_check.hpp"
 
 namespace vibscore::render {
 

@@ -1,4 +1,4 @@
-#include "daemon/render/clef_fit.hpp"
+#include "daemon/render/fitting/clef_fit.hpp"
 
 #include <algorithm>
 #include <cmath>
