@@ -36,25 +36,32 @@ void declare_verbs(CLI::App& parent, const std::vector<Verb>& table, VerbContext
     }
 }
 
-// One line per command: its words, then each option name, a valued one followed by '='
-// ("clef fit --help --actuator= -o= --output= --clefs=").
-void print_completion_words(const CLI::App& command, const std::string& words, std::ostream& out) {
-    out << words;
-    for (const auto* option : command.get_options()) {
-        if (!option->nonpositional()) {
-            continue;
+// One line per command of `table` under `parent`: its words, then each option name, a valued
+// one followed by '=', then what each argument completes to after ':' ("clef fit -h --help
+// --actuator= -o= --output= --clefs= :@clefs,*.xml").
+void print_completion_words(const CLI::App& parent, const std::vector<Verb>& table,
+                            const std::string& before, std::ostream& out) {
+    for (const auto& verb : table) {
+        const auto* command = parent.get_subcommand(std::string(verb.name));
+        const std::string words = before + command->get_name();
+        out << words;
+        for (const auto* option : command->get_options()) {
+            if (!option->nonpositional()) {
+                continue;
+            }
+            const char* valued = option->get_expected_max() > 0 ? "=" : "";
+            for (const auto& name : option->get_snames()) {
+                out << " -" << name << valued;
+            }
+            for (const auto& name : option->get_lnames()) {
+                out << " --" << name << valued;
+            }
         }
-        const char* valued = option->get_expected_max() > 0 ? "=" : "";
-        for (const auto& name : option->get_snames()) {
-            out << " -" << name << valued;
+        for (const auto& argument : verb.completion) {
+            out << " :" << argument;
         }
-        for (const auto& name : option->get_lnames()) {
-            out << " --" << name << valued;
-        }
-    }
-    out << "\n";
-    for (const auto* sub : command.get_subcommands({})) {
-        print_completion_words(*sub, words + " " + sub->get_name(), out);
+        out << "\n";
+        print_completion_words(*command, verb.subverbs, words + " ", out);
     }
 }
 
@@ -144,9 +151,7 @@ int run_command_line(int argc, char** argv) {
 
     const std::vector<std::string> words(argv + std::min(argc, 1), argv + argc);
     if (words.size() == 1 && words.front() == kCompletionWordsFlag) {
-        for (const auto* verb : app.get_subcommands({})) {
-            print_completion_words(*verb, verb->get_name(), std::cout);
-        }
+        print_completion_words(app, verbs(), "", std::cout);
         return exit_ok;
     }
     if (const auto unknown = unknown_verb_message(verbs(), words); !unknown.empty()) {

@@ -28,6 +28,11 @@ struct Verb {
     // handler owns (CLI11 writes through references, so the two are made together). Null for a
     // verb made only of sub-verbs.
     VerbHandler (*declare)(CLI::App& command, VerbContext& context) = nullptr;
+    // What the bash completion offers for each argument, in order: sources separated by commas,
+    // each a file pattern (has a '*'), @scores or @clefs (the registry's), @kind (the registry's
+    // names of the kind the word before names), @events (vibscore assign --list), @drivers, or a
+    // word as it is; "..." at the end of the last stands for every later argument too.
+    std::vector<std::string_view> completion = {};
     std::vector<Verb> subverbs = {};  // `clef`: `fit`
     std::string_view footer = {};     // after the options in the verb's --help
 };

@@ -36,8 +36,8 @@ _vibscore() {
     cur=${COMP_WORDS[COMP_CWORD]}
     prev=${COMP_WORDS[COMP_CWORD-1]}
     program=${COMP_WORDS[0]}
-    local table verbs= valued= options= subverbs= word
-    local -a fields
+    local table verbs= valued= options= subverbs= word sub= mine own j
+    local -a fields arguments=()
     table=$(_vibscore_table "$program")
     # What convert reads (--from) and writes (--to).
     local readable="score ahap android-json android-xml rtttl midi"
@@ -51,19 +51,36 @@ _vibscore() {
         esac
     done
 
-    # The verbs; of the one typed, its options and sub-verbs (clef: fit); every valued option.
+    # The word after the verb, which names a sub-verb (clef fit) when the verb has them.
+    for ((j = i + 1; j < COMP_CWORD; j++)); do
+        [[ ${COMP_WORDS[j]} != -* ]] && sub=${COMP_WORDS[j]} && break
+    done
+
+    # The verbs; of the one typed, its options, its sub-verbs (clef: fit) and what each of its
+    # arguments completes to (after ':', one by one; of a sub-verb's line, counted after it);
+    # every valued option.
     while read -ra fields; do
         [[ ${#fields[@]} -eq 0 ]] && continue
         [[ " $verbs " == *" ${fields[0]} "* ]] || verbs+=" ${fields[0]}"
+        mine= own=
+        [[ ${fields[0]} == "$verb" ]] && mine=1 own=1
         for word in "${fields[@]:1}"; do
-            [[ $word == -*= ]] && valued+="|${word%=}"
-            if [[ ${fields[0]} == "$verb" ]]; then
-                if [[ $word == -* ]]; then
-                    options+=" ${word%=}"
-                else
-                    subverbs+=" $word"
-                fi
-            fi
+            case $word in
+                -*)
+                    [[ $word == *= ]] && valued+="|${word%=}"
+                    [[ -n $mine ]] && options+=" ${word%=}" ;;
+                :*)
+                    [[ -n $own ]] && arguments+=("${word#:}") ;;
+                *)
+                    if [[ -n $mine ]]; then
+                        subverbs+=" $word"
+                        if [[ $word == "$sub" ]]; then
+                            arguments=("")
+                        else
+                            own=
+                        fi
+                    fi ;;
+            esac
         done
     done <<< "$table"
     valued=${valued#|}
@@ -145,50 +162,34 @@ _vibscore() {
         return
     fi
 
-    case $verb in
-        check|render|info)
-            _vibscore_files "$cur" '*.xml' ;;
-        play|show|edit)
-            if [[ $position -eq 0 ]]; then
-                COMPREPLY=($(compgen -W "$(_vibscore_registry "$program" scores)" -- "$cur"))
-                _vibscore_files "$cur" '*.xml'
-            fi ;;
-        list)
-            [[ $position -eq 0 ]] && COMPREPLY=($(compgen -W "scores clefs" -- "$cur")) ;;
-        get|delete)
-            if [[ $position -eq 0 ]]; then
-                COMPREPLY=($(compgen -W "score clef" -- "$cur"))
-            elif [[ $position -eq 1 ]]; then
-                local kind=${COMP_WORDS[COMP_CWORD-1]}
-                COMPREPLY=($(compgen -W "$(_vibscore_registry "$program" "${kind%s}s")" -- "$cur"))
-            fi ;;
-        compose)
-            [[ $position -eq 1 ]] && _vibscore_files "$cur" '*.xml' ;;
-        convert)
-            if [[ $position -eq 0 ]]; then
-                _vibscore_files "$cur" '*.@(xml|ahap|json|rtttl|rtx|mid|midi)'
-            elif [[ $position -eq 1 ]]; then
-                _vibscore_files "$cur" '*'
-            fi ;;
-        clef)
-            # clef fit CLEF: a registry clef or a clef file.
-            if [[ $position -eq 1 ]]; then
-                COMPREPLY=($(compgen -W "$(_vibscore_registry "$program" clefs)" -- "$cur"))
-                _vibscore_files "$cur" '*.xml'
-            fi ;;
-        assign)
-            if [[ $position -eq 0 ]]; then
-                COMPREPLY=($(compgen -W "$("$program" assign --list 2>/dev/null | cut -d' ' -f1)" -- "$cur"))
-            elif [[ $position -eq 1 ]]; then
-                COMPREPLY=($(compgen -W "$(_vibscore_registry "$program" scores)" -- "$cur"))
-            fi ;;
-        calibrate)
-            # The second file of --estimate PLAN.csv ACCEL.csv.
-            _vibscore_files "$cur" '*.csv' ;;
-        driver)
-            [[ $position -eq 0 ]] &&
-                COMPREPLY=($(compgen -W "$("$program" drivers 2>/dev/null | cut -c3- | cut -f1)" -- "$cur")) ;;
-    esac
+    # The table's sources for this argument ("..." on the last: every later one too).
+    local spec= source fixed= kind
+    local -a sources
+    if ((position < ${#arguments[@]})); then
+        spec=${arguments[position]}
+    elif ((${#arguments[@]} > 0)) && [[ ${arguments[-1]} == *... ]]; then
+        spec=${arguments[-1]}
+    fi
+    IFS=, read -ra sources <<< "${spec%...}"
+    for source in "${sources[@]}"; do
+        case $source in
+            @scores|@clefs)
+                COMPREPLY+=($(compgen -W "$(_vibscore_registry "$program" "${source#@}")" -- "$cur")) ;;
+            @kind)
+                # The registry's names of the kind the word before names (get clef NAME).
+                kind=${COMP_WORDS[COMP_CWORD-1]}
+                COMPREPLY+=($(compgen -W "$(_vibscore_registry "$program" "${kind%s}s")" -- "$cur")) ;;
+            @events)
+                COMPREPLY+=($(compgen -W "$("$program" assign --list 2>/dev/null | cut -d' ' -f1)" -- "$cur")) ;;
+            @drivers)
+                COMPREPLY+=($(compgen -W "$("$program" drivers 2>/dev/null | cut -c3- | cut -f1)" -- "$cur")) ;;
+            *'*'*)
+                _vibscore_files "$cur" "$source" ;;
+            *)
+                fixed+=" $source" ;;
+        esac
+    done
+    [[ -n $fixed ]] && COMPREPLY+=($(compgen -W "$fixed" -- "$cur"))
 }
 
 # The patterns above (@(csv|wav)) are extended globs; bash-completion enables extglob, a bare

@@ -50,6 +50,8 @@ std::map<std::string, std::set<std::string>> completion_words() {
         for (std::string word; words >> word;) {
             if (word.starts_with("-")) {
                 options.insert(word.ends_with("=") ? word.substr(0, word.size() - 1) : word);
+            } else if (word.starts_with(":")) {
+                continue;  // what an argument completes to
             } else {
                 command += (command.empty() ? "" : " ") + word;
             }
@@ -185,10 +187,24 @@ TEST(VerbTable, TheBashCompletionNamesOnlyTheTablesVerbsAndOptions) {
             ++named;
         }
     }
-    EXPECT_GE(named, 10u);
-    // The verbs and options themselves are the table's, not a list in the script.
+    EXPECT_GE(named, 3u);
+    // The verbs, their options and what their arguments complete to are the table's, not lists
+    // in the script.
     EXPECT_THAT(script, HasSubstr("--completion-words"));
     EXPECT_THAT(script, Not(HasSubstr("check render")));
+    EXPECT_THAT(script, Not(HasSubstr("case $verb in")));
+    // Each source the table names (@scores, @kind, ...) is one the script knows.
+    const auto listed = vibscore({"--completion-words"});
+    const std::regex source(R"([:,](@[a-z]+))");
+    std::size_t sources = 0;
+    for (std::sregex_iterator it(listed.out.begin(), listed.out.end(), source), end; it != end;
+         ++it) {
+        const std::string name = (*it)[1].str();
+        EXPECT_TRUE(std::regex_search(script, std::regex("[\\s|]" + name + "[|)]")))
+            << "vibscore.bash does not complete " << name;
+        ++sources;
+    }
+    EXPECT_GE(sources, 8u);
 }
 
 // The manual page's COMMANDS entries ("check", "clef fit") are the table's commands: an entry for
