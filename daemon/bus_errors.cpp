@@ -2,8 +2,8 @@
 
 #include <string>
 
-#include "daemon/drivers/actuator.hpp"
 #include "common/log.hpp"
+#include "daemon/drivers/actuator.hpp"
 #include "daemon/playback_thread.hpp"
 #include "daemon/player.hpp"
 #include "daemon/registry/registry.hpp"
@@ -38,6 +38,8 @@ const char* error_name(RequestError::Code code) {
     switch (code) {
         case RequestError::Code::invalid:
             return kInvalidDocument;
+        case RequestError::Code::out_of_range:
+            return kOutOfRange;
         case RequestError::Code::not_found:
             return kNotFound;
         case RequestError::Code::permission_denied:

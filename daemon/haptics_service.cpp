@@ -545,7 +545,7 @@ void HapticsService::SwitchDriver(sdbus::Result<>&& result, std::string driver) 
 
 void HapticsService::set_intensity(const Caller& caller, double value) {
     if (!(value >= 0.0 && value <= 1.0)) {
-        throw RequestError(RequestError::Code::invalid,
+        throw RequestError(RequestError::Code::out_of_range,
                            "Intensity " + number_text(value) + " is outside 0..1");
     }
     playback_.call([value](Player& player) { player.set_master_intensity(value); });
@@ -559,25 +559,6 @@ void HapticsService::SetIntensity(sdbus::Result<>&& result, double value) {
         const Caller caller = admit_caller();
         when_allowed(reply, caller, Action::manage, "Setting Intensity",
                      [this, caller, value] { set_intensity(caller, value); });
-    });
-}
-
-// A property setter has no deferred reply: it decides from what is known at once (root, or
-// polkit's answer kept for this connection). Otherwise it asks polkit for next time and
-// refuses now, pointing at SetIntensity, which waits for the answer.
-void HapticsService::Intensity(const double& value) {
-    guarded("Intensity", [&] {
-        const Caller caller = admit_caller();
-        const auto decision = authorizer_.known(caller, Action::manage);
-        if (!decision) {
-            authorizer_.decide(caller, Action::manage, [](const Decision&) {});
-            throw RequestError(RequestError::Code::permission_denied,
-                               "setting Intensity needs org.vibscore.manage, which polkit has not "
-                               "yet answered for this connection; call SetIntensity, which waits "
-                               "for polkit's answer");
-        }
-        decision->require("Setting Intensity");
-        set_intensity(caller, value);
     });
 }
 

@@ -79,8 +79,8 @@ class HapticsService final : public sdbus::AdaptorInterfaces<org::vibscore::Hapt
     std::map<std::string, std::string> RegistryFolders() override;
     std::vector<std::string> Capabilities() override;
     std::map<std::string, std::string> Actuator() override;
+    // Read-only: SetIntensity sets it, as only a method can wait for polkit's answer.
     double Intensity() override;
-    void Intensity(const double& value) override;
     std::string Version() override;
 
     // The caller of the method being handled, admitted with `cost` (one request by default);

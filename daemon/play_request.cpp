@@ -17,6 +17,10 @@ RequestError invalid(const std::string& message) {
     return RequestError(RequestError::Code::invalid, message);
 }
 
+RequestError out_of_range(const std::string& message) {
+    return RequestError(RequestError::Code::out_of_range, message);
+}
+
 template <typename T>
 T option_value(const std::string& key, const sdbus::Variant& value, const char* signature,
                const char* type_name) {
@@ -49,13 +53,14 @@ PlayOptions parse_play_options(const std::map<std::string, sdbus::Variant>& opti
         } else if (key == "repeat") {
             parsed.repeat = option_value<std::int32_t>(key, value, "i", "an int32");
             if (parsed.repeat < -1) {
-                throw invalid("repeat " + std::to_string(parsed.repeat) +
-                              " is invalid (0 once, n more times, -1 until stopped)");
+                throw out_of_range("repeat " + std::to_string(parsed.repeat) +
+                                   " is outside -1.. (0 once, n more times, -1 until stopped)");
             }
         } else if (key == "intensity") {
             parsed.intensity = option_value<double>(key, value, "d", "a double");
             if (!(parsed.intensity >= 0.0 && parsed.intensity <= 1.0)) {
-                throw invalid("intensity " + number_text(parsed.intensity) + " is outside 0..1");
+                throw out_of_range("intensity " + number_text(parsed.intensity) +
+                                   " is outside 0..1");
             }
         } else if (key == "clef") {
             parsed.clef = option_value<std::string>(key, value, "s", "a string");
@@ -122,8 +127,8 @@ PlaybackRequest make_playback_request(const ScoreToPlay& score, const PlayOption
                                       double separation_s) {
     const auto bars = score.bundle.score.bars.size();
     if (options.start_bar >= bars) {
-        throw invalid("start-bar " + std::to_string(options.start_bar) +
-                      " is past the last bar (the score has " + std::to_string(bars) + ")");
+        throw out_of_range("start-bar " + std::to_string(options.start_bar) +
+                           " is past the last bar (the score has " + std::to_string(bars) + ")");
     }
     render::RenderOptions render_options;
     render_options.separation_s = separation_s;

@@ -10,7 +10,9 @@ namespace vibscore::daemon {
 // option or value at fault.
 class RequestError : public std::runtime_error {
   public:
-    enum class Code { invalid, not_found, permission_denied, limit_exceeded };
+    // out_of_range: a well-formed number outside what its argument allows (Intensity 1.5, repeat
+    // -2), told apart from a malformed request so a client can say which bound it crossed.
+    enum class Code { invalid, out_of_range, not_found, permission_denied, limit_exceeded };
 
     RequestError(Code code, const std::string& message)
         : std::runtime_error(message), code_(code) {}

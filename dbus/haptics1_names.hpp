@@ -14,6 +14,8 @@ inline constexpr const char* kInterface = "org.vibscore.Haptics1";
 namespace errors {
 inline constexpr std::string_view kErrorPrefix = "org.vibscore.Haptics1.Error.";
 inline constexpr const char* kInvalidDocument = "org.vibscore.Haptics1.Error.InvalidDocument";
+// A number outside the range its argument or option allows (the message names both).
+inline constexpr const char* kOutOfRange = "org.vibscore.Haptics1.Error.OutOfRange";
 inline constexpr const char* kNotFound = "org.vibscore.Haptics1.Error.NotFound";
 inline constexpr const char* kPermissionDenied = "org.vibscore.Haptics1.Error.PermissionDenied";
 inline constexpr const char* kLimitExceeded = "org.vibscore.Haptics1.Error.LimitExceeded";

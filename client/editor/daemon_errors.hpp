@@ -14,6 +14,7 @@ inline std::string describe_daemon_error(const std::string& name, const std::str
     using namespace haptics1::errors;
     static const std::map<std::string, std::string> kWords{
         {kInvalidDocument, "invalid"},
+        {kOutOfRange, "out of range"},
         {kNotFound, "not found"},
         {kPermissionDenied, "not permitted"},
         {kLimitExceeded, "over a limit"},

@@ -181,7 +181,7 @@ TEST(DaemonEvdev, AScorePlaysAsPeriodicEffectsAtItsTimesWithTheGainFromIntensity
     }
 
     // Intensity goes to the device's gain, not into the effects.
-    client->Intensity(0.8);
+    client->SetIntensity(0.8);
     const int gain = static_cast<int>(std::lround(0.8 * 0xffff));
     ASSERT_TRUE(vibrator.wait_for([&](auto& e) { return e.kind == Kind::Gain && e.value == gain; }))
         << listing(vibrator.timeline());

@@ -222,9 +222,7 @@ TEST(SystemdGuest, PolkitRefusesAUserInNoSessionComposeAndUrgentUsagesAndRootMay
         << compose.err;
     const auto ring = as_alice(kBusctlObject + "Play sa{sv} touch-click 1 usage s ringtone");
     EXPECT_NE(ring.err.find("needs org.vibscore.urgent-usage"), std::string::npos) << ring.err;
-    const auto intensity = as_alice(
-        "busctl set-property org.vibscore.Haptics1 /org/vibscore/Haptics1 org.vibscore.Haptics1 "
-        "Intensity d 0.5");
+    const auto intensity = as_alice(kBusctlObject + "SetIntensity d 0.5");
     EXPECT_NE(intensity.err.find("org.vibscore.manage"), std::string::npos) << intensity.err;
     EXPECT_EQ(as_alice(kBusctlObject + "Play sa{sv} touch-click 0").exit_code, 0);
 

@@ -11,11 +11,13 @@
 #include <cstring>
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <thread>
 
 #include "daemon/render/cue_schedule.hpp"
 #include "daemon/render/performance.hpp"
+#include "dbus/sdbus_compat.hpp"
 #include "tests/support/daemon_fixture.hpp"
 #include "tests/support/wait_until.hpp"
 
@@ -309,7 +311,7 @@ TEST_F(DaemonBus, BadInputGetsANamedErrorAndTheDaemonKeepsServing) {
         {[&] {
              client->Play("touch-tick", options({{"intensity", sdbus::Variant(1.5)}}));
          },
-         "InvalidDocument: intensity"},
+         "OutOfRange: intensity 1.5 is outside 0..1"},
         {[&] {
              client->Play("touch-tick", options({{"clef", sdbus::Variant(std::string("nope"))}}));
          },
@@ -317,7 +319,7 @@ TEST_F(DaemonBus, BadInputGetsANamedErrorAndTheDaemonKeepsServing) {
         {[&] {
              client->Play("touch-tick", options({{"start-bar", sdbus::Variant(7u)}}));
          },
-         "InvalidDocument: start-bar 7 is past the last bar"},
+         "OutOfRange: start-bar 7 is past the last bar"},
         {[&] { client->Play(std::string(2 << 20, '<'), options()); }, "LimitExceeded"},
         {[&] {
              client->Play(
@@ -371,7 +373,7 @@ TEST_F(DaemonBus, AnUnprivilegedCallerMayPlayButNotComposeDeleteOrStopOthers) {
     EXPECT_FALSE(client->wait_finished(id, nullptr, std::chrono::milliseconds(100)));
     EXPECT_EQ(daemon.call({"Stop", "t", "0"}, kNobody).exit_code, 0);  // "mine": nothing
     EXPECT_FALSE(client->wait_finished(id, nullptr, std::chrono::milliseconds(50)));
-    client->Intensity(0.25);  // root may
+    client->SetIntensity(0.25);  // root may
     EXPECT_EQ(client->Intensity(), 0.25);
     client->Stop(id);
 }
@@ -720,22 +722,57 @@ TEST_F(DaemonBus, StopAllEndsEveryonesPlaybackAndNeedsManage) {
     EXPECT_EQ(both.exit_code, 2) << both.err;
 }
 
-// Setting a property cannot wait for polkit: it is refused until polkit has answered for the
-// connection, and the refusal names SetIntensity, which waits.
-TEST_F(DaemonBus, IntensityIsSetByRootOrThroughSetIntensity) {
-    const auto property =
-        daemon.busctl({"set-property", "org.vibscore.Haptics1", "/org/vibscore/Haptics1",
-                       "org.vibscore.Haptics1", "Intensity", "d", "0.2"},
-                      kNobody);
-    EXPECT_NE(property.err.find("call SetIntensity"), std::string::npos) << property.err;
+// A property set cannot wait for polkit, so Intensity is read-only and set through SetIntensity,
+// which waits. The bus refuses a property set, root's too, without the daemon's code running.
+TEST_F(DaemonBus, IntensityIsReadOnlyAndSetThroughSetIntensity) {
+    for (const uid_t uid : {kNobody, uid_t{0}}) {
+        const auto property =
+            daemon.busctl({"set-property", "org.vibscore.Haptics1", "/org/vibscore/Haptics1",
+                           "org.vibscore.Haptics1", "Intensity", "d", "0.2"},
+                          uid);
+        EXPECT_NE(property.exit_code, 0) << uid;
+        EXPECT_NE(property.err.find("Property 'Intensity' is not writable"), std::string::npos)
+            << property.err;
+    }
+    const auto connection = sdbus::createSystemBusConnection();
+    const auto proxy =
+        dbus::create_proxy(*connection, "org.vibscore.Haptics1", "/org/vibscore/Haptics1");
+    try {
+        proxy->setProperty("Intensity").onInterface("org.vibscore.Haptics1").toValue(0.2);
+        ADD_FAILURE() << "setting the Intensity property was not refused";
+    } catch (const sdbus::Error& error) {
+        EXPECT_EQ(dbus::error_name(error), "org.freedesktop.DBus.Error.PropertyReadOnly")
+            << error.getMessage();
+    }
+    auto root = daemon.client();
+    EXPECT_EQ(root->Intensity(), 1.0);
     const auto method = daemon.call({"SetIntensity", "d", "0.2"}, kNobody);
     EXPECT_NE(method.err.find("Setting Intensity needs org.vibscore.manage; polkit is not "
                               "running"),
               std::string::npos)
         << method.err;
     EXPECT_EQ(daemon.call({"SetIntensity", "d", "0.3"}).exit_code, 0);
-    auto root = daemon.client();
     EXPECT_EQ(root->Intensity(), 0.3);
+}
+
+// A number outside its range is OutOfRange, not InvalidDocument, at both edges of 0..1.
+TEST_F(DaemonBus, SetIntensityTakesZeroToOneAndRefusesBeyondAsOutOfRange) {
+    auto root = daemon.client();
+    root->SetIntensity(1.0);
+    EXPECT_EQ(root->Intensity(), 1.0);
+    root->SetIntensity(0.0);
+    EXPECT_EQ(root->Intensity(), 0.0);
+    for (const double bad : {1.0000001, std::nextafter(1.0, 2.0), -1e-300, -0.5, 1.5}) {
+        try {
+            root->SetIntensity(bad);
+            ADD_FAILURE() << "SetIntensity " << bad << " was not refused";
+        } catch (const sdbus::Error& error) {
+            EXPECT_EQ(dbus::error_name(error), "org.vibscore.Haptics1.Error.OutOfRange") << bad;
+            EXPECT_NE(error.getMessage().find("is outside 0..1"), std::string::npos)
+                << error.getMessage();
+        }
+    }
+    EXPECT_EQ(root->Intensity(), 0.0);
     const auto outside = daemon.call({"SetIntensity", "d", "1.5"});
     EXPECT_NE(outside.err.find("Intensity 1.5 is outside 0..1"), std::string::npos) << outside.err;
 }

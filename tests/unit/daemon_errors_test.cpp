@@ -10,6 +10,7 @@ TEST(DaemonErrorWords, EachNamedErrorOfTheInterfaceHasItsWords) {
     using namespace haptics1::errors;
     const std::pair<const char*, const char*> table[] = {
         {kInvalidDocument, "invalid: m"},
+        {kOutOfRange, "out of range: m"},
         {kNotFound, "not found: m"},
         {kPermissionDenied, "not permitted: m"},
         {kLimitExceeded, "over a limit: m"},

@@ -42,6 +42,10 @@ std::string invalid_options(const Options& options) {
     return refusal(RequestError::Code::invalid, [&] { parse_play_options(options); });
 }
 
+std::string out_of_range_options(const Options& options) {
+    return refusal(RequestError::Code::out_of_range, [&] { parse_play_options(options); });
+}
+
 TEST(PlayOptions, NoOptionsMeanANotificationPlayedOnceAtFullStrengthThroughItsOwnClefs) {
     const PlayOptions options = parse_play_options({});
     EXPECT_EQ(options.usage, Usage::notification);
@@ -81,18 +85,21 @@ TEST(PlayOptions, AnUnknownUsageIsRefusedListingTheKnownOnes) {
     EXPECT_THAT(message, HasSubstr("media"));
 }
 
-TEST(PlayOptions, RepeatTakesMinusOneForeverButNothingBelow) {
+TEST(PlayOptions, RepeatTakesMinusOneForeverButNothingBelowWhichIsOutOfRange) {
     EXPECT_EQ(parse_play_options({{"repeat", sdbus::Variant(std::int32_t{-1})}}).repeat, -1);
-    EXPECT_THAT(invalid_options({{"repeat", sdbus::Variant(std::int32_t{-2})}}),
-                HasSubstr("repeat -2 is invalid (0 once, n more times, -1 until stopped)"));
+    EXPECT_THAT(out_of_range_options({{"repeat", sdbus::Variant(std::int32_t{-2})}}),
+                HasSubstr("repeat -2 is outside -1.. (0 once, n more times, -1 until stopped)"));
 }
 
-TEST(PlayOptions, AnIntensityOutsideZeroToOneIsRefused) {
+TEST(PlayOptions, AnIntensityOutsideZeroToOneIsOutOfRangeAtBothEdges) {
     EXPECT_EQ(parse_play_options({{"intensity", sdbus::Variant(0.0)}}).intensity, 0.0);
     EXPECT_EQ(parse_play_options({{"intensity", sdbus::Variant(1.0)}}).intensity, 1.0);
-    for (const double bad : {-0.01, 1.01, std::numeric_limits<double>::quiet_NaN(),
-                             std::numeric_limits<double>::infinity()}) {
-        EXPECT_THAT(invalid_options({{"intensity", sdbus::Variant(bad)}}),
+    const double below_zero = -std::numeric_limits<double>::denorm_min();
+    const double above_one = std::nextafter(1.0, 2.0);
+    for (const double bad :
+         {below_zero, -0.01, above_one, 1.0000001, 1.01, std::numeric_limits<double>::quiet_NaN(),
+          std::numeric_limits<double>::infinity()}) {
+        EXPECT_THAT(out_of_range_options({{"intensity", sdbus::Variant(bad)}}),
                     HasSubstr("is outside 0..1"))
             << bad;
     }
@@ -260,13 +267,15 @@ TEST_F(ScoreToPlayTest, TheStartBarSkipsEarlierBarsAndTimeStartsThere) {
     EXPECT_EQ(first_position->symbol, 0u);
 }
 
-TEST_F(ScoreToPlayTest, AStartBarPastTheLastBarIsRefusedWithTheBarCount) {
+TEST_F(ScoreToPlayTest, AStartBarPastTheLastBarIsOutOfRangeWithTheBarCount) {
     const auto score = find_score_to_play(registry, inline_score(), {});
     PlayOptions options;
+    options.start_bar = 1;
+    EXPECT_NO_THROW(make_playback_request(score, options, 0.030));
     options.start_bar = 2;
-    EXPECT_EQ(
-        refusal(RequestError::Code::invalid, [&] { make_playback_request(score, options, 0.030); }),
-        "start-bar 2 is past the last bar (the score has 2)");
+    EXPECT_EQ(refusal(RequestError::Code::out_of_range,
+                      [&] { make_playback_request(score, options, 0.030); }),
+              "start-bar 2 is past the last bar (the score has 2)");
 }
 
 TEST_F(ScoreToPlayTest, TheSeparationCutsTheEndOfANoteFollowedByAnother) {
