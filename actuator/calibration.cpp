@@ -5,10 +5,11 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <string_view>
 
-#include "common/number_text.hpp"
 #include "actuator/calibration_fit.hpp"
 #include "actuator/physics.hpp"
+#include "common/number_text.hpp"
 
 namespace vibscore::actuator::calibration {
 
@@ -132,13 +133,18 @@ void estimate_lra(Estimate& e, const Plan& plan, const std::vector<Sample>& samp
     const std::vector<double> regular = fit::regular_times(raw);
     fit::LraFit best;
     bool first = true;
+    const std::vector<double>* best_times = &regular;
     for (const std::vector<double>* times : {&regular, &raw}) {
         const fit::LraFit f = fit::fit_lra(plan, *times, y, low, high, e.sample_rate_hz);
         if (first || f.rss < best.rss) {
             best = f;
+            best_times = times;
             first = false;
         }
     }
+    const fit::LraSpread pairs = fit::lra_pair_spread(plan, *best_times, y, best);
+    e.resonance_uncertainty = pairs.resonance;
+    e.q_uncertainty = pairs.q;
     e.resonance_hz = best.resonance_hz;
     e.q = std::numbers::pi * best.resonance_hz / best.decay_per_s;
     e.full_scale_accel = best.full_scale;
@@ -224,13 +230,17 @@ void estimate_erm(Estimate& e, const Plan& plan, const std::vector<Vec3>& vibrat
     fit::ErmFit best;
     bool first = true;
     std::vector<fit::ErmFit> fits;
+    const std::vector<double>* best_times = &regular;
     for (const std::vector<double>* times : {&regular, &raw}) {
         fits.push_back(fit::fit_erm(plan, *times, energy, weight, half));
         if (first || fits.back().rss < best.rss) {
             best = fits.back();
+            best_times = times;
             first = false;
         }
     }
+    fit::ErmSpread steps = fit::erm_burst_spread(plan, *best_times, energy, weight, half, best);
+    fit::ErmFit used = best;
     double spin_up_s = best.spin_up_s, spin_down_s = best.spin_down_s;
     // Readings taken at jittered instants (the reported times right, not the sensor's uniform
     // clock) sample the ripple of |vibration|^2 at random: there the time constants come from
@@ -250,9 +260,15 @@ void estimate_erm(Estimate& e, const Plan& plan, const std::vector<Vec3>& vibrat
                                                   /*try_filter=*/false);
         spin_up_s = coherent.spin_up_s;
         spin_down_s = coherent.spin_down_s;
+        steps = fit::erm_burst_spread(plan, raw, on_raw.envelope, on_raw.weight, window, coherent);
+        used = coherent;
     }
     e.spin_up_s = spin_up_s;
     e.spin_down_s = spin_down_s;
+    // Two doubts, independent: what sets the probe's steps apart, and what the answer leans on
+    // a sensor low-pass whose form is guessed.
+    e.spin_up_uncertainty = std::hypot(steps.spin_up, used.filter_doubt_up);
+    e.spin_down_uncertainty = std::hypot(steps.spin_down, used.filter_doubt_down);
     // Peak of one axis's sinusoid with the same energy: what an LRA's figure means too.
     e.full_scale_accel = std::sqrt(2.0 * std::max(0.0, best.scale));
     e.residual = best.energy_ss > 0.0 ? std::sqrt(best.rss / best.energy_ss) : 1.0;
@@ -276,6 +292,8 @@ void estimate_erm(Estimate& e, const Plan& plan, const std::vector<Vec3>& vibrat
     }
     check_limit(e, kSpinUpMs, spin_up_s * 1000.0);
     check_limit(e, kSpinDownMs, spin_down_s * 1000.0);
+    e.low_pass_doubt = std::max(used.filter_doubt_up, used.filter_doubt_down) >
+                       std::max(steps.spin_up, steps.spin_down);
 }
 
 }  // namespace
@@ -345,8 +363,57 @@ Estimate estimate(const Plan& plan, const std::vector<Sample>& samples,
                                  "other vibration, and calibrate again");
         }
     }
+    if (e.snr_db >= kMinSnrDb) {
+        judge_confidence(e);
+    }
     e.trusted = e.problems.empty();
     return e;
+}
+
+void judge_confidence(Estimate& e) {
+    if (e.kind == Kind::lra && e.resonance_hz && e.q && e.resonance_uncertainty &&
+        e.q_uncertainty) {
+        // Sampled at nearly twice the resonance, the ring and its mirror image about half the
+        // rate fall within a fraction of the resonance's bandwidth of each other: the readings
+        // then see their beat, slow against the decay, and the decay cannot be told from it
+        // (bench/calibrate: Q off by 12-16 % through a sensor low-pass, every one of them
+        // within 0.12 bandwidths; the resonance itself stays within 1 %).
+        const double bandwidth = *e.resonance_hz / *e.q;
+        const double apart = std::abs(e.sample_rate_hz - 2.0 * *e.resonance_hz) / bandwidth;
+        if (apart < kMinMirrorBandwidths) {
+            e.problems.push_back(
+                "the resonance (" + text(*e.resonance_hz, 4) +
+                " Hz) lies at half the accelerometer's sampling rate (" +
+                text(e.sample_rate_hz, 4) +
+                " Hz), where its ring cannot be told from its mirror image and the quality "
+                "factor is not measurable: set the accelerometer's sampling frequency to another "
+                "value (1 kHz is best) and calibrate again");
+        } else if (*e.q_uncertainty > kMaxQUncertainty ||
+                   *e.resonance_uncertainty > kMaxResonanceUncertainty) {
+            e.problems.push_back("the probe's tones disagree: the resonance by ±" +
+                                 text(200.0 * *e.resonance_uncertainty, 2) + " %, Q by ±" +
+                                 text(200.0 * *e.q_uncertainty, 2) + " % (at most ±" +
+                                 text(200.0 * kMaxResonanceUncertainty, 2) + " % and ±" +
+                                 text(200.0 * kMaxQUncertainty, 2) +
+                                 " % trusted); hold the phone still on a hard surface, read "
+                                 "the accelerometer faster (1 kHz) and calibrate again");
+        }
+    }
+    if (e.kind == Kind::erm && e.spin_up_uncertainty && e.spin_down_uncertainty) {
+        const double doubt = std::max(*e.spin_up_uncertainty, *e.spin_down_uncertainty);
+        if (doubt > kMaxSpinUncertainty) {
+            e.problems.push_back(
+                "the time constants are uncertain by ±" + text(200.0 * doubt, 2) + " % (at most ±" +
+                text(200.0 * kMaxSpinUncertainty, 2) + " % trusted): " +
+                (e.low_pass_doubt
+                     ? "the accelerometer's own low-pass hides how fast the motor turns (read "
+                       "at 1 kHz, or set the device's filter_low_pass_3db_frequency above the "
+                       "motor's rotation) and calibrate again"
+                     : "the probe's three steps disagree; hold the phone still on a hard "
+                       "surface, read the accelerometer faster (1 kHz) and calibrate again"));
+        }
+    }
+    e.trusted = e.problems.empty();
 }
 
 Trace measured_magnitude(const std::vector<Sample>& samples) {
@@ -443,6 +510,21 @@ std::string declaration_lines(const Estimate& estimate) {
     if (estimate.full_scale_accel) {
         out += "# strength: full scale shakes the phone with " + text(*estimate.full_scale_accel) +
                " m/s² peak" + (estimate.kind == Kind::lra ? " at resonance" : "") + "\n";
+    }
+    // Twice the standard error: the ± a person reads as "within".
+    std::string doubt;
+    const auto add_doubt = [&](const std::optional<double>& value, std::string_view key) {
+        if (value) {
+            doubt += std::string(doubt.empty() ? "" : ", ") + std::string(key) + " ±" +
+                     text(200.0 * *value, 2) + " %";
+        }
+    };
+    add_doubt(estimate.spin_up_uncertainty, kSpinUpMs.key);
+    add_doubt(estimate.spin_down_uncertainty, kSpinDownMs.key);
+    add_doubt(estimate.resonance_uncertainty, kResonanceHz.key);
+    add_doubt(estimate.q_uncertainty, kQ.key);
+    if (!doubt.empty()) {
+        out += "# uncertainty: " + doubt + "\n";
     }
     out += "# fit: residual " + text(estimate.residual, 2) + ", signal-to-noise " +
            text(estimate.snr_db, 3) + " dB, sampled at " + text(estimate.sample_rate_hz, 4) +

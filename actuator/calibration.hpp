@@ -79,10 +79,35 @@ struct Estimate {
     double sample_rate_hz = 0.0;  // median rate of the recording
     double residual = 1.0;        // RMS misfit of the fitted model over RMS of the vibration, 0..
     double snr_db = 0.0;          // vibration over what is left when none is driven
-    bool trusted = false;         // every number set and the fit good enough to use
+    // How sure each number is, from the recording itself: a relative standard error (0.05:
+    // about ±5 %), set with the number. An ERM's from how far the probe's three steps disagree,
+    // an LRA's from how far its ring-downs do. An estimate is trusted only while twice these
+    // stay within what compensation is planned for (kMaxSpinUncertainty, ...).
+    std::optional<double> spin_up_uncertainty, spin_down_uncertainty;
+    std::optional<double> resonance_uncertainty, q_uncertainty;
+    // An ERM's doubt is mostly what its answer leans on the sensor's own low-pass (fitted as a
+    // first-order gain on the motor's speed), not what sets the probe's steps apart.
+    bool low_pass_doubt = false;
+    bool trusted = false;                 // every number set and the fit good enough to use
     std::vector<std::string> problems;    // why not trusted: each a sentence a person can act on
     std::vector<std::string> unmeasured;  // keys not measured, each with its reason
 };
+
+// How uncertain a number may be and still be trusted (a relative standard error, so twice it
+// is the ±error allowed): issue 32's accuracy, ERM time constants ±15 %, LRA resonance ±1 % and
+// Q ±15 %, which are also the margins compensation plans a measured LRA with (docs/drivers.md).
+inline constexpr double kMaxSpinUncertainty = 0.075;
+inline constexpr double kMaxResonanceUncertainty = 0.005;
+inline constexpr double kMaxQUncertainty = 0.075;
+// LRA: how far (in the resonance's bandwidths, f0 / Q) its mirror image about half the sampling
+// rate must lie for its decay to be told from their beat.
+inline constexpr double kMinMirrorBandwidths = 0.15;
+
+// The trust rule on an estimate's uncertainties: adds a problem (what was uncertain, why, what
+// to do) for each beyond its limit above, and sets `trusted` to whether there are none. An
+// uncertainty exactly at its limit is still trusted. estimate() applies it; exposed so the rule
+// is tested at its edges.
+void judge_confidence(Estimate& e);
 
 // Estimates the actuator's numbers from a recording of `plan`. `nominal` is what is declared
 // (or nothing); it may guide the search but the result must not depend on it being right.

@@ -56,6 +56,17 @@ struct LraFit {
 LraFit fit_lra(const Plan& plan, const std::vector<double>& t_s, const std::vector<double>& signal,
                double low_hz, double high_hz, double rate_hz);
 
+// How far the probe's tones disagree: each tone with its ring-down fitted alone (the offset
+// held, starting from `fit`), the spread of their log resonance and log Q as a standard error
+// of their mean.
+struct LraSpread {
+    double resonance = 1.0;
+    double q = 1.0;
+    int pairs = 0;
+};
+LraSpread lra_pair_spread(const Plan& plan, const std::vector<double>& t_s,
+                          const std::vector<double>& signal, const LraFit& fit);
+
 // An ERM's speed: time constants, delay, and the energy fit.
 struct ErmFit {
     double spin_up_s = 0.0;
@@ -65,6 +76,10 @@ struct ErmFit {
     double floor = 0.0;  // smoothed |vibration|^2 at rest (noise)
     double rss = 0.0;
     double energy_ss = 0.0;  // the energy's own spread about the floor
+    double filter = 0.0;     // the sensor low-pass kept: full-speed rotation over its corner
+    // How much the constants lean on the low-pass model (log, a standard error): see fit_erm.
+    double filter_doubt_up = 0.0;
+    double filter_doubt_down = 0.0;
 };
 // `energy`: |vibration|^2 smoothed by box_smooth over `half`; `weight`: how much each reading's
 // energy is to be believed (weighted least squares).
@@ -72,6 +87,20 @@ struct ErmFit {
 // explains more).
 ErmFit fit_erm(const Plan& plan, const std::vector<double>& t_s, const std::vector<double>& energy,
                const std::vector<double>& weight, int half, bool try_filter = true);
+
+// How far the probe's steps disagree: each step (its rise and its coast) fitted alone, the
+// delay and sensor low-pass of `fit` held, starting from `fit`'s constants; the standard error
+// of the steps' mean log constant (0.05: about ±5 %). The steps are repeats of one experiment,
+// so what sets them apart is what the recording does not determine: noise, the sampled phase,
+// a beat of the rotation with the sampling, a low-pass the fit cannot tell from a slower motor.
+struct ErmSpread {
+    double spin_up = 1.0;
+    double spin_down = 1.0;
+    int bursts = 0;
+};
+ErmSpread erm_burst_spread(const Plan& plan, const std::vector<double>& t_s,
+                           const std::vector<double>& energy, const std::vector<double>& weight,
+                           int half, const ErmFit& fit);
 
 // An ERM's vibration envelope independent of the phase at which the readings fall (for readings
 // at jittered instants, where |vibration|^2 carries the sampled phase as noise): the rotation

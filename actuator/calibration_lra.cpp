@@ -333,4 +333,57 @@ LraFit fit_lra(const Plan& plan, const std::vector<double>& t_s, const std::vect
     return out;
 }
 
+LraSpread lra_pair_spread(const Plan& plan, const std::vector<double>& t_s,
+                          const std::vector<double>& signal, const LraFit& fit) {
+    // Each tone with its ring-down, from its start to the next tone's.
+    std::vector<double> starts;
+    for (std::size_t i = 0; i < plan.rows.size(); ++i) {
+        if (plan.rows[i].amplitude != 0.0) {
+            starts.push_back(plan.rows[i].t_s + fit.offset_s);
+        }
+    }
+    starts.push_back(plan.duration_s() + fit.offset_s + 1.0);
+    std::vector<double> f0s, qs;
+    for (std::size_t p = 0; p + 1 < starts.size(); ++p) {
+        std::vector<double> t, y;
+        for (std::size_t k = 0; k < t_s.size(); ++k) {
+            if (t_s[k] >= starts[p] && t_s[k] < starts[p + 1]) {
+                t.push_back(t_s[k]);
+                y.push_back(signal[k]);
+            }
+        }
+        if (t.size() < 40) {
+            continue;
+        }
+        const Model model(plan, t, y);
+        const auto cost = [&](const std::vector<double>& x) {
+            return model.rss(fit.resonance_hz * std::exp(x[0]), fit.decay_per_s * std::exp(x[1]),
+                             fit.offset_s);
+        };
+        const std::vector<double> found = minimise(cost, {0.0, 0.0}, {0.002, 0.1}, 80);
+        f0s.push_back(found[0]);
+        qs.push_back(found[0] - found[1]);  // Q = pi f0 / gamma
+    }
+    // The standard error of the pairs' mean, robustly: the median absolute deviation (one
+    // pair's tone far from the resonance rings weakly and times it poorly; it must not decide).
+    const auto spread = [](std::vector<double> v) {
+        if (v.size() < 3) {
+            return 1.0;
+        }
+        std::sort(v.begin(), v.end());
+        const double median = v[v.size() / 2];
+        std::vector<double> deviation;
+        for (const double x : v) {
+            deviation.push_back(std::abs(x - median));
+        }
+        std::sort(deviation.begin(), deviation.end());
+        return 1.4826 * deviation[deviation.size() / 2] / std::sqrt(static_cast<double>(v.size()));
+    };
+    LraSpread out;
+    out.pairs = static_cast<int>(f0s.size());
+    out.resonance = spread(f0s);
+    out.q = spread(qs);
+    return out;
+}
+
 }  // namespace vibscore::actuator::calibration::fit
