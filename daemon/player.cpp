@@ -5,6 +5,7 @@
 
 #include "common/log.hpp"
 #include "daemon/render/cue_adaptation.hpp"
+#include "daemon/strength_scale.hpp"
 
 namespace vibscore::daemon {
 
@@ -97,18 +98,13 @@ std::uint64_t Player::play(PlaybackRequest request) {
     adaptation.frequency = capabilities.frequency_control;
     adaptation.amplitude = capabilities.amplitude_control;
     adaptation.envelopes = capabilities.envelopes;
-    adaptation.scale = request.intensity * master_intensity_;
+    const StrengthScale scale =
+        strength_scale(capabilities, request.intensity, master_intensity_, request.probe);
+    adaptation.scale = scale.software;
     adaptation.pulse_period_s = capabilities.pulse_period_s;
-    if (request.probe) {
-        adaptation.scale = 1.0;
-    } else if (declared_) {
+    if (!request.probe && declared_) {
         adaptation.actuator = declared_;
         adaptation.reverse = capabilities.reverse;
-        // A device with gain scales the drives itself; the model is linear, so drives planned
-        // without the master intensity still follow the envelope once the device scales them.
-        if (capabilities.gain_control && capabilities.amplitude_control) {
-            adaptation.scale = request.intensity;
-        }
     }
     PlaybackCues cues(request.cues, request.duration_s, request.repeat, adaptation);
     on_since_us_.reset();
@@ -116,12 +112,11 @@ std::uint64_t Player::play(PlaybackRequest request) {
     last_report_us_.reset();
     held_position_.reset();
     const bool final_drives = declared_.has_value() || request.probe;
-    const double gain = request.probe ? 1.0 : master_intensity_;
     current_.emplace(Playback{id, std::move(request), std::move(cues), monotonic_now_us(), 0,
                               capabilities, final_drives});
-    if (capabilities.gain_control) {
+    if (scale.device_gain) {
         try {
-            actuator_->set_gain(gain);
+            actuator_->set_gain(*scale.device_gain);
         } catch (const drivers::DeviceError& error) {
             fail(error);  // like a failing first drive: the playback ends, the call succeeds
             return id;
@@ -186,10 +181,10 @@ drivers::Drive Player::drive_for(const render::Cue& cue) const {
         }
         return drive;
     }
-    double scale = current_->request.intensity;
-    if (!capabilities.gain_control) {
-        scale *= master_intensity_;
-    }
+    // The master as it is now: a SetIntensity during the playback reaches its next drive.
+    const double scale = strength_scale(capabilities, current_->request.intensity,
+                                        master_intensity_, current_->request.probe)
+                             .software;
     drivers::Drive drive{std::clamp(cue.amplitude * scale, 0.0, 1.0), cue.frequency_hz};
     if (cue.ramp_s > 0.0) {
         drive.ramp_to = std::clamp(cue.ramp_to * scale, 0.0, 1.0);

@@ -8,6 +8,7 @@
 
 #include "daemon/play_request.hpp"
 #include "daemon/player.hpp"
+#include "daemon/strength_scale.hpp"
 #include "tests/support/support.hpp"
 
 namespace vibscore::daemon {
@@ -671,6 +672,37 @@ TEST_F(PlayerTest, ShortPlaysFromManyConnectionsAreBoundedInTotal) {
               static_cast<double>(kPositionBurstInTotal) +
                   static_cast<double>(kPositionsPerSecondInTotal) * elapsed_s)
         << positions << " positions in " << elapsed_s << " s";
+}
+
+// The one decision play() and every drive share: who carries the master Intensity.
+TEST(StrengthScale, WithoutGainTheStrengthsCarryBothIntensities) {
+    drivers::Capabilities plain;
+    plain.gain_control = false;
+    plain.amplitude_control = true;
+    const auto scale = strength_scale(plain, 0.5, 0.4, false);
+    EXPECT_DOUBLE_EQ(scale.software, 0.2);
+    EXPECT_FALSE(scale.device_gain.has_value());
+}
+
+TEST(StrengthScale, AGainCapableAmplitudeBackendTakesTheMasterAsItsGain) {
+    drivers::Capabilities gain;
+    gain.gain_control = true;
+    gain.amplitude_control = true;
+    const auto scale = strength_scale(gain, 0.5, 0.4, false);
+    EXPECT_DOUBLE_EQ(scale.software, 0.5);
+    ASSERT_TRUE(scale.device_gain.has_value());
+    EXPECT_DOUBLE_EQ(*scale.device_gain, 0.4);
+}
+
+TEST(StrengthScale, PulsesCarryTheMasterTooAndAProbeDrivesAtFullScaleAndGain) {
+    drivers::Capabilities pulses;
+    pulses.gain_control = true;
+    pulses.amplitude_control = false;
+    EXPECT_DOUBLE_EQ(strength_scale(pulses, 0.5, 0.4, false).software, 0.2);
+    const auto probe = strength_scale(pulses, 0.5, 0.4, true);
+    EXPECT_DOUBLE_EQ(probe.software, 1.0);
+    ASSERT_TRUE(probe.device_gain.has_value());
+    EXPECT_DOUBLE_EQ(*probe.device_gain, 1.0);
 }
 
 }  // namespace
