@@ -4,6 +4,11 @@
 
 #include <gtest/gtest.h>
 
+#include "daemon/config.hpp"
+#include "daemon/play_request.hpp"
+#include "tests/support/run_command.hpp"
+#include "tests/support/support.hpp"
+
 namespace vibscore::daemon {
 namespace {
 
@@ -94,6 +99,27 @@ TEST(ClefFitCache, WhatTheFitThrowsIsNotKept) {
     EXPECT_THROW(cache.fitted("x", sine(1.0), declared(0.7), failing), std::runtime_error);
     EXPECT_EQ(calls, 2);
     EXPECT_EQ(cache.size(), 0u);
+}
+
+// Through Play's own path: the shipped "success" (written for lra-phone) played twice on an LRA
+// with fit = auto fits lra-phone once, and plays the same clef as without the cache.
+TEST(ClefFitCache, AScorePlayedTwiceThroughAFittedClefFitsItOnce) {
+    vibscore::testing::TempDir store;
+    const Registry registry{
+        std::filesystem::path(vibscore::testing::required_env("VIBSCORE_CLEFS")), store.path()};
+    const auto map = parse_config(
+                         "[actuator]\nkind = lra\nresonance-hz = 175\nq = 15\nrated-drive = 0.7\n"
+                         "[clefs]\nfit = auto\n",
+                         "test.conf")
+                         .device_clefs;
+    ASSERT_TRUE(map.fit_to);
+    ClefFitCache cache;
+    const auto first = find_score_to_play(registry, "success", {}, map, &cache);
+    const auto second = find_score_to_play(registry, "success", {}, map, &cache);
+    EXPECT_EQ(cache.fits(), 1u);
+    const auto uncached = find_score_to_play(registry, "success", {}, map);
+    EXPECT_EQ(first.bundle.clefs, uncached.bundle.clefs);
+    EXPECT_EQ(second.bundle.clefs, uncached.bundle.clefs);
 }
 
 }  // namespace
