@@ -177,11 +177,15 @@ Caller HapticsService::identify_caller() {
 // A refused megabyte has already cost the bus and the bus thread its reading; answering it at
 // once would let a caller that waits for its answers send hundreds a second.
 constexpr auto kRefusalDelay = std::chrono::seconds(1);
+// Each refusal waiting holds its request's message (up to a megabyte): at most this many wait,
+// the next are answered at once.
+constexpr std::size_t kMostRefusalsWaiting = 32;
 
 template <typename Reply>
 void HapticsService::refuse_later(const std::shared_ptr<Reply>& reply, const Caller& caller,
                                   const RequestError& refusal) {
     const bool queued =
+        refusals_.waiting() < kMostRefusalsWaiting &&
         refusals_.add(caller.sender, DelayedTasks::Clock::now() + kRefusalDelay,
                       [reply, alive = alive_, message = std::string(refusal.what())] {
                           if (*alive) {
