@@ -124,6 +124,8 @@ class HapticsService final : public sdbus::AdaptorInterfaces<org::vibscore::Hapt
     // Driver, DriverReason, Capabilities or Actuator changed with a switch or reload: announced
     // with PropertiesChanged.
     void driver_switched();
+    // A calibration applied changed the declaration in use: the playback thread publishes it.
+    void republish_actuator();
 
     const DaemonConfig& config_;
     Registry& registry_;

@@ -145,6 +145,25 @@ void PlaybackThread::run(drivers::Actuator& actuator, const Options& options,
     ended_ = true;
 }
 
+std::shared_ptr<const BusProperties> PlaybackThread::properties() const {
+    const std::lock_guard lock(properties_mutex_);
+    return properties_;
+}
+
+void PlaybackThread::publish(const std::function<void(BusProperties&)>& change) {
+    if (thread_.get_id() != std::this_thread::get_id()) {
+        throw std::logic_error(
+            "PlaybackThread::publish() is only for the playback thread, the "
+            "one writer of the properties");
+    }
+    // Only this thread writes, so the copy taken here is still the current one when it is
+    // swapped in; readers keep whichever copy they took.
+    auto changed = std::make_shared<BusProperties>(*properties());
+    change(*changed);
+    const std::lock_guard lock(properties_mutex_);
+    properties_ = std::move(changed);
+}
+
 void PlaybackThread::require_bus_thread() const {
     if (std::this_thread::get_id() == bus_thread_) {
         return;

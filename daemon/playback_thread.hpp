@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "common/event_loop.hpp"
+#include "daemon/bus_properties.hpp"
 #include "daemon/player.hpp"
 #include "daemon/task_queue.hpp"
 
@@ -97,6 +98,14 @@ class PlaybackThread {
     // Whether the thread got SCHED_FIFO.
     bool realtime() const { return realtime_; }
 
+    // The properties last published: from any thread, without waiting for the playback thread
+    // (which may be stuck in a driver). Never null; all defaults until the first publish.
+    std::shared_ptr<const BusProperties> properties() const;
+    // Publishes `change` applied to a copy of the current properties. Only on the playback
+    // thread (in a call's work, or what that work runs): the one writer, so changes never race
+    // (std::logic_error otherwise).
+    void publish(const std::function<void(BusProperties&)>& change);
+
     // For the service manager's watchdog (daemon/watchdog.*): asks the playback thread to show
     // it is alive, without waiting; answered_since() says whether it has done so since `since_us`
     // (monotonic_now_us() scale).
@@ -153,6 +162,8 @@ class PlaybackThread {
     std::shared_ptr<TaskBase> stuck_;  // bus thread only
     std::atomic<bool> ended_{false};   // the playback loop ended (or failed)
     std::atomic<std::uint64_t> heartbeat_us_{0};
+    mutable std::mutex properties_mutex_;  // held only to copy or swap the pointer
+    std::shared_ptr<const BusProperties> properties_ = std::make_shared<const BusProperties>();
 
     // The playback thread's; set before the constructor returns, used only on that thread.
     EventLoop* loop_ = nullptr;

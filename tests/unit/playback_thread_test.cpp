@@ -321,5 +321,77 @@ TEST(PlaybackThreadWatchdog, AHeartbeatIsAnsweredWhileTheThreadRunsAndNotWhileIt
     EXPECT_TRUE(testing::wait_until([&] { return playback.answered_since(asked); }));
 }
 
+// The bus serves its properties from what the playback thread published (HapticsService's
+// getters read properties()), so a property read answers while the thread hangs in a driver,
+// where a call() gives up.
+TEST(PlaybackThreadProperties, TheLastPublishedPropertiesAreReadWhileTheThreadHangs) {
+    EventLoop bus_loop;
+    Gate gate;
+    HangingActuator actuator(gate);
+    PlaybackThread playback{bus_loop, actuator, {.call_timeout = 100ms}};
+    EXPECT_EQ(playback.properties()->intensity, 1.0);  // before any publish: the defaults
+    // Published as the service does; the player's own master stays 1, so that the actuator
+    // still sees the drive it hangs on (0.6).
+    playback.call([&playback](Player&) {
+        playback.publish([](BusProperties& properties) {
+            properties.driver = "hanging";
+            properties.intensity = 0.4;
+        });
+    });
+    playback.call([](Player& player) { return player.play(two_drives()); });
+    ASSERT_TRUE(testing::wait_until([&] { return actuator.hanging(); }));
+    EXPECT_THROW(playback.call([](Player& player) { return player.master_intensity(); }),
+                 PlaybackStuck);
+    const auto properties = playback.properties();
+    EXPECT_EQ(properties->driver, "hanging");
+    EXPECT_EQ(properties->intensity, 0.4);
+    gate.open();
+    EXPECT_TRUE(testing::wait_until([&] {
+        try {
+            playback.call([](Player&) {});
+            return true;
+        } catch (const PlaybackStuck&) {
+            return false;
+        }
+    }));
+}
+
+// One writer, the playback thread: a publish changes only what it touches, and a reader keeps
+// the copy it took.
+TEST(PlaybackThreadProperties, APublishChangesWhatItTouchesAndAReaderKeepsItsCopy) {
+    EventLoop bus_loop;
+    SharedActuator actuator;
+    PlaybackThread playback{bus_loop, actuator};
+    playback.call([&playback](Player&) {
+        playback.publish([](BusProperties& properties) {
+            properties.driver = "sim";
+            properties.capabilities = {"amplitude-control"};
+        });
+    });
+    const auto before = playback.properties();
+    playback.call([&playback](Player&) {
+        playback.publish([](BusProperties& properties) { properties.intensity = 0.25; });
+    });
+    EXPECT_EQ(before->intensity, 1.0);
+    const auto after = playback.properties();
+    EXPECT_EQ(after->intensity, 0.25);
+    EXPECT_EQ(after->driver, "sim");
+    EXPECT_EQ(after->capabilities, std::vector<std::string>{"amplitude-control"});
+}
+
+TEST(PlaybackThreadProperties, APublishFromAnotherThreadIsRefusedNamingTheRule) {
+    EventLoop bus_loop;
+    SharedActuator actuator;
+    PlaybackThread playback{bus_loop, actuator};
+    try {
+        playback.publish([](BusProperties& properties) { properties.intensity = 0.5; });
+        ADD_FAILURE() << "a publish from the bus thread was taken";
+    } catch (const std::logic_error& error) {
+        EXPECT_NE(std::string(error.what()).find("only for the playback thread"), std::string::npos)
+            << error.what();
+    }
+    EXPECT_EQ(playback.properties()->intensity, 1.0);
+}
+
 }  // namespace
 }  // namespace vibscore::daemon
