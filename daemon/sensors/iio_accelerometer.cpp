@@ -6,6 +6,7 @@
 #include <optional>
 #include <sstream>
 #include <stdexcept>
+#include <string>
 #include <thread>
 #include <utility>
 #include <vector>
@@ -72,17 +73,31 @@ struct Frequency {
     std::optional<std::string> was;
 };
 
+// The names the IIO core gives the sampling frequency (Documentation/ABI/testing/sysfs-bus-iio,
+// "sampling_frequency"; the prefix follows how the driver shares it, include/linux/iio/iio.h):
+// the accelerometer's own (shared by type), one axis's (separate: the driver keeps one rate for
+// all three in practice), every input channel's (shared by direction: `in_sampling_frequency`,
+// as the kernel's IIO dummy has it), the whole device's. The first one present is the
+// accelerometer's; its `_available` list, else the first list of any of them, the rates offered.
+constexpr const char* kFrequencyNames[] = {"in_accel_sampling_frequency",
+                                           "in_accel_x_sampling_frequency", "in_sampling_frequency",
+                                           "sampling_frequency"};
+
 Frequency frequency_of(const fs::path& folder, SensorIo& io) {
     Frequency frequency;
-    for (const char* name : {"in_accel_sampling_frequency", "sampling_frequency"}) {
+    std::vector<std::string> lists;
+    for (const char* name : kFrequencyNames) {
         if (auto value = io.read_file(folder / name)) {
             frequency.file = folder / name;
             frequency.was = std::move(value);
+            lists.push_back(std::string(name) + "_available");
             break;
         }
     }
-    for (const char* name :
-         {"in_accel_sampling_frequency_available", "sampling_frequency_available"}) {
+    for (const char* name : kFrequencyNames) {
+        lists.push_back(std::string(name) + "_available");
+    }
+    for (const std::string& name : lists) {
         if (const auto list = io.read_file(folder / name)) {
             std::istringstream in(*list);
             double rate = 0.0;

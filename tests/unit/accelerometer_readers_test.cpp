@@ -116,12 +116,19 @@ TEST(IioScanLayout, IndexOrderNotNameOrderPlacesTheChannels) {
     EXPECT_EQ(layout.axes[0].offset, 4u);
 }
 
-// An IIO accelerometer with a buffer: 16-bit axes at indexes 0..2 and the timestamp at 3.
-void add_buffered_device(FakeSensorIo& io) {
+// An IIO accelerometer with a buffer: 16-bit axes at indexes 0..2 and the timestamp at 3; its
+// sampling frequency under `frequency` (an empty name: none), the rates on offer under
+// `available` (the same name with `_available`, or another).
+void add_buffered_device(FakeSensorIo& io, const std::string& frequency = "sampling_frequency",
+                         const std::string& available = "sampling_frequency_available") {
     io.file(kIio + "/name", "lsm6dsl_accel");
     io.file(kIio + "/in_accel_scale", "0.000598");
-    io.file(kIio + "/sampling_frequency", "104");
-    io.file(kIio + "/sampling_frequency_available", "12.5 26 52 104 208 416 833 1666 3332 6664");
+    if (!frequency.empty()) {
+        io.file(kIio + "/" + frequency, "104");
+    }
+    if (!available.empty()) {
+        io.file(kIio + "/" + available, "12.5 26 52 104 208 416 833 1666 3332 6664");
+    }
     io.file(kIio + "/current_timestamp_clock", "realtime");
     io.file(kIio + "/buffer/enable", "0");
     io.file(kIio + "/buffer/length", "2");
@@ -276,6 +283,67 @@ TEST(IioPolled, WithoutABufferTheRawAttributesAreReadAtTheSamplingFrequency) {
     EXPECT_NEAR(readings[0].z, 1024 * 0.009580, 1e-12);
     EXPECT_EQ(readings[0].t_ns, 7'000'000);
     EXPECT_TRUE(io->writes().empty());  // polling changes nothing
+}
+
+// The names the kernel's IIO ABI gives the sampling frequency, by how the driver shares it
+// (Documentation/ABI/testing/sysfs-bus-iio): the buffered reader sets the fastest rate up to
+// 2 kHz under whichever the device has, and puts it back.
+TEST(IioBuffered, SetsTheSamplingFrequencyUnderEveryNameTheKernelGivesIt) {
+    for (const std::string name : {"in_accel_sampling_frequency", "in_accel_x_sampling_frequency",
+                                   "in_sampling_frequency", "sampling_frequency"}) {
+        SCOPED_TRACE(name);
+        auto io = std::make_shared<FakeSensorIo>();
+        add_buffered_device(*io, name, name + "_available");
+        auto reader = sensors::open_iio_accelerometer(kIio, roots(), io);
+        reader->start();
+        EXPECT_EQ(io->value(kIio + "/" + name), "1666");
+        EXPECT_THAT(reader->describe(), HasSubstr("buffered, 1666 Hz"));
+        reader->stop();
+        EXPECT_EQ(io->value(kIio + "/" + name), "104");
+    }
+}
+
+TEST(IioBuffered, TheAccelerometersOwnFrequencyComesBeforeTheDirectionsAndTheDevices) {
+    auto io = std::make_shared<FakeSensorIo>();
+    add_buffered_device(*io, "in_accel_sampling_frequency",
+                        "in_accel_sampling_frequency_available");
+    io->file(kIio + "/in_sampling_frequency", "3.000033");
+    io->file(kIio + "/sampling_frequency", "50");
+    io->file(kIio + "/sampling_frequency_available", "25 50");
+    auto reader = sensors::open_iio_accelerometer(kIio, roots(), io);
+    reader->start();
+    EXPECT_EQ(io->value(kIio + "/in_accel_sampling_frequency"), "1666");
+    reader->stop();
+    for (const std::string& write : io->writes()) {  // "path=value"
+        EXPECT_NE(write.rfind(kIio + "/in_sampling_frequency=", 0), 0u) << write;
+        EXPECT_NE(write.rfind(kIio + "/sampling_frequency=", 0), 0u) << write;
+    }
+}
+
+TEST(IioBuffered, RatesListedOnlyUnderAnotherNameAreStillOffered) {
+    // The frequency shared by direction, its list only as the device's.
+    auto io = std::make_shared<FakeSensorIo>();
+    add_buffered_device(*io, "in_sampling_frequency", "sampling_frequency_available");
+    auto reader = sensors::open_iio_accelerometer(kIio, roots(), io);
+    reader->start();
+    EXPECT_EQ(io->value(kIio + "/in_sampling_frequency"), "1666");
+    reader->stop();
+    EXPECT_EQ(io->value(kIio + "/in_sampling_frequency"), "104");
+}
+
+TEST(IioPolled, ReadsAtTheFrequencySharedByDirectionOrByOneAxis) {
+    for (const std::string name : {"in_sampling_frequency", "in_accel_x_sampling_frequency"}) {
+        SCOPED_TRACE(name);
+        auto io = std::make_shared<FakeSensorIo>();
+        io->file(kIio + "/name", "mma8452");
+        for (const std::string axis : {"x", "y", "z"}) {
+            io->file(kIio + "/in_accel_" + axis + "_raw", "1");
+        }
+        io->file(kIio + "/in_accel_scale", "0.5");
+        io->file(kIio + "/" + name, "833");
+        auto reader = sensors::open_iio_accelerometer(kIio, roots(), io);
+        EXPECT_THAT(reader->describe(), HasSubstr("polled at 833 Hz"));
+    }
 }
 
 TEST(IioOpen, AFolderWithoutThreeAccelAxesIsNotAnAccelerometer) {
