@@ -17,10 +17,11 @@ struct StrengthScale {
 
 // The one place that decides it, for planning a playback's cues and for each drive it sends.
 // A probe (calibration) drives at full scale and full gain: it measures the actuator itself.
-// A backend with gain and amplitude control takes the master part as its gain, so the strengths
-// carry only the playback's intensity (the model is linear: drives planned without the master
-// still follow the envelope once the device scales them). Without amplitude control the
-// strength lives in the pulses, so they carry the master part too.
+// A backend with gain control takes the master part as its gain, so the strengths (or the
+// pulses' duty) carry only the playback's intensity: the model is linear, so drives planned
+// without the master still follow the envelope once the device scales them, and pulses at full
+// drive are scaled by the gain too (the master taken in both would be squared). Without gain
+// control the strengths carry the master part.
 inline StrengthScale strength_scale(const drivers::Capabilities& capabilities,
                                     double playback_intensity, double master_intensity,
                                     bool probe) {
@@ -30,7 +31,7 @@ inline StrengthScale strength_scale(const drivers::Capabilities& capabilities,
     }
     if (probe) {
         scale.software = 1.0;
-    } else if (capabilities.gain_control && capabilities.amplitude_control) {
+    } else if (capabilities.gain_control) {
         scale.software = playback_intensity;
     } else {
         scale.software = playback_intensity * master_intensity;

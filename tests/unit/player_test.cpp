@@ -694,11 +694,20 @@ TEST(StrengthScale, AGainCapableAmplitudeBackendTakesTheMasterAsItsGain) {
     EXPECT_DOUBLE_EQ(*scale.device_gain, 0.4);
 }
 
-TEST(StrengthScale, PulsesCarryTheMasterTooAndAProbeDrivesAtFullScaleAndGain) {
+// Pulses at full drive are scaled by the device's gain too: the master in the duty as well
+// would be felt squared (0.4 x 0.4).
+TEST(StrengthScale, PulsesOnAGainBackendLeaveTheMasterToTheGainAndAProbeDrivesAtFullScaleAndGain) {
     drivers::Capabilities pulses;
     pulses.gain_control = true;
     pulses.amplitude_control = false;
-    EXPECT_DOUBLE_EQ(strength_scale(pulses, 0.5, 0.4, false).software, 0.2);
+    const auto scale = strength_scale(pulses, 0.5, 0.4, false);
+    EXPECT_DOUBLE_EQ(scale.software, 0.5);
+    ASSERT_TRUE(scale.device_gain.has_value());
+    EXPECT_DOUBLE_EQ(*scale.device_gain, 0.4);
+    drivers::Capabilities plain_pulses;
+    plain_pulses.gain_control = false;
+    plain_pulses.amplitude_control = false;
+    EXPECT_DOUBLE_EQ(strength_scale(plain_pulses, 0.5, 0.4, false).software, 0.2);
     const auto probe = strength_scale(pulses, 0.5, 0.4, true);
     EXPECT_DOUBLE_EQ(probe.software, 1.0);
     ASSERT_TRUE(probe.device_gain.has_value());
