@@ -20,9 +20,11 @@ struct Caller {
 };
 
 // Who is calling, from the bus's credentials for the sender (not from anything the caller says),
-// cached per connection; and a token bucket per user, so that no user floods the daemon, however
-// many connections it opens (twenty connections of one uid are one caller). Root is not limited:
-// it could stop the daemon anyway, and the system's own services must not be refused.
+// cached per connection; and a token bucket of requests per user (twenty connections of one uid
+// are one caller; root is not limited). The bus service no longer admits through this bucket:
+// it admits by work, per connection and per user (admission.hpp), with the same request rate
+// from the running configuration; admit() and set_rate() remain for reload_config and their
+// tests, and could go with them.
 class CallerDirectory {
   public:
     // Where a sender's user id comes from: the bus driver in the daemon (BusCredentials);
