@@ -39,9 +39,8 @@ bool user_in_group(uid_t uid, const char* group) {
     return std::find(groups.begin(), groups.end(), wanted) != groups.end();
 }
 
-CallerDirectory::CallerDirectory(double requests_per_second, double burst,
-                                 UidOfSender uid_of_sender)
-    : uid_of_sender_(std::move(uid_of_sender)), rate_(requests_per_second), burst_(burst) {}
+CallerDirectory::CallerDirectory(UidOfSender uid_of_sender)
+    : uid_of_sender_(std::move(uid_of_sender)) {}
 
 const Caller& CallerDirectory::identify(const sdbus::Message& message) {
     const std::string sender = dbus::sender_of(message);
@@ -56,31 +55,8 @@ const Caller& CallerDirectory::identify(const sdbus::Message& message) {
     return callers_.emplace(sender, std::move(caller)).first->second;
 }
 
-bool CallerDirectory::admit(uid_t uid, std::uint64_t now_us) {
-    if (uid == 0) {
-        return true;
-    }
-    auto [bucket, fresh] = buckets_.try_emplace(uid, Bucket{burst_, now_us});
-    auto& state = bucket->second;
-    if (!fresh) {
-        const double elapsed = static_cast<double>(now_us - state.updated_us) / 1e6;
-        state.tokens = std::min(burst_, state.tokens + elapsed * rate_);
-        state.updated_us = now_us;
-    }
-    if (state.tokens < 1.0) {
-        return false;
-    }
-    state.tokens -= 1.0;
-    return true;
-}
-
 void CallerDirectory::forget(const std::string& sender) {
     callers_.erase(sender);
-}
-
-void CallerDirectory::set_rate(double requests_per_second, double burst) {
-    rate_ = requests_per_second;
-    burst_ = burst;
 }
 
 }  // namespace vibscore::daemon

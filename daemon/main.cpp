@@ -8,6 +8,8 @@
 #include <iostream>
 #include <optional>
 
+#include "common/event_loop.hpp"
+#include "common/log.hpp"
 #include "config.h"
 #include "daemon/actuator_host.hpp"
 #include "daemon/authority.hpp"
@@ -16,9 +18,7 @@
 #include "daemon/callers.hpp"
 #include "daemon/command_line.hpp"
 #include "daemon/drivers/available.hpp"
-#include "common/event_loop.hpp"
 #include "daemon/haptics_service.hpp"
-#include "common/log.hpp"
 #include "daemon/module_record.hpp"
 #include "daemon/playback_ids.hpp"
 #include "daemon/playback_thread.hpp"
@@ -118,8 +118,7 @@ int serve(const CommandLine& command_line) {
 
     auto connection = sdbus::createSystemBusConnection();
     BusCredentials credentials(*connection);
-    CallerDirectory callers(config.requests_per_second, config.request_burst,
-                            [&](const std::string& sender) { return credentials.uid_of(sender); });
+    CallerDirectory callers([&](const std::string& sender) { return credentials.uid_of(sender); });
     BusPolkitAuthority polkit(*connection);
     Authorizer authorizer(polkit);
     // Before the service, which tells it of every playback's end: gone only after the service.
@@ -162,12 +161,11 @@ int serve(const CommandLine& command_line) {
     auto on_hup = loop.on_signal(SIGHUP, [&] {
         sd_notify(0, "RELOADING=1");
         try {
-            // The running configuration, the host and the callers live as long as the daemon;
+            // The running configuration and the host live as long as the daemon;
             // the fresh configuration goes with the work.
-            playback.call(
-                [&config, &host, &callers, fresh = read_config(command_line)](Player&) mutable {
-                    reload_config(config, std::move(fresh), host, callers);
-                });
+            playback.call([&config, &host, fresh = read_config(command_line)](Player&) mutable {
+                reload_config(config, std::move(fresh), host);
+            });
             log_clef_fits(registry, config.device_clefs);  // refitted to what was declared now
             warn_about_missing_device_clefs(config, registry);
         } catch (const std::exception& error) {

@@ -3,17 +3,16 @@
 #include <stdexcept>
 #include <string>
 
+#include "common/log.hpp"
 #include "common/quoted_text.hpp"
 #include "daemon/drivers/auto_driver.hpp"
 #include "daemon/drivers/available.hpp"
 #include "daemon/drivers/configured_actuator.hpp"
 #include "daemon/drivers/driver_settings.hpp"
-#include "common/log.hpp"
 
 namespace vibscore::daemon {
 
-void reload_config(DaemonConfig& running, DaemonConfig fresh, ActuatorHost& host,
-                   CallerDirectory& callers) {
+void reload_config(DaemonConfig& running, DaemonConfig fresh, ActuatorHost& host) {
     // A driver that does not exist is known now, before playback is stopped for it.
     const drivers::ModuleCatalog none;
     const auto& modules = fresh.modules ? *fresh.modules : none;
@@ -53,7 +52,6 @@ void reload_config(DaemonConfig& running, DaemonConfig fresh, ActuatorHost& host
     };
     keep_until_restart("store", running.store, fresh.store);
     keep_until_restart("shipped", running.shipped, fresh.shipped);
-    callers.set_rate(fresh.requests_per_second, fresh.request_burst);
     const bool clefs_changed = fresh.device_clefs != running.device_clefs;
     running = std::move(fresh);
     if (clefs_changed) {

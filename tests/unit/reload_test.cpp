@@ -40,13 +40,12 @@ class ReloadTest : public ::testing::Test {
     DaemonConfig running;
     EventLoop loop;
     vibscore::testing::FinishedReasons reasons;
-    CallerDirectory callers{50.0, 100.0};
     std::optional<ActuatorHost> host;
     std::optional<Player> player;
 };
 
 TEST_F(ReloadTest, TheSameConfigurationAgainChangesNothingAndPlaybackGoesOn) {
-    reload_config(running, running, *host, callers);
+    reload_config(running, running, *host);
     EXPECT_THAT(reasons.reasons, IsEmpty());
     EXPECT_TRUE(player->current_id().has_value());
 }
@@ -55,7 +54,7 @@ TEST_F(ReloadTest, ANewClefMapIsTheRunningOneAtOnceAndPlaybackGoesOn) {
     DaemonConfig fresh = running;
     fresh.device_clefs.by_written["lra-phone"] = "erm-phone";
     fresh.device_clefs.otherwise = "soft-shapes";
-    reload_config(running, fresh, *host, callers);
+    reload_config(running, fresh, *host);
     EXPECT_EQ(running.device_clefs.for_written("lra-phone"), "erm-phone");
     EXPECT_EQ(running.device_clefs.for_written("shaker-sine-low"), "soft-shapes");
     EXPECT_EQ(describe(running.device_clefs), "lra-phone -> erm-phone, * -> soft-shapes");
@@ -71,28 +70,28 @@ TEST_F(ReloadTest, ANewActuatorWithFitAutoRefitsEveryClefItDoesNotMap) {
     fresh.actuator = erm;
     fresh.device_clefs.fit_to = erm;
     fresh.device_clefs.by_written["lra-phone"] = "erm-phone";
-    reload_config(running, fresh, *host, callers);
+    reload_config(running, fresh, *host);
     EXPECT_EQ(running.device_clefs.for_written("lra-phone"), "erm-phone");
     EXPECT_EQ(running.device_clefs.for_written("soft-shapes"), "soft-shapes (fitted)");
     EXPECT_EQ(running.device_clefs.fit_to, erm);
 }
 
+// Admission reads the running limits at each request (haptics_service), so running is all there
+// is to change.
 TEST_F(ReloadTest, ANewRequestRateAppliesAtOnceWithoutTouchingTheBackend) {
     DaemonConfig fresh = running;
     fresh.requests_per_second = 5.0;
     fresh.request_burst = 1.0;
-    reload_config(running, fresh, *host, callers);
-    EXPECT_EQ(callers.requests_per_second(), 5.0);
-    EXPECT_TRUE(callers.admit(1000, 1'000'000));
-    EXPECT_FALSE(callers.admit(1000, 1'000'000));
+    reload_config(running, fresh, *host);
     EXPECT_EQ(running.requests_per_second, 5.0);
+    EXPECT_EQ(running.request_burst, 1.0);
     EXPECT_THAT(reasons.reasons, IsEmpty());
 }
 
 TEST_F(ReloadTest, NewSettingsOfTheRunningDriverReopenItEndingPlayback) {
     DaemonConfig fresh = running;
     fresh.driver_settings["sim"]["max-on-time-ms"] = "2000";
-    reload_config(running, fresh, *host, callers);
+    reload_config(running, fresh, *host);
     EXPECT_THAT(reasons.reasons, ElementsAre("driver-switch"));
     EXPECT_EQ(host->capabilities().max_on_time_s, 2.0);
     EXPECT_EQ(running.settings_of("sim").at("max-on-time-ms"), "2000");
@@ -102,8 +101,7 @@ TEST_F(ReloadTest, ABadSettingChangesNothingAtAll) {
     DaemonConfig fresh = running;
     fresh.requests_per_second = 5.0;
     fresh.driver_settings["sim"]["max-on-time-ms"] = "long";
-    EXPECT_THROW(reload_config(running, fresh, *host, callers), std::invalid_argument);
-    EXPECT_EQ(callers.requests_per_second(), 50.0);
+    EXPECT_THROW(reload_config(running, fresh, *host), std::invalid_argument);
     EXPECT_EQ(running.requests_per_second, 50.0);
     EXPECT_FALSE(running.settings_of("sim").contains("max-on-time-ms"));
     EXPECT_THAT(reasons.reasons, IsEmpty());
@@ -113,7 +111,7 @@ TEST_F(ReloadTest, ABadSettingChangesNothingAtAll) {
 TEST_F(ReloadTest, AReloadThatChangesOnlyTheStoreKeepsItAndSaysItChangesOnlyOnRestart) {
     DaemonConfig fresh = parse_config("[daemon]\nstore = /elsewhere/store\n", "v.conf", running);
     ::testing::internal::CaptureStderr();
-    reload_config(running, fresh, *host, callers);
+    reload_config(running, fresh, *host);
     const std::string log = ::testing::internal::GetCapturedStderr();
     EXPECT_EQ(running.store, "/var/lib/vibscore");
     EXPECT_THAT(log, HasSubstr("v.conf:2: store = \"/elsewhere/store\" changes only on restart; "
@@ -125,7 +123,7 @@ TEST_F(ReloadTest, AReloadThatChangesOnlyTheShippedFolderKeepsItAndSaysItChanges
     DaemonConfig fresh = running;
     fresh.shipped = "/elsewhere/clefs";
     ::testing::internal::CaptureStderr();
-    reload_config(running, fresh, *host, callers);
+    reload_config(running, fresh, *host);
     const std::string log = ::testing::internal::GetCapturedStderr();
     EXPECT_EQ(running.shipped, "/usr/share/vibscore/clefs");
     EXPECT_THAT(log, HasSubstr("shipped = \"/elsewhere/clefs\" changes only on restart; until "
@@ -137,7 +135,7 @@ TEST_F(ReloadTest, AReloadThatChangesNeitherFolderSaysNothingAboutThem) {
     DaemonConfig fresh = running;
     fresh.separation_ms = 10.0;
     ::testing::internal::CaptureStderr();
-    reload_config(running, fresh, *host, callers);
+    reload_config(running, fresh, *host);
     EXPECT_THAT(::testing::internal::GetCapturedStderr(), Not(HasSubstr("only on restart")));
 }
 
@@ -146,7 +144,7 @@ TEST_F(ReloadTest, TheStoreAndShippedDirectoriesKeepTheirRunningValues) {
     fresh.store = "/elsewhere/store";
     fresh.shipped = "/elsewhere/clefs";
     fresh.separation_ms = 10.0;
-    reload_config(running, fresh, *host, callers);
+    reload_config(running, fresh, *host);
     EXPECT_EQ(running.store, "/var/lib/vibscore");
     EXPECT_EQ(running.shipped, "/usr/share/vibscore/clefs");
     EXPECT_EQ(running.separation_ms, 10.0);
@@ -188,21 +186,21 @@ TEST_F(ReloadTest, TheDeclaredActuatorIsReloadedForTheSimAndTheNextPlay) {
     board.brake = actuator::Brake::reverse;
     board.compensation = false;
     fresh.actuator = board;
-    reload_config(running, fresh, *host, callers);
+    reload_config(running, fresh, *host);
     EXPECT_EQ(running.actuator, board);
     EXPECT_TRUE(host->capabilities().reverse);
     EXPECT_EQ(first_drive_sent(*player, trace), 0.5);  // strength 1 is the rated drive
 
     DaemonConfig undeclared = running;
     undeclared.actuator.reset();
-    reload_config(running, undeclared, *host, callers);
+    reload_config(running, undeclared, *host);
     EXPECT_FALSE(host->capabilities().reverse);
     EXPECT_EQ(first_drive_sent(*player, trace), 1.0);  // as written again
 }
 
 TEST_F(ReloadTest, AnUnknownDriverChangesNothingAndNamesTheLineThatNamesIt) {
     const DaemonConfig fresh = parse_config("[daemon]\n\ndriver = evdevv\n", "v.conf", running);
-    EXPECT_THAT([&] { reload_config(running, fresh, *host, callers); },
+    EXPECT_THAT([&] { reload_config(running, fresh, *host); },
                 ::testing::ThrowsMessage<std::invalid_argument>(::testing::StartsWith(
                     "v.conf:3: unknown driver \"evdevv\" (available: sim, evdev")));
     EXPECT_EQ(host->driver(), "sim");
@@ -214,7 +212,7 @@ TEST_F(ReloadTest, ADriverThatWillNotOpenLeavesThePreviousOneRunning) {
     DaemonConfig fresh = running;
     fresh.driver = "evdev";
     fresh.driver_settings["evdev"] = {{"device", "/nonexistent/event99"}};
-    EXPECT_THROW(reload_config(running, fresh, *host, callers), drivers::DeviceError);
+    EXPECT_THROW(reload_config(running, fresh, *host), drivers::DeviceError);
     EXPECT_EQ(host->driver(), "sim");
 }
 
