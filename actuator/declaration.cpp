@@ -42,15 +42,12 @@ std::string key_value(const Setting& setting) {
 }
 
 double number(const Setting& setting, const Limit& limit) {
-    double value = 0.0;
-    const char* const end = setting.value.data() + setting.value.size();
-    const auto [ptr, error] = std::from_chars(setting.value.data(), end, value);
-    const bool above_min = limit.min_allowed ? value >= limit.min : above(value, limit);
-    if (error != std::errc{} || ptr != end || !std::isfinite(value) || !above_min ||
-        value > limit.max) {
+    const auto value = ini_number(setting.value);
+    if (!value || !(limit.min_allowed ? *value >= limit.min : above(*value, limit)) ||
+        *value > limit.max) {
         throw DeclarationError(setting.key, key_value(setting) + ": expected " + range_text(limit));
     }
-    return value;
+    return *value;
 }
 
 std::string choice(const Setting& setting, std::initializer_list<const char*> allowed) {

@@ -1,5 +1,7 @@
 #include "common/ini_reader.hpp"
 
+#include <charconv>
+#include <cmath>
 #include <map>
 #include <sstream>
 
@@ -89,6 +91,16 @@ std::vector<IniLine> read_ini(const std::string& text, const std::string& file) 
         read.push_back({section, key, value, where});
     }
     return read;
+}
+
+std::optional<double> ini_number(std::string_view value) {
+    double number = 0.0;
+    const char* const end = value.data() + value.size();
+    const auto [ptr, error] = std::from_chars(value.data(), end, number);
+    if (value.empty() || error != std::errc{} || ptr != end || !std::isfinite(number)) {
+        return std::nullopt;
+    }
+    return number;
 }
 
 }  // namespace vibscore

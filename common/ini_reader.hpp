@@ -1,7 +1,9 @@
 #pragma once
 
+#include <optional>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace vibscore {
@@ -33,5 +35,10 @@ class IniError : public std::runtime_error {
 // The headers and settings of `text`, in the order it gives them, spaces around keys and values
 // dropped. `file` names it in the lines' `where` and in errors.
 std::vector<IniLine> read_ini(const std::string& text, const std::string& file);
+
+// A setting's value as a number, read one way wherever vibscore reads one: the whole text a
+// finite decimal number (no blanks, no '+', no hex, no inf or nan); nullopt otherwise. Each key
+// then checks its own range and says it in its own words.
+std::optional<double> ini_number(std::string_view value);
 
 }  // namespace vibscore

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "common/ini_reader.hpp"
 #include "common/number_text.hpp"
 #include "common/quoted_text.hpp"
 
@@ -49,19 +50,12 @@ std::string what_is_short(const TokenBucket& bucket, const Budget& budget, const
 }
 
 double number_in(const std::string& key, const std::string& value, double low, double high) {
-    std::size_t used = 0;
-    double number = 0.0;
-    try {
-        number = std::stod(value, &used);
-    } catch (const std::exception&) {
-        used = 0;
-    }
-    if (used == 0 || used != value.size() || !std::isfinite(number) || number < low ||
-        number > high) {
+    const auto number = ini_number(value);
+    if (!number || *number < low || *number > high) {
         throw std::invalid_argument(key + " = " + quoted_text(value) + " is not a number from " +
                                     number_text(low) + " to " + number_text(high));
     }
-    return number;
+    return *number;
 }
 
 }  // namespace

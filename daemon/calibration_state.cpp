@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "common/atomic_file.hpp"
+#include "common/ini_reader.hpp"
 #include "common/log.hpp"
 #include "common/number_text.hpp"
 #include "common/trim.hpp"
@@ -24,17 +25,12 @@ using actuator::Kind;
 
 // A number within [actuator]'s limit for `limit.key`, scaled from the key's units.
 double limited(const actuator::Limit& limit, const std::string& value, const std::string& where) {
-    std::size_t used = 0;
-    double number = 0.0;
-    try {
-        number = std::stod(value, &used);
-    } catch (const std::exception&) {
-        used = 0;
-    }
-    if (used == 0 || used != value.size() || !std::isfinite(number)) {
+    const auto parsed = ini_number(value);
+    if (!parsed) {
         throw std::invalid_argument(where + ": " + limit.key + " = \"" + value +
                                     "\" is not a number");
     }
+    const double number = *parsed;
     const bool low = limit.min_allowed ? number < limit.min : number <= limit.min;
     if (low || number > limit.max) {
         throw std::invalid_argument(where + ": " + limit.key + " = \"" + value + "\" is outside " +

@@ -24,15 +24,13 @@ const std::vector<std::string> kDaemonKeys = {
 
 double positive_number(const std::string& value, const std::string& where, const std::string& key,
                        double max) {
-    double number = 0.0;
-    const auto [end, error] = std::from_chars(value.data(), value.data() + value.size(), number);
-    if (error != std::errc() || end != value.data() + value.size() || !std::isfinite(number) ||
-        !above_zero(number) || number > max) {
+    const auto number = ini_number(value);
+    if (!number || !above_zero(*number) || *number > max) {
         throw ConfigError(where + ": " + shown_text(key) + " = " + quoted_text(value) +
                           " is not a number above 0 and at most " + number_text(max) +
                           " (the smallest above 0 is " + number_text(kSmallestAboveZero) + ")");
     }
-    return number;
+    return *number;
 }
 
 int priority(const std::string& value, const std::string& where, const std::string& key) {

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <iterator>
 
+#include "common/ini_reader.hpp"
 #include "common/number_text.hpp"
 #include "common/quoted_text.hpp"
 #include "daemon/authority.hpp"
@@ -23,10 +24,12 @@ std::uint64_t to_us(double seconds) {
 // Seconds from `lowest` (itself allowed only when `zero_allowed`) to `highest`; nullopt when the
 // text is not such a number.
 std::optional<double> seconds(const std::string& value, bool zero_allowed, double highest) {
-    double number = 0.0;
-    const auto [end, error] = std::from_chars(value.data(), value.data() + value.size(), number);
-    if (error != std::errc() || end != value.data() + value.size() || !std::isfinite(number) ||
-        number < 0.0 || (number == 0.0 && !zero_allowed) || number > highest) {
+    const auto parsed = ini_number(value);
+    if (!parsed) {
+        return std::nullopt;
+    }
+    const double number = *parsed;
+    if (number < 0.0 || (number == 0.0 && !zero_allowed) || number > highest) {
         return std::nullopt;
     }
     // Below a microsecond, the player's clock could not tell the limit from none.

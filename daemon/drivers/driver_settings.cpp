@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "common/closest_name.hpp"
+#include "common/ini_reader.hpp"
 #include "common/number_text.hpp"
 #include "common/quoted_text.hpp"
 
@@ -50,14 +51,11 @@ std::optional<double> DriverSettings::number(const std::string& key, double min,
     if (!value) {
         return std::nullopt;
     }
-    double number = 0.0;
-    const char* const end = value->data() + value->size();
-    const auto [ptr, error] = std::from_chars(value->data(), end, number);
-    if (error != std::errc{} || ptr != end || !std::isfinite(number) || number < min ||
-        number > max) {
+    const auto number = ini_number(*value);
+    if (!number || *number < min || *number > max) {
         throw bad(key, *value, "a number from " + number_text(min) + " to " + number_text(max));
     }
-    return number;
+    return *number;
 }
 
 double DriverSettings::number(const std::string& key, double fallback, double min, double max) {

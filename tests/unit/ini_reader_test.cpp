@@ -136,5 +136,18 @@ TEST(IniReader, TheClientAndTheDaemonReadOneFileTheSameWay) {
                 StartsWith("FILE:1: malformed section header"));
 }
 
+// Every number a setting holds is read by one rule: the whole text, finite, decimal.
+TEST(IniNumber, TheWholeTextAFiniteDecimalAndNothingElse) {
+    EXPECT_EQ(ini_number("1"), 1.0);
+    EXPECT_EQ(ini_number("0.25"), 0.25);
+    EXPECT_EQ(ini_number("-3"), -3.0);
+    EXPECT_EQ(ini_number("1e308"), 1e308);        // the largest power of ten a double holds
+    EXPECT_EQ(ini_number("4.9e-324"), 4.9e-324);  // a subnormal is a number; ranges judge it
+    for (const char* refused :
+         {"", " 1", "1 ", "+1", "0x10", "1.5abc", "inf", "nan", "1e309", "-1e309", "one"}) {
+        EXPECT_EQ(ini_number(refused), std::nullopt) << '"' << refused << '"';
+    }
+}
+
 }  // namespace
 }  // namespace vibscore
