@@ -8,10 +8,10 @@
 #include <type_traits>
 #include <utility>
 
+#include "common/atomic_file.hpp"
+#include "common/log.hpp"
 #include "common/number_text.hpp"
 #include "common/quoted_text.hpp"
-#include "common/log.hpp"
-#include "common/atomic_file.hpp"
 #include "score/clef_xml.hpp"
 #include "score/document_error.hpp"
 #include "score/score_xml.hpp"
@@ -482,72 +482,81 @@ void Registry::check_store_limits(DocumentKind kind, const std::string& name,
 }
 
 DocumentKind Registry::compose(std::string_view name, std::string_view document) {
+    // Single-threaded here: nothing changes the registry between the two steps.
+    return *commit_compose(prepare_compose(name, document));
+}
+
+// Each compose validates and prepares everything first, then writes the disk, then updates
+// memory, so a refused or failed compose leaves both exactly as they were.
+Registry::PreparedCompose Registry::prepare_compose(std::string_view name,
+                                                    std::string_view document) const {
     check_name(name);
-    const std::string key(name);
+    PreparedCompose prepared;
+    prepared.name_ = std::string(name);
+    prepared.generation_ = generation_;
     if (document.size() > limits_.document_bytes) {
         throw RegistryError(Code::limit_exceeded, "document " + quoted_text(name) + " is " +
                                                       std::to_string(document.size()) +
                                                       " bytes; the limit is " +
                                                       std::to_string(limits_.document_bytes));
     }
-    DocumentKind kind{};
     try {
-        kind = document_kind(document, "document " + quoted_text(name));
+        prepared.kind_ = document_kind(document, "document " + quoted_text(name));
     } catch (const DocumentError& error) {
         throw RegistryError(Code::invalid_document, error.what());
     }
+    const auto file = label(prepared.kind_, name);
+    if (prepared.kind_ == DocumentKind::clef) {
+        ClefRecord record;
+        try {
+            record.clef = read_clef(document, file);
+        } catch (const DocumentError& error) {
+            throw RegistryError(Code::invalid_document, error.what());
+        }
+        record.title = clef_title(record.clef);
+        record.text = document;
+        prepared.rebound_ = rebind_dependents(prepared.name_, record.clef, Code::invalid_document,
+                                              file + " does not fit the scores that use it:");
+        prepared.clef_ = std::move(record);
+    } else {
+        ScoreRecord record;
+        try {
+            record = bind(read_score(document, file), file);
+        } catch (const DocumentError& error) {
+            throw RegistryError(Code::invalid_document, error.what());
+        }
+        record.text = document;
+        prepared.score_ = std::move(record);
+    }
+    check_store_limits(prepared.kind_, prepared.name_, document.size());
+    return prepared;
+}
+
+std::optional<DocumentKind> Registry::commit_compose(PreparedCompose prepared) {
+    if (prepared.generation_ != generation_) {
+        return std::nullopt;
+    }
+    const auto kind = prepared.kind_;
+    const auto& name = prepared.name_;
+    const auto file = label(kind, name);
+    const auto path = stored_path(kind, name);
+    const std::string& text =
+        kind == DocumentKind::clef ? prepared.clef_->text : prepared.score_->text;
+    write_file_atomically(path, text);
+
+    ++generation_;
     if (kind == DocumentKind::clef) {
-        compose_clef(key, document);
-        return DocumentKind::clef;
+        auto& stored = stored_clefs_[name];
+        stored_bytes_ = stored_bytes_ - stored.text.size() + text.size();
+        stored = std::move(*prepared.clef_);
+        commit(std::move(prepared.rebound_));
+    } else {
+        auto& stored = stored_scores_[name];
+        stored_bytes_ = stored_bytes_ - stored.text.size() + text.size();
+        stored = std::move(*prepared.score_);
     }
-    compose_score(key, document);
-    return DocumentKind::score;
-}
-
-// Each compose validates and prepares everything first, then writes the disk, then updates
-// memory, so a refused or failed compose leaves both exactly as they were.
-void Registry::compose_clef(const std::string& name, std::string_view document) {
-    const auto file = label(DocumentKind::clef, name);
-    ClefRecord record;
-    try {
-        record.clef = read_clef(document, file);
-    } catch (const DocumentError& error) {
-        throw RegistryError(Code::invalid_document, error.what());
-    }
-    record.title = clef_title(record.clef);
-    record.text = document;
-    auto rebound = rebind_dependents(name, record.clef, Code::invalid_document,
-                                     file + " does not fit the scores that use it:");
-    check_store_limits(DocumentKind::clef, name, document.size());
-
-    const auto path = stored_path(DocumentKind::clef, name);
-    write_file_atomically(path, document);
-
-    auto& stored = stored_clefs_[name];
-    stored_bytes_ = stored_bytes_ - stored.text.size() + record.text.size();
-    stored = std::move(record);
-    commit(std::move(rebound));
     log::info("registry: stored " + file + " in " + path.string());
-}
-
-void Registry::compose_score(const std::string& name, std::string_view document) {
-    const auto file = label(DocumentKind::score, name);
-    ScoreRecord record;
-    try {
-        record = bind(read_score(document, file), file);
-    } catch (const DocumentError& error) {
-        throw RegistryError(Code::invalid_document, error.what());
-    }
-    record.text = document;
-    check_store_limits(DocumentKind::score, name, document.size());
-
-    const auto path = stored_path(DocumentKind::score, name);
-    write_file_atomically(path, document);
-
-    auto& stored = stored_scores_[name];
-    stored_bytes_ = stored_bytes_ - stored.text.size() + record.text.size();
-    stored = std::move(record);
-    log::info("registry: stored " + file + " in " + path.string());
+    return kind;
 }
 
 void Registry::remove(DocumentKind kind, std::string_view name) {
@@ -582,6 +591,7 @@ void Registry::remove(DocumentKind kind, std::string_view name) {
 
     const auto path = stored_path(kind, name);
     remove_file_durably(path);
+    ++generation_;
 
     if (is_clef) {
         const auto found = stored_clefs_.find(name);

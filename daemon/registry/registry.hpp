@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <functional>
 #include <map>
@@ -91,7 +92,23 @@ class Registry {
     // Validates document, stores it durably under name (replacing a stored document of the same
     // name and class, shadowing a shipped one) and returns its class, told by the root element.
     // Throws invalid_document, limit_exceeded; std::system_error when the disk write fails.
+    // The same as commit_compose(prepare_compose(name, document)).
     DocumentKind compose(std::string_view name, std::string_view document);
+
+    // A compose in two steps, so that the document's parsing and validation (all of the work)
+    // can run where the registry is only read (the daemon's workers, under a reader's lock) and
+    // only the store itself where it is written (issue 33, item 1).
+    class PreparedCompose;
+    // Everything compose() checks, against the registry as it is now; nothing is written.
+    // Throws as compose() does, but never std::system_error.
+    PreparedCompose prepare_compose(std::string_view name, std::string_view document) const;
+    // Stores what prepare_compose() validated and returns its class, if the registry has not
+    // changed since (no compose or delete stored in between: what it was checked against still
+    // holds); std::nullopt, with nothing written, if it has. Throws std::system_error when the
+    // disk write fails.
+    [[nodiscard]] std::optional<DocumentKind> commit_compose(PreparedCompose prepared);
+    // Counts the changes stored (composes and deletes).
+    std::uint64_t generation() const { return generation_; }
 
     // Deletes a stored document; a shipped one of the same name becomes visible again.
     // Throws not_found, permission_denied (shipped only) or in_use (a clef a score needs).
@@ -159,8 +176,6 @@ class Registry {
     std::vector<std::string> users_of(std::string_view clef_name) const;
     void commit(std::vector<Rebound> rebound);
 
-    void compose_clef(const std::string& name, std::string_view document);
-    void compose_score(const std::string& name, std::string_view document);
     void check_store_limits(DocumentKind kind, const std::string& name, std::size_t new_size) const;
     std::filesystem::path stored_path(DocumentKind kind, std::string_view name) const;
 
@@ -170,6 +185,23 @@ class Registry {
     Records<ClefRecord> shipped_clefs_, stored_clefs_;
     Records<ScoreRecord> shipped_scores_, stored_scores_;
     std::size_t stored_bytes_ = 0;
+    std::uint64_t generation_ = 0;
+};
+
+// What Registry::prepare_compose() validated, for Registry::commit_compose().
+class Registry::PreparedCompose {
+  public:
+    DocumentKind kind() const { return kind_; }
+    const std::string& name() const { return name_; }
+
+  private:
+    friend class Registry;
+    DocumentKind kind_ = DocumentKind::score;
+    std::string name_;
+    std::uint64_t generation_ = 0;  // of the registry it was checked against
+    std::optional<ClefRecord> clef_;
+    std::optional<ScoreRecord> score_;
+    std::vector<Rebound> rebound_;  // the scores that use a composed clef, bound to it
 };
 
 }  // namespace vibscore::daemon

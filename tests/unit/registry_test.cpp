@@ -482,6 +482,50 @@ TEST_F(RegistryTest, InlineScoresUseRegistryClefs) {
                 HasSubstr("expected <VibScore>"));
 }
 
+TEST_F(RegistryTest, APreparedComposeWritesNothingUntilCommitted) {
+    auto registry = open();
+    const auto score_text = score_using("base.clef.xml", 2, "Beat");
+    auto prepared = registry.prepare_compose("beat", score_text);
+    EXPECT_EQ(prepared.kind(), DocumentKind::score);
+    EXPECT_EQ(prepared.name(), "beat");
+    EXPECT_FALSE(registry.contains(DocumentKind::score, "beat"));
+    EXPECT_FALSE(std::filesystem::exists(store_dir() / "beat.score.xml"));
+
+    const auto generation = registry.generation();
+    EXPECT_EQ(registry.commit_compose(std::move(prepared)), DocumentKind::score);
+    EXPECT_EQ(registry.generation(), generation + 1);
+    EXPECT_EQ(read_file(store_dir() / "beat.score.xml"), score_text);
+    EXPECT_EQ(registry.get(DocumentKind::score, "beat"), score_text);
+}
+
+TEST_F(RegistryTest, PrepareRefusesAsComposeDoes) {
+    const auto registry = open(StoreLimits{200, 1000, 1u << 20});
+    EXPECT_THAT(error_of(Code::invalid_document,
+                         [&] { registry.prepare_compose("beat", score_using("ghost")); }),
+                HasSubstr("no clef named \"ghost\""));
+    EXPECT_THAT(error_of(Code::limit_exceeded,
+                         [&] { registry.prepare_compose("big", std::string(201, ' ')); }),
+                HasSubstr("is 201 bytes; the limit is 200"));
+    EXPECT_EQ(registry.generation(), 0u);
+}
+
+// What a prepared compose was checked against may be gone by its commit: here the clef its score
+// uses is deleted in between, and storing it would break the registry's invariant.
+TEST_F(RegistryTest, APreparedComposeIsNotCommittedAfterAnotherChange) {
+    auto registry = open();
+    ASSERT_EQ(registry.compose("mine", sine_clef(0.5, {80}, {1})), DocumentKind::clef);
+    auto prepared = registry.prepare_compose("song", score_using("mine.clef.xml", 1));
+    registry.remove(DocumentKind::clef, "mine");
+    EXPECT_EQ(registry.commit_compose(std::move(prepared)), std::nullopt);
+    EXPECT_FALSE(registry.contains(DocumentKind::score, "song"));
+    EXPECT_FALSE(std::filesystem::exists(store_dir() / "song.score.xml"));
+
+    auto after_compose = registry.prepare_compose("song", score_using("base.clef.xml", 1));
+    ASSERT_EQ(registry.compose("other", score_using("base.clef.xml", 2)), DocumentKind::score);
+    EXPECT_EQ(registry.commit_compose(std::move(after_compose)), std::nullopt);
+    EXPECT_FALSE(registry.contains(DocumentKind::score, "song"));
+}
+
 TEST(Registry, LoadsEveryShippedDocument) {
     const std::filesystem::path shipped = testing::required_env("VIBSCORE_CLEFS");
     TempDir store;
