@@ -330,6 +330,11 @@ void HapticsService::queue_play(const std::shared_ptr<DeferredReply<std::uint64_
     auto& lane = Admission::exempt(caller.uid) ? exempt_work_
                  : carries_document            ? document_work_
                                                : registry_work_;
+    push_work(lane, caller, std::move(job), "Plays");
+}
+
+void HapticsService::push_work(FairWorkQueue& lane, const Caller& caller, std::function<void()> job,
+                               const std::string& what) {
     switch (lane.push(caller.uid, caller.sender, std::move(job))) {
         case FairWorkQueue::Pushed::queued:
             return;
@@ -337,12 +342,12 @@ void HapticsService::queue_play(const std::shared_ptr<DeferredReply<std::uint64_
             throw RequestError(RequestError::Code::limit_exceeded,
                                "connection " + caller.sender + " (uid " +
                                    std::to_string(caller.uid) + ") already has " +
-                                   std::to_string(lane.options().per_connection) +
-                                   " Plays waiting for the worker, the most one connection may");
+                                   std::to_string(lane.options().per_connection) + " " + what +
+                                   " waiting for the worker, the most one connection may");
         case FairWorkQueue::Pushed::queue_full:
             throw RequestError(RequestError::Code::limit_exceeded,
-                               std::to_string(lane.options().total) +
-                                   " Plays are waiting for the worker, the most it holds");
+                               std::to_string(lane.options().total) + " " + what +
+                                   " are waiting for the worker, the most it holds");
     }
 }
 
@@ -460,25 +465,92 @@ void HapticsService::StopAll(sdbus::Result<>&& result) {
 void HapticsService::Compose(sdbus::Result<>&& result, std::string name, std::string document) {
     const auto reply = DeferredReply<>::make(std::move(result), "Compose");
     reply->start([&] {
-        const Caller caller = admit_caller(document_cost(document.size()));
-        when_allowed(reply, caller, Action::compose, "Compose",
-                     [this, caller, name = std::move(name), document = std::move(document)] {
-                         std::unique_lock lock(registry_lock_);
-                         const auto stored = registry_.compose(name, document);
-                         lock.unlock();
-                         if (stored == DocumentKind::clef) {
-                             fit_cache_.clear();  // the fits of the clef composed over are stale
-                         }
-                         log::info("uid " + std::to_string(caller.uid) + " composed " +
-                                       std::string(to_string(stored)) + " \"" + name + "\"",
-                                   {{"CALLER_UID", std::to_string(caller.uid)}, {"SCORE", name}});
-                         if (stored == DocumentKind::clef) {
-                             log_stored_clef(registry_, config_.device_clefs, config_.actuator,
-                                             name);
-                         }
-                         emitRegistryChanged(std::string(to_string(stored)), name);
-                     });
+        // Charged before anything is read: the document's bytes are counted, not parsed.
+        ChargedTo charged_to = ChargedTo::nothing;
+        const Caller caller = admit_caller(document_cost(document.size()), &charged_to);
+        auto shared_document = std::make_shared<const std::string>(std::move(document));
+        authorizer_.decide(caller, Action::compose,
+                           [this, reply, caller, charged_to, name = std::move(name),
+                            shared_document](const Decision& decision) {
+                               reply->start([&] {
+                                   decision.require("Compose");
+                                   queue_compose(reply, caller, charged_to, name, shared_document,
+                                                 0);
+                               });
+                           });
     });
+}
+
+// A compose checked this many times, each time overtaken by another change stored before its
+// own, is refused (Busy) rather than checked again without end.
+constexpr int kComposeAttempts = 4;
+
+void HapticsService::queue_compose(const std::shared_ptr<DeferredReply<>>& reply,
+                                   const Caller& caller, ChargedTo charged_to, std::string name,
+                                   std::shared_ptr<const std::string> document, int attempt) {
+    struct ComposeWork {
+        std::optional<Registry::PreparedCompose> prepared;
+        std::exception_ptr error;
+        double cpu_s = 0.0;
+    };
+    auto job = [this, alive = alive_, reply, caller, charged_to, name = std::move(name),
+                document = std::move(document), attempt]() mutable {
+        auto work = std::make_shared<ComposeWork>();
+        const double cpu_before = thread_cpu_s();
+        try {
+            const std::shared_lock lock(registry_lock_);
+            work->prepared = registry_.prepare_compose(name, *document);
+        } catch (...) {
+            work->error = std::current_exception();
+        }
+        work->cpu_s = thread_cpu_s() - cpu_before;
+        // Back on the bus thread, which alone writes the registry and talks to the bus.
+        playback_.to_bus([this, alive = std::move(alive), reply = std::move(reply), caller,
+                          charged_to, name = std::move(name), document = std::move(document),
+                          attempt, work = std::move(work)]() mutable {
+            if (!*alive) {
+                return;
+            }
+            admission_.charge_after(caller.uid, caller.sender, charged_to, {0.0, 0.0, work->cpu_s},
+                                    monotonic_now_us());
+            reply->start([&] {
+                if (work->error) {
+                    std::rethrow_exception(work->error);
+                }
+                std::unique_lock lock(registry_lock_);
+                const auto stored = registry_.commit_compose(std::move(*work->prepared));
+                lock.unlock();
+                if (stored) {
+                    reply->finish([&] { composed(caller, *stored, name); });
+                    return;
+                }
+                // Another compose or delete was stored since it was checked: what it was
+                // checked against may be gone, so it is checked again, on the worker.
+                if (attempt + 1 >= kComposeAttempts) {
+                    throw RegistryError(RegistryError::Code::in_use,
+                                        "the registry changed " + std::to_string(attempt + 1) +
+                                            " times while \"" + name +
+                                            "\" was being checked; compose it again");
+                }
+                queue_compose(reply, caller, charged_to, name, document, attempt + 1);
+            });
+        });
+    };
+    push_work(Admission::exempt(caller.uid) ? exempt_work_ : document_work_, caller, std::move(job),
+              "Composes");
+}
+
+void HapticsService::composed(const Caller& caller, DocumentKind kind, const std::string& name) {
+    if (kind == DocumentKind::clef) {
+        fit_cache_.clear();  // the fits of the clef composed over are stale
+    }
+    log::info("uid " + std::to_string(caller.uid) + " composed " + std::string(to_string(kind)) +
+                  " \"" + name + "\"",
+              {{"CALLER_UID", std::to_string(caller.uid)}, {"SCORE", name}});
+    if (kind == DocumentKind::clef) {
+        log_stored_clef(registry_, config_.device_clefs, config_.actuator, name);
+    }
+    emitRegistryChanged(std::string(to_string(kind)), name);
 }
 
 void HapticsService::Delete(sdbus::Result<>&& result, std::string kind, std::string name) {

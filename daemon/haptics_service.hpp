@@ -114,6 +114,19 @@ class HapticsService final : public sdbus::AdaptorInterfaces<org::vibscore::Hapt
     // On the worker: the score found, bound, fitted and rendered into a request.
     std::shared_ptr<PlayWork> prepare_play(const std::string& score, const PlayOptions& options,
                                            const DeviceClefs& device_clefs, double separation_s);
+    // Queues `job` on `lane` for `caller`, or throws RequestError (limit_exceeded) naming the
+    // bound that refused it; `what`: the requests it holds ("Plays", "Composes").
+    static void push_work(FairWorkQueue& lane, const Caller& caller, std::function<void()> job,
+                          const std::string& what);
+    // Compose after polkit's answer: the document parsed and validated against the registry on
+    // a worker (Registry::prepare_compose, under the reader's lock), stored on the bus thread,
+    // which alone writes the registry (commit_compose); checked again on the worker when another
+    // compose or delete was stored in between (`attempt`: how many times it was).
+    void queue_compose(const std::shared_ptr<DeferredReply<>>& reply, const Caller& caller,
+                       ChargedTo charged_to, std::string name,
+                       std::shared_ptr<const std::string> document, int attempt);
+    // A compose stored: logged, the fits of a clef composed over dropped, RegistryChanged sent.
+    void composed(const Caller& caller, DocumentKind kind, const std::string& name);
     // On the bus thread again: the request handed to the player.
     std::uint64_t start_play(const Caller& caller, PlaybackRequest request,
                              const PlayOptions& options);
@@ -141,7 +154,8 @@ class HapticsService final : public sdbus::AdaptorInterfaces<org::vibscore::Hapt
     Calibrator* calibrator_ = nullptr;
 
     Admission admission_;  // the bus thread's
-    // Compose and Delete (bus thread) change the registry; the workers read it.
+    // Compose's commit and Delete (bus thread) change the registry; the workers read it (and
+    // Compose's validation runs there, as a reader).
     std::shared_mutex registry_lock_;
     ClefFitCache fit_cache_;
     DeviceClefs fit_cache_clefs_;  // the [clefs] the cache was filled for: another empties it
