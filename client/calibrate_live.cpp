@@ -48,6 +48,10 @@ cal::Estimate estimate_of(const Result& result) {
     estimate.resonance_hz = field<double>(result, "resonance-hz");
     estimate.q = field<double>(result, "q");
     estimate.full_scale_accel = field<double>(result, "full-scale-accel");
+    estimate.spin_up_uncertainty = field<double>(result, "spin-up-uncertainty");
+    estimate.spin_down_uncertainty = field<double>(result, "spin-down-uncertainty");
+    estimate.resonance_uncertainty = field<double>(result, "resonance-uncertainty");
+    estimate.q_uncertainty = field<double>(result, "q-uncertainty");
     estimate.sample_rate_hz = field<double>(result, "sample-rate-hz").value_or(0.0);
     estimate.residual = field<double>(result, "residual").value_or(1.0);
     estimate.snr_db = field<double>(result, "snr-db").value_or(0.0);

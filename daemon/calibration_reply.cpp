@@ -49,6 +49,11 @@ CalibrationReply calibration_reply(const CalibrationOutcome& outcome, bool recor
     number("resonance-hz", estimate.resonance_hz, 1.0);
     number("q", estimate.q, 1.0);
     number("full-scale-accel", estimate.full_scale_accel, 1.0);
+    // How sure each number is travels with it: the client prints it as the offline path does.
+    number("spin-up-uncertainty", estimate.spin_up_uncertainty, 1.0);
+    number("spin-down-uncertainty", estimate.spin_down_uncertainty, 1.0);
+    number("resonance-uncertainty", estimate.resonance_uncertainty, 1.0);
+    number("q-uncertainty", estimate.q_uncertainty, 1.0);
     reply["sample-rate-hz"] = sdbus::Variant(estimate.sample_rate_hz);
     reply["residual"] = sdbus::Variant(estimate.residual);
     reply["snr-db"] = sdbus::Variant(estimate.snr_db);

@@ -83,6 +83,8 @@ TEST(DaemonCalibrate, ApplyMeasuresTheTrueLraKeepsItAcrossARestartAndTheClientSh
     EXPECT_NEAR(*hz, kTrueHz, kTrueHz * 0.01);
     EXPECT_NEAR(*q, kTrueQ, kTrueQ * 0.15);
     EXPECT_THAT(calibrated.out, HasSubstr("# resonance-hz: measured"));
+    // How sure the daemon's estimate is arrives with it, as the offline estimate prints it.
+    EXPECT_THAT(calibrated.out, HasSubstr("# uncertainty: resonance-hz ±"));
     EXPECT_THAT(calibrated.out, HasSubstr("declared 175"));
 
     EXPECT_THAT(property(daemon, "ActuatorSource"), StartsWith("s \"measured 20"));
@@ -175,6 +177,7 @@ TEST(DaemonCalibrate, AnErmsTimeConstantsAreMeasuredWithoutBeingApplied) {
     EXPECT_NEAR(*up, 55.0, 55.0 * 0.15);
     EXPECT_NEAR(*down, 120.0, 120.0 * 0.15);
     EXPECT_THAT(calibrated.err, HasSubstr("--apply makes these the numbers in use"));
+    EXPECT_THAT(calibrated.out, HasSubstr("# uncertainty: spin-up-ms ±"));
     EXPECT_EQ(property(daemon, "ActuatorSource"), "s \"declared\"\n");
     EXPECT_THAT(property(daemon, "Actuator"), HasSubstr("\"spin-up-ms\" \"40\""));
 }
