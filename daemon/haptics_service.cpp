@@ -599,16 +599,72 @@ std::string HapticsService::Origin(const std::string& kind, const std::string& n
     });
 }
 
-std::vector<sdbus::Struct<std::string, std::string>> HapticsService::BarClefs(
-    const std::string& score) {
-    return guarded("BarClefs", [&] {
-        admit_caller(document_cost(document_bytes(score, PlayOptions{})));
-        std::vector<sdbus::Struct<std::string, std::string>> bars;
-        for (auto& bar : bar_clefs(find_score_to_play(registry_, score, PlayOptions{}).bundle,
-                                   config_.device_clefs)) {
-            bars.emplace_back(std::move(bar.written), std::move(bar.device));
+namespace {
+
+using BarClefList = std::vector<sdbus::Struct<std::string, std::string>>;
+
+BarClefList bar_clef_list(const ScoreBundle& bundle, const DeviceClefs& device_clefs) {
+    BarClefList bars;
+    for (auto& bar : bar_clefs(bundle, device_clefs)) {
+        bars.emplace_back(std::move(bar.written), std::move(bar.device));
+    }
+    return bars;
+}
+
+}  // namespace
+
+void HapticsService::BarClefs(sdbus::Result<BarClefList>&& result, std::string score) {
+    const auto reply = DeferredReply<BarClefList>::make(std::move(result), "BarClefs");
+    reply->start([&] {
+        ChargedTo charged_to = ChargedTo::nothing;
+        const auto bytes = document_bytes(score, PlayOptions{});
+        const Caller caller = admit_caller(document_cost(bytes), &charged_to);
+        if (bytes == 0) {
+            // A registry score's name: its bundle is held, parsed and bound, already.
+            reply->finish([&] {
+                return bar_clef_list(find_score_to_play(registry_, score, PlayOptions{}).bundle,
+                                     config_.device_clefs);
+            });
+            return;
         }
-        return bars;
+        // An inline document: parsed and bound on the worker, as Play's.
+        struct BarClefsWork {
+            BarClefList bars;
+            std::exception_ptr error;
+            double cpu_s = 0.0;
+        };
+        auto job = [this, alive = alive_, reply, caller, charged_to,
+                    score = std::make_shared<const std::string>(std::move(score)),
+                    device_clefs = config_.device_clefs]() mutable {
+            auto work = std::make_shared<BarClefsWork>();
+            const double cpu_before = thread_cpu_s();
+            try {
+                std::shared_lock lock(registry_lock_);
+                auto found = find_score_to_play(registry_, *score, PlayOptions{});
+                lock.unlock();
+                work->bars = bar_clef_list(found.bundle, device_clefs);
+            } catch (...) {
+                work->error = std::current_exception();
+            }
+            work->cpu_s = thread_cpu_s() - cpu_before;
+            score.reset();
+            playback_.to_bus([this, alive = std::move(alive), reply = std::move(reply), caller,
+                              charged_to, work = std::move(work)] {
+                if (!*alive) {
+                    return;
+                }
+                admission_.charge_after(caller.uid, caller.sender, charged_to,
+                                        {0.0, 0.0, work->cpu_s}, monotonic_now_us());
+                reply->finish([&] {
+                    if (work->error) {
+                        std::rethrow_exception(work->error);
+                    }
+                    return std::move(work->bars);
+                });
+            });
+        };
+        push_work(Admission::exempt(caller.uid) ? exempt_work_ : document_work_, caller,
+                  std::move(job), "BarClefs calls");
     });
 }
 

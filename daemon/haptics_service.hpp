@@ -66,8 +66,8 @@ class HapticsService final : public sdbus::AdaptorInterfaces<org::vibscore::Hapt
     std::vector<sdbus::Struct<std::string, std::string>> List(const std::string& kind) override;
     std::string Get(const std::string& kind, const std::string& name) override;
     std::string Origin(const std::string& kind, const std::string& name) override;
-    std::vector<sdbus::Struct<std::string, std::string>> BarClefs(
-        const std::string& score) override;
+    void BarClefs(sdbus::Result<std::vector<sdbus::Struct<std::string, std::string>>>&& result,
+                  std::string score) override;
     std::vector<sdbus::Struct<std::string, std::string>> ListDrivers() override;
     void SwitchDriver(sdbus::Result<>&& result, std::string driver) override;
     void SetIntensity(sdbus::Result<>&& result, double value) override;

@@ -159,5 +159,24 @@ TEST(DaemonComposeWorker, AScoreComposedAfterItsClefBindsToIt) {
     }
 }
 
+// BarClefs of an inline score is answered from the worker too, with the bars or the error.
+TEST(DaemonComposeWorker, BarClefsOfAnInlineScoreIsAnsweredFromTheWorker) {
+    DaemonFixture daemon;
+    auto client = daemon.client();
+    const auto bars = client->BarClefs(bench::inline_score_of(4096));
+    ASSERT_FALSE(bars.empty());
+    EXPECT_EQ(bars.front().get<0>(), "lra-phone");
+    EXPECT_EQ(bars.size(), client->BarClefs(bench::inline_score_of(4096)).size());
+    try {
+        client->BarClefs(score_invalid_at_its_end(4096));
+        ADD_FAILURE() << "an invalid inline score was answered";
+    } catch (const sdbus::Error& error) {
+        EXPECT_EQ(dbus::error_name(error), "org.vibscore.Haptics1.Error.InvalidDocument");
+        EXPECT_THAT(error.getMessage(), HasSubstr("string \"99\" is out of range (1 to 6)"));
+    }
+    // A registry score's name is answered as before.
+    EXPECT_FALSE(client->BarClefs("success").empty());
+}
+
 }  // namespace
 }  // namespace vibscore
