@@ -291,11 +291,14 @@ void HapticsService::queue_play(const std::shared_ptr<DeferredReply<std::uint64_
         fit_cache_.clear();
         fit_cache_clefs_ = config_.device_clefs;
     }
-    if (Admission::exempt(caller.uid) && !carries_document) {
+    // With [clefs] fit = auto, binding may fit a clef to the actuator (on a miss of the fit
+    // cache, far more work than the rest): that is done on a worker, never the bus thread.
+    const bool may_fit = config_.device_clefs.fit_to.has_value() && options.clef.empty();
+    if (Admission::exempt(caller.uid) && !carries_document && !may_fit) {
         // Root's and the daemon's own Play of a registry score: nothing of a caller's is parsed
-        // (the registry's scores are parsed already), its work is bounded by what the registry
-        // holds, and it keeps its head-room by not waiting for a worker's turn and two more
-        // thread hops.
+        // (the registry's scores are parsed already), nothing is fitted, its work is bounded by
+        // what the registry holds, and it keeps its head-room by not waiting for a worker's
+        // turn and two more thread hops.
         auto work =
             prepare_play(*score, options, config_.device_clefs, config_.separation_ms / 1000.0);
         reply->finish([&] {
