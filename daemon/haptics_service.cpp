@@ -470,7 +470,17 @@ void HapticsService::Compose(sdbus::Result<>&& result, std::string name, std::st
     reply->start([&] {
         // Charged before anything is read: the document's bytes are counted, not parsed.
         ChargedTo charged_to = ChargedTo::nothing;
-        const Caller caller = admit_caller(document_cost(document.size()), &charged_to);
+        Caller caller;
+        try {
+            caller = admit_caller(document_cost(document.size()), &charged_to);
+        } catch (const RequestError& refusal) {
+            // Refused a second later, as Play's documents are (refuse_later).
+            if (document.empty() || refusal.code() != RequestError::Code::limit_exceeded) {
+                throw;
+            }
+            refuse_later(reply, identify_caller(), refusal);
+            return;
+        }
         auto shared_document = std::make_shared<const std::string>(std::move(document));
         authorizer_.decide(caller, Action::compose,
                            [this, reply, caller, charged_to, name = std::move(name),
@@ -621,7 +631,17 @@ void HapticsService::BarClefs(sdbus::Result<BarClefList>&& result, std::string s
     reply->start([&] {
         ChargedTo charged_to = ChargedTo::nothing;
         const auto bytes = document_bytes(score, PlayOptions{});
-        const Caller caller = admit_caller(document_cost(bytes), &charged_to);
+        Caller caller;
+        try {
+            caller = admit_caller(document_cost(bytes), &charged_to);
+        } catch (const RequestError& refusal) {
+            // Refused a second later, as Play's documents are (refuse_later).
+            if (bytes == 0 || refusal.code() != RequestError::Code::limit_exceeded) {
+                throw;
+            }
+            refuse_later(reply, identify_caller(), refusal);
+            return;
+        }
         if (bytes == 0) {
             // A registry score's name: its bundle is held, parsed and bound, already.
             reply->finish([&] {

@@ -178,5 +178,25 @@ TEST(DaemonComposeWorker, BarClefsOfAnInlineScoreIsAnsweredFromTheWorker) {
     EXPECT_FALSE(client->BarClefs("success").empty());
 }
 
+// A caller over its document budget is refused before its document is parsed, by BarClefs as by
+// Play: LimitExceeded naming the budget, and its other calls go on.
+TEST(DaemonComposeWorker, BarClefsOverTheDocumentBudgetIsRefusedNamingIt) {
+    constexpr uid_t kNobody = 65534;
+    DaemonFixture daemon{"[limits]\ndocument-bytes-per-second = 1\ndocument-burst-bytes = 65536\n"};
+    const auto score = bench::inline_score_of(40000);
+    const auto first = daemon.call({"BarClefs", "s", score}, kNobody);
+    EXPECT_EQ(first.exit_code, 0) << first.err;
+    std::string refused;
+    for (int i = 0; i < 4 && refused.empty(); ++i) {
+        const auto again = daemon.call({"BarClefs", "s", score}, kNobody);
+        if (again.exit_code != 0) {
+            refused = again.err;
+        }
+    }
+    EXPECT_THAT(refused, HasSubstr("too many document bytes from uid 65534"));
+    const auto listed = daemon.call({"List", "s", "score"}, kNobody);
+    EXPECT_EQ(listed.exit_code, 0) << listed.err;
+}
+
 }  // namespace
 }  // namespace vibscore
