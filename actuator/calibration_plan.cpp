@@ -2,9 +2,9 @@
 #include <algorithm>
 #include <cmath>
 
-#include "common/number_text.hpp"
 #include "actuator/calibration.hpp"
 #include "actuator/calibration_text.hpp"
+#include "common/number_text.hpp"
 
 namespace vibscore::actuator::calibration {
 

@@ -15,11 +15,11 @@
 #include <string>
 #include <vector>
 
+#include "actuator/calibration.hpp"
+#include "actuator/vibration_sensor.hpp"
 #include "bench/feel_metrics.hpp"
 #include "bench/feel_plant.hpp"
 #include "bench/report.hpp"
-#include "actuator/calibration.hpp"
-#include "actuator/vibration_sensor.hpp"
 #include "daemon/render/cue_adaptation.hpp"
 #include "daemon/render/cue_schedule.hpp"
 #include "daemon/render/drive_planner.hpp"

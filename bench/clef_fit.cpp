@@ -19,9 +19,9 @@
 
 #include "bench/feel_plant.hpp"
 #include "bench/report.hpp"
-#include "daemon/render/fitting/clef_fit.hpp"
 #include "daemon/render/cue_adaptation.hpp"
 #include "daemon/render/cue_schedule.hpp"
+#include "daemon/render/fitting/clef_fit.hpp"
 #include "daemon/render/performance.hpp"
 #include "score/bundle.hpp"
 #include "score/score_xml.hpp"

@@ -6,8 +6,8 @@
 #include <ostream>
 #include <string>
 
-#include "client/clef_search.hpp"
 #include "actuator/declaration.hpp"
+#include "client/clef_search.hpp"
 
 namespace vibscore::client {
 

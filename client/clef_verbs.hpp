@@ -3,8 +3,8 @@
 #include <ostream>
 #include <string>
 
-#include "client/clef_search.hpp"
 #include "actuator/declaration.hpp"
+#include "client/clef_search.hpp"
 #include "daemon/render/fitting/clef_fit.hpp"
 
 namespace vibscore::client {

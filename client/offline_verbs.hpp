@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "client/clef_search.hpp"
 #include "actuator/declaration.hpp"
+#include "client/clef_search.hpp"
 
 namespace vibscore::client {
 

@@ -4,9 +4,9 @@
 #include <stdexcept>
 #include <utility>
 
+#include "common/log.hpp"
 #include "daemon/drivers/disconnected_actuator.hpp"
 #include "daemon/drivers/driver_settings.hpp"
-#include "common/log.hpp"
 
 namespace vibscore::daemon {
 

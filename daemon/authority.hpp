@@ -11,8 +11,8 @@
 #include <utility>
 #include <vector>
 
-#include "daemon/callers.hpp"
 #include "common/usage.hpp"
+#include "daemon/callers.hpp"
 
 // Who may do what: polkit decides, as for every system service (timedated, NetworkManager).
 // The actions and their defaults are in polkit/org.vibscore.policy; docs/daemon.md explains them.

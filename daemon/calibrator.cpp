@@ -4,9 +4,9 @@
 #include <map>
 #include <utility>
 
+#include "common/log.hpp"
 #include "common/monotonic_clock.hpp"
 #include "daemon/calibration_state.hpp"
-#include "common/log.hpp"
 #include "daemon/render/cue_stream.hpp"
 #include "daemon/sensors/open_accelerometer.hpp"
 

@@ -5,12 +5,12 @@
 #include <filesystem>
 #include <iostream>
 
-#include "json/build_tree.hpp"
+#include "common/log.hpp"
 #include "config.h"
 #include "daemon/calibration_state.hpp"
 #include "daemon/drivers/available.hpp"
-#include "common/log.hpp"
 #include "daemon/module_record.hpp"
+#include "json/build_tree.hpp"
 
 namespace vibscore::daemon {
 

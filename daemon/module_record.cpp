@@ -7,8 +7,8 @@
 #include <sstream>
 #include <utility>
 
-#include "common/log.hpp"
 #include "common/atomic_file.hpp"
+#include "common/log.hpp"
 
 namespace vibscore::daemon {
 

@@ -7,8 +7,8 @@
 #include <sstream>
 #include <string>
 
-#include "common/log.hpp"
 #include "common/atomic_file.hpp"
+#include "common/log.hpp"
 
 namespace vibscore::daemon {
 

@@ -11,13 +11,13 @@
 #include <vector>
 
 #include "actuator/declaration.hpp"
-#include "daemon/drivers/actuator.hpp"
 #include "common/event_loop.hpp"
+#include "common/usage.hpp"
+#include "daemon/drivers/actuator.hpp"
 #include "daemon/playback_cues.hpp"
 #include "daemon/playback_limits.hpp"
 #include "daemon/playback_positions.hpp"
 #include "daemon/render/cue_stream.hpp"
-#include "common/usage.hpp"
 
 namespace vibscore::daemon {
 

@@ -1,7 +1,7 @@
 #include "feedback/haptics_link.hpp"
 
-#include "common/quoted_text.hpp"
 #include "common/log.hpp"
+#include "common/quoted_text.hpp"
 #include "dbus/haptics1_names.hpp"
 #include "dbus/name_owner_watch.hpp"
 #include "dbus/sdbus_compat.hpp"

@@ -7,9 +7,9 @@
 
 #include <vector>
 
-#include "json/json_document.hpp"
 #include "feedback/profile.hpp"
 #include "feedback/vibra_feedback.hpp"
+#include "json/json_document.hpp"
 #include "score/document_error.hpp"
 
 // Which score an event plays: a theme maps event names to scores per profile. Two formats are

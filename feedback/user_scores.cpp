@@ -6,10 +6,10 @@
 #include <stdexcept>
 #include <system_error>
 
-#include "json/json_document.hpp"
-#include "common/quoted_text.hpp"
 #include "common/atomic_file.hpp"
+#include "common/quoted_text.hpp"
 #include "feedback/json_fields.hpp"
+#include "json/json_document.hpp"
 #include "score/registry_names.hpp"
 
 namespace vibscore::feedback {

@@ -12,8 +12,8 @@
 #include <string>
 #include <thread>
 
-#include "common/unique_fd.hpp"
 #include "common/event_loop.hpp"
+#include "common/unique_fd.hpp"
 
 namespace vibscore::feedback {
 

@@ -5,10 +5,10 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "json/json_document.hpp"
 #include "feedback/feedbackd_theme.hpp"
 #include "feedback/theme.hpp"
 #include "fuzz/fuzz_support.hpp"
+#include "json/json_document.hpp"
 #include "score/document_error.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

@@ -3,8 +3,8 @@
 #include <string>
 #include <vector>
 
-#include "client/pictures/picture_file.hpp"
 #include "actuator/calibration.hpp"
+#include "client/pictures/picture_file.hpp"
 
 namespace vibscore::pictures {
 

@@ -4,10 +4,10 @@
 #include <cmath>
 #include <utility>
 
+#include "actuator/physics.hpp"
 #include "client/pictures/axis_ticks.hpp"
 #include "client/pictures/picture_text.hpp"
 #include "common/number_text.hpp"
-#include "actuator/physics.hpp"
 #include "daemon/render/waveform.hpp"
 
 namespace vibscore::pictures {

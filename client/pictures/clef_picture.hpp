@@ -4,8 +4,8 @@
 #include <string>
 #include <vector>
 
-#include "client/pictures/picture_file.hpp"
 #include "actuator/declaration.hpp"
+#include "client/pictures/picture_file.hpp"
 #include "score/clef.hpp"
 
 namespace vibscore::pictures {

@@ -5,8 +5,8 @@
 #include <string_view>
 #include <vector>
 
-#include "common/device_error.hpp"
 #include "actuator/declaration.hpp"
+#include "common/device_error.hpp"
 
 namespace vibscore::sensors {
 class Accelerometer;

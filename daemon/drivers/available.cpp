@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "common/log.hpp"
 #include "daemon/drivers/configured_actuator.hpp"
 #include "daemon/drivers/evdev_actuator.hpp"
 #include "daemon/drivers/external_driver.hpp"
@@ -10,7 +11,6 @@
 #include "daemon/drivers/led_vibrator_actuator.hpp"
 #include "daemon/drivers/sim_actuator.hpp"
 #include "daemon/drivers/sysfs_pwm_actuator.hpp"
-#include "common/log.hpp"
 
 namespace vibscore::drivers {
 

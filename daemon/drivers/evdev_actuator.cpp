@@ -5,9 +5,9 @@
 #include <span>
 #include <utility>
 
+#include "common/log.hpp"
 #include "daemon/drivers/driver_settings.hpp"
 #include "daemon/drivers/evdev_discovery.hpp"
-#include "common/log.hpp"
 
 namespace vibscore::drivers {
 

@@ -10,9 +10,9 @@
 #include <system_error>
 #include <utility>
 
+#include "common/log.hpp"
 #include "daemon/drivers/actuator.hpp"
 #include "daemon/drivers/gpio_lines_chip.hpp"
-#include "common/log.hpp"
 
 namespace vibscore::drivers {
 

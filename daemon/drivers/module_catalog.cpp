@@ -7,10 +7,10 @@
 #include <algorithm>
 #include <utility>
 
+#include "common/log.hpp"
 #include "daemon/drivers/external_driver.hpp"
 #include "daemon/drivers/module_probe.hpp"
 #include "daemon/drivers/module_trust.hpp"
-#include "common/log.hpp"
 
 namespace vibscore::drivers {
 

@@ -11,8 +11,8 @@
 #include <exception>
 #include <utility>
 
-#include "common/monotonic_clock.hpp"
 #include "common/log.hpp"
+#include "common/monotonic_clock.hpp"
 
 namespace vibscore::drivers {
 

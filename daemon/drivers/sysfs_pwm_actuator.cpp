@@ -5,10 +5,10 @@
 #include <cmath>
 #include <utility>
 
+#include "common/log.hpp"
 #include "common/quoted_text.hpp"
 #include "daemon/drivers/drive_levels.hpp"
 #include "daemon/drivers/driver_settings.hpp"
-#include "common/log.hpp"
 
 namespace vibscore::drivers {
 

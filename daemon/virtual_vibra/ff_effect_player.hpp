@@ -6,9 +6,9 @@
 #include <optional>
 #include <string>
 
+#include "common/usage.hpp"
 #include "daemon/play_request.hpp"
 #include "daemon/player.hpp"
-#include "common/usage.hpp"
 #include "daemon/virtual_vibra/uinput_ff_device.hpp"
 
 namespace vibscore::daemon {

@@ -4,10 +4,10 @@
 
 #include <stdexcept>
 
+#include "common/log.hpp"
 #include "common/quoted_text.hpp"
 #include "daemon/drivers/driver_settings.hpp"
 #include "daemon/drivers/evdev_discovery.hpp"
-#include "common/log.hpp"
 
 namespace vibscore::daemon {
 

@@ -5,8 +5,8 @@
 #include <string>
 
 #include "common/event_loop.hpp"
-#include "daemon/player.hpp"
 #include "common/usage.hpp"
+#include "daemon/player.hpp"
 #include "daemon/virtual_vibra/ff_effect_player.hpp"
 #include "daemon/virtual_vibra/uinput_ff_device.hpp"
 

@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "daemon/render/fitting/actuator_check.hpp"
 #include "daemon/render/actuator_response.hpp"
+#include "daemon/render/fitting/actuator_check.hpp"
 #include "daemon/render/fitting/clef_check.hpp"
 #include "score/clef_xml.hpp"
 #include "tests/support/example_actuators.hpp"

@@ -7,9 +7,9 @@
 
 #include <cmath>
 
+#include "actuator/vibration_sensor.hpp"
 #include "client/calibrate_verb.hpp"
 #include "client/pictures/calibration_picture.hpp"
-#include "actuator/vibration_sensor.hpp"
 #include "tests/support/support.hpp"
 #include "tests/unit/picture_ink.hpp"
 

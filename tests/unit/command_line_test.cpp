@@ -2,9 +2,9 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "json/build_tree.hpp"
 #include "config.h"
 #include "daemon/command_line.hpp"
+#include "json/build_tree.hpp"
 #include "tests/support/support.hpp"
 
 namespace vibscore::daemon {

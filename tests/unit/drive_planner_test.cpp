@@ -7,8 +7,8 @@
 #include <cmath>
 #include <random>
 
-#include "bench/feel_plant.hpp"
 #include "actuator/physics.hpp"
+#include "bench/feel_plant.hpp"
 #include "daemon/render/actuator_response.hpp"
 #include "daemon/render/cue_adaptation.hpp"
 #include "daemon/render/drive_planner.hpp"

@@ -16,12 +16,12 @@
 #include <sstream>
 #include <utility>
 
+#include "actuator/physics.hpp"
 #include "client/formats/rtttl.hpp"
 #include "client/pictures/clef_picture.hpp"
 #include "client/pictures/response_picture.hpp"
 #include "client/pictures/signal_picture.hpp"
 #include "client/pictures/staff_picture.hpp"
-#include "actuator/physics.hpp"
 #include "daemon/config.hpp"
 #include "daemon/render/actuator_response.hpp"
 #include "daemon/render/waveform.hpp"

@@ -6,8 +6,8 @@
 #include <map>
 #include <set>
 
-#include "common/number_text.hpp"
 #include "actuator/physics.hpp"
+#include "common/number_text.hpp"
 #include "daemon/render/actuator_response.hpp"
 #include "daemon/render/fitting/clef_check.hpp"
 
