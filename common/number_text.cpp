@@ -26,17 +26,7 @@ std::string rounded_text(double value, int significant) {
     // Fixed notation with as many decimals as the significant digits leave (never %g's
     // exponents: nobody writes 3.6e+06 seconds or 1.2e-05 seconds), trailing zeros dropped.
     const int exponent = static_cast<int>(std::floor(std::log10(std::abs(value))));
-    const int decimals = std::max(0, significant - 1 - exponent);
-    char buffer[400];
-    std::snprintf(buffer, sizeof buffer, "%.*f", decimals, value);
-    std::string text = buffer;
-    if (text.find('.') != std::string::npos) {
-        text.erase(text.find_last_not_of('0') + 1);
-        if (text.back() == '.') {
-            text.pop_back();
-        }
-    }
-    return text;
+    return fixed_text(value, std::max(0, significant - 1 - exponent));
 }
 
 std::string fixed_text(double value, int places) {

@@ -198,6 +198,20 @@ void HapticsService::refuse_later(const std::shared_ptr<Reply>& reply, const Cal
     }
 }
 
+template <typename Reply>
+std::optional<Caller> HapticsService::admit_document(const std::shared_ptr<Reply>& reply,
+                                                     std::size_t bytes, ChargedTo& charged_to) {
+    try {
+        return admit_caller(document_cost(bytes), &charged_to);
+    } catch (const RequestError& refusal) {
+        if (bytes == 0 || refusal.code() != RequestError::Code::limit_exceeded) {
+            throw;
+        }
+        refuse_later(reply, identify_caller(), refusal);
+        return std::nullopt;
+    }
+}
+
 Caller HapticsService::admit_caller(const Cost& cost, ChargedTo* charged_to) {
     const Caller caller = identify_caller();
     // The running configuration's budgets (a reload applies from the next request).
@@ -242,19 +256,13 @@ void HapticsService::Play(sdbus::Result<std::uint64_t>&& result, std::string sco
                           std::map<std::string, sdbus::Variant> options) {
     const auto reply = DeferredReply<std::uint64_t>::make(std::move(result), "Play");
     reply->start([&] {
-        // Charged before anything is read: the documents' bytes are counted, not parsed.
         ChargedTo charged_to = ChargedTo::nothing;
         const auto bytes = document_bytes(score, options);
-        Caller caller;
-        try {
-            caller = admit_caller(document_cost(bytes), &charged_to);
-        } catch (const RequestError& refusal) {
-            if (bytes == 0 || refusal.code() != RequestError::Code::limit_exceeded) {
-                throw;
-            }
-            refuse_later(reply, identify_caller(), refusal);
+        const auto admitted = admit_document(reply, bytes, charged_to);
+        if (!admitted) {
             return;
         }
+        const Caller& caller = *admitted;
         const PlayOptions play_options = parse_play_options(options);
         auto shared_score = std::make_shared<const std::string>(std::move(score));
         if (!needs_urgent_usage(play_options.usage)) {
@@ -468,19 +476,12 @@ void HapticsService::StopAll(sdbus::Result<>&& result) {
 void HapticsService::Compose(sdbus::Result<>&& result, std::string name, std::string document) {
     const auto reply = DeferredReply<>::make(std::move(result), "Compose");
     reply->start([&] {
-        // Charged before anything is read: the document's bytes are counted, not parsed.
         ChargedTo charged_to = ChargedTo::nothing;
-        Caller caller;
-        try {
-            caller = admit_caller(document_cost(document.size()), &charged_to);
-        } catch (const RequestError& refusal) {
-            // Refused a second later, as Play's documents are (refuse_later).
-            if (document.empty() || refusal.code() != RequestError::Code::limit_exceeded) {
-                throw;
-            }
-            refuse_later(reply, identify_caller(), refusal);
+        const auto admitted = admit_document(reply, document.size(), charged_to);
+        if (!admitted) {
             return;
         }
+        const Caller& caller = *admitted;
         auto shared_document = std::make_shared<const std::string>(std::move(document));
         authorizer_.decide(caller, Action::compose,
                            [this, reply, caller, charged_to, name = std::move(name),
@@ -631,17 +632,11 @@ void HapticsService::BarClefs(sdbus::Result<BarClefList>&& result, std::string s
     reply->start([&] {
         ChargedTo charged_to = ChargedTo::nothing;
         const auto bytes = document_bytes(score, PlayOptions{});
-        Caller caller;
-        try {
-            caller = admit_caller(document_cost(bytes), &charged_to);
-        } catch (const RequestError& refusal) {
-            // Refused a second later, as Play's documents are (refuse_later).
-            if (bytes == 0 || refusal.code() != RequestError::Code::limit_exceeded) {
-                throw;
-            }
-            refuse_later(reply, identify_caller(), refusal);
+        const auto admitted = admit_document(reply, bytes, charged_to);
+        if (!admitted) {
             return;
         }
+        const Caller& caller = *admitted;
         if (bytes == 0) {
             // A registry score's name: its bundle is held, parsed and bound, already.
             reply->finish([&] {

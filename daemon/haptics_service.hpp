@@ -94,6 +94,13 @@ class HapticsService final : public sdbus::AdaptorInterfaces<org::vibscore::Hapt
     template <typename Reply>
     void refuse_later(const std::shared_ptr<Reply>& reply, const Caller& caller,
                       const RequestError& refusal);
+    // The caller of a method carrying `bytes` of a document, admitted for them (charged before
+    // anything is read: the bytes are counted, not parsed). Nothing when it is over its budget
+    // and the refusal goes through `reply` later (refuse_later); a refusal of a request
+    // without a document, or of another kind, is thrown at once.
+    template <typename Reply>
+    std::optional<Caller> admit_document(const std::shared_ptr<Reply>& reply, std::size_t bytes,
+                                         ChargedTo& charged_to);
     // Runs `then` under `reply` once `caller` may do `action` (at once when no action is needed
     // or the answer is known; when polkit answers otherwise); a refusal is the reply instead.
     // `then` runs later, so it owns what it uses.
