@@ -1,5 +1,6 @@
 #include "daemon/admission_delay.hpp"
 
+#include <algorithm>
 #include <utility>
 #include <vector>
 
@@ -59,6 +60,17 @@ void DelayedTasks::run() {
         lock.lock();
     }
     // Tasks not yet due stay in due_, destroyed with it by the destructor's thread.
+}
+
+RefusalPacing::Clock::time_point RefusalPacing::due(uid_t uid, Clock::time_point now) {
+    // Users whose pacing has run out are forgotten, so the map holds only recent refusers.
+    if (next_.size() > 64) {
+        std::erase_if(next_, [now](const auto& entry) { return entry.second <= now; });
+    }
+    const auto [found, fresh] = next_.try_emplace(uid, now);
+    const Clock::time_point at = std::max(now + delay_, found->second);
+    found->second = at + spacing_;
+    return at;
 }
 
 }  // namespace vibscore::daemon

@@ -8,6 +8,9 @@
 #include <set>
 #include <string>
 #include <thread>
+#include <unordered_map>
+
+#include <sys/types.h>
 
 namespace vibscore::daemon {
 
@@ -46,6 +49,27 @@ class DelayedTasks {
     std::set<std::string> keys_;
     bool stopping_ = false;
     std::thread thread_;
+};
+
+// When a user's refusals are answered: no sooner than `delay` after the refusal, and no closer
+// than `spacing` to the user's previous one. One connection waiting for its answer re-sends
+// once a `delay`; twenty of one user would re-send twenty times as often, each message a
+// megabyte the bus thread reads before it can refuse it. Spacing them by user bounds what the
+// user's refused documents cost the bus thread whatever its number of connections.
+class RefusalPacing {
+  public:
+    using Clock = DelayedTasks::Clock;
+    RefusalPacing(Clock::duration delay, Clock::duration spacing)
+        : delay_(delay), spacing_(spacing) {}
+
+    // When to answer `uid`'s refusal made at `now`; counts it as answered then.
+    Clock::time_point due(uid_t uid, Clock::time_point now);
+    std::size_t users() const { return next_.size(); }
+
+  private:
+    Clock::duration delay_;
+    Clock::duration spacing_;
+    std::unordered_map<uid_t, Clock::time_point> next_;  // the earliest the next may be answered
 };
 
 }  // namespace vibscore::daemon

@@ -174,9 +174,6 @@ Caller HapticsService::identify_caller() {
         [&](const sdbus::Message& message) -> const Caller& { return callers_.identify(message); });
 }
 
-// A refused megabyte has already cost the bus and the bus thread its reading; answering it at
-// once would let a caller that waits for its answers send hundreds a second.
-constexpr auto kRefusalDelay = std::chrono::seconds(1);
 // Each refusal waiting holds its request's message (up to a megabyte): at most this many wait,
 // the next are answered at once.
 constexpr std::size_t kMostRefusalsWaiting = 32;
@@ -186,7 +183,7 @@ void HapticsService::refuse_later(const std::shared_ptr<Reply>& reply, const Cal
                                   const RequestError& refusal) {
     const bool queued =
         refusals_.waiting() < kMostRefusalsWaiting &&
-        refusals_.add(caller.sender, DelayedTasks::Clock::now() + kRefusalDelay,
+        refusals_.add(caller.sender, refusal_pacing_.due(caller.uid, DelayedTasks::Clock::now()),
                       [reply, alive = alive_, message = std::string(refusal.what())] {
                           if (*alive) {
                               reply->fail(std::make_exception_ptr(

@@ -170,6 +170,9 @@ class HapticsService final : public sdbus::AdaptorInterfaces<org::vibscore::Hapt
     std::shared_ptr<bool> alive_ = std::make_shared<bool>(true);
     DelayedTasks refusals_{
         [this](std::function<void()> task) { playback_.to_bus(std::move(task)); }};
+    // A refused document is answered a second later, and a user's refusals half a second apart:
+    // at most two a second re-sent by a user, however many connections it opens (bus thread).
+    RefusalPacing refusal_pacing_{std::chrono::seconds(1), std::chrono::milliseconds(500)};
     // Last, so they are stopped before anything their jobs use: root's and the daemon's own
     // work on a lane of their own (their head-room); everyone else's on two fair ones, so that
     // a Play of a registry score (no caller's document: its work is bounded by what the registry

@@ -77,5 +77,40 @@ TEST(DelayedTasks, TasksArePostedInTheOrderTheyAreDue) {
     EXPECT_EQ(order, (std::vector<int>{1, 2, 3}));
 }
 
+// A user's refusals a delay after each and a spacing apart, whatever its connections: the
+// edges are the delay itself, the spacing exactly, and a pause long enough to start afresh.
+TEST(RefusalPacing, AUsersRefusalsComeADelayLaterAndASpacingApart) {
+    RefusalPacing pacing(1000ms, 500ms);
+    const RefusalPacing::Clock::time_point t0{};
+    EXPECT_EQ(pacing.due(1000, t0), t0 + 1000ms);
+    // Twenty connections refused in the same instant: one every 500 ms from the first.
+    for (int i = 1; i < 20; ++i) {
+        EXPECT_EQ(pacing.due(1000, t0), t0 + 1000ms + i * 500ms) << i;
+    }
+    // Another user is paced on its own.
+    EXPECT_EQ(pacing.due(1001, t0), t0 + 1000ms);
+}
+
+TEST(RefusalPacing, AfterAPauseTheNextRefusalIsOnlyADelayLater) {
+    RefusalPacing pacing(1000ms, 500ms);
+    const RefusalPacing::Clock::time_point t0{};
+    EXPECT_EQ(pacing.due(1000, t0), t0 + 1000ms);  // the next may come at 1500 ms
+    // Refused at 499 ms: 1499 ms would be 1 ms too close to the first, so 1500 ms.
+    EXPECT_EQ(pacing.due(1000, t0 + 499ms), t0 + 1500ms);
+    // Refused at 1001 ms (next allowed 2000 ms): a delay later is 2001 ms, past the spacing.
+    EXPECT_EQ(pacing.due(1000, t0 + 1001ms), t0 + 2001ms);
+}
+
+TEST(RefusalPacing, UsersWhosePacingRanOutAreForgottenOnceThereAreMany) {
+    RefusalPacing pacing(1000ms, 500ms);
+    const RefusalPacing::Clock::time_point t0{};
+    for (uid_t uid = 1; uid <= 65; ++uid) {
+        pacing.due(uid, t0);
+    }
+    EXPECT_EQ(pacing.users(), 65u);
+    pacing.due(2000, t0 + 1500ms);  // every earlier user's next was due by 1500 ms
+    EXPECT_EQ(pacing.users(), 1u);
+}
+
 }  // namespace
 }  // namespace vibscore::daemon
