@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "bench/feel_metrics.hpp"
+#include "bench/feel_pieces.hpp"
 #include "bench/feel_plant.hpp"
 #include "bench/report.hpp"
 #include "common/monotonic_clock.hpp"
@@ -43,130 +44,15 @@ using namespace vibscore;
 using actuator::Declaration;
 using bench::ScoreFeel;
 
-constexpr double kRate = 2000.0;  // samples per second of every strength compared
-constexpr double kTail = 0.5;     // seconds after a score's end, for the ringing
-
-// The nine shipped notification tactons (bench/press_targets.hpp names the same set).
-const std::vector<std::string> kTactons{
-    "alarm",    "failure", "notification-calendar", "notification-mail", "notification-message",
-    "ringtone", "success", "touch-click",           "touch-tick"};
-
-// Ten 50 ms taps a second, and keystrokes while typing (25 ms clicks, 50-150 ms apart).
-const char* const kTaps =
-    "<VibScore><Title>ten taps a second</Title><Clef id=\"lra\" href=\"lra-phone.clef.xml\"/>"
-    "<Bar clef=\"lra\">"
-    "<Note length=\"16th\" number=\"9\" string=\"6\"/><Rest length=\"16th\"/>"
-    "<Note length=\"16th\" number=\"9\" string=\"6\"/><Rest length=\"16th\"/>"
-    "<Note length=\"16th\" number=\"9\" string=\"6\"/><Rest length=\"16th\"/>"
-    "<Note length=\"16th\" number=\"9\" string=\"6\"/><Rest length=\"16th\"/>"
-    "<Note length=\"16th\" number=\"9\" string=\"6\"/><Rest length=\"16th\"/>"
-    "<Note length=\"16th\" number=\"9\" string=\"6\"/><Rest length=\"16th\"/>"
-    "<Note length=\"16th\" number=\"9\" string=\"6\"/><Rest length=\"16th\"/>"
-    "<Note length=\"16th\" number=\"9\" string=\"6\"/><Rest length=\"16th\"/>"
-    "<Note length=\"16th\" number=\"9\" string=\"6\"/><Rest length=\"16th\"/>"
-    "<Note length=\"16th\" number=\"9\" string=\"6\"/><Rest length=\"16th\"/>"
-    "</Bar></VibScore>";
-const char* const kTyping =
-    "<VibScore><Title>typing</Title><Clef id=\"lra\" href=\"lra-phone.clef.xml\"/>"
-    "<Bar clef=\"lra\">"
-    "<Note length=\"32th\" number=\"7\" string=\"5\"/><Rest length=\"16th_dot\"/>"
-    "<Note length=\"32th\" number=\"7\" string=\"5\"/><Rest length=\"8th\"/>"
-    "<Note length=\"32th\" number=\"8\" string=\"5\"/><Rest length=\"16th\"/>"
-    "<Note length=\"32th\" number=\"7\" string=\"5\"/><Rest length=\"8th_dot\"/>"
-    "<Note length=\"32th\" number=\"7\" string=\"5\"/><Rest length=\"16th\"/>"
-    "<Note length=\"32th\" number=\"9\" string=\"5\"/><Rest length=\"8th\"/>"
-    "</Bar></VibScore>";
-
-struct Piece {
-    std::string name;
-    ScoreBundle bundle;
-};
-
-// A sine clef's strings moved inside an LRA's band (where it gives more than 1/sqrt(2) of its
-// strength: f0 +- f0/2Q), evenly, in their order: "a clef whose strings sit inside its band".
-Clef inside_band(Clef clef, const Declaration& lra) {
-    const double half_band = 0.9 * lra.resonance_hz / (2.0 * lra.q);
-    const std::size_t n = clef.strings.size();
-    for (std::size_t s = 0; s < n; ++s) {
-        const double position = n > 1 ? static_cast<double>(s) / static_cast<double>(n - 1) : 0.5;
-        clef.strings[s].frequency = lra.resonance_hz + (2.0 * position - 1.0) * half_band;
-    }
-    return clef;
-}
-
-std::vector<Piece> pieces(const std::filesystem::path& clefs) {
-    std::vector<Piece> all;
-    for (const auto& name : kTactons) {
-        all.push_back({name, load_score_file(clefs / (name + ".score.xml"))});
-    }
-    const Clef lra_phone = load_clef_file(clefs / "lra-phone.clef.xml");
-    for (const auto& [name, text] : {std::pair{"taps", kTaps}, std::pair{"typing", kTyping}}) {
-        all.push_back({name, bind_clefs(read_score(text, name), name,
-                                        [&](const ClefDeclaration&, const SourceLocation&) {
-                                            return lra_phone;
-                                        })});
-    }
-    return all;
-}
-
-// The piece as the declared LRA plays it: every sine clef moved into its band.
-ScoreBundle for_actuator(ScoreBundle bundle, const Declaration& declared) {
-    if (declared.kind == actuator::Kind::lra) {
-        for (auto& [id, clef] : bundle.clefs) {
-            if (clef.type == ClefType::sine) {
-                clef = inside_band(clef, declared);
-            }
-        }
-    }
-    return bundle;
-}
-
-std::vector<render::Cue> drives_for(const render::Performance& performance,
-                                    const Declaration& declared, bool compensation,
-                                    const render::Uncertainty& uncertainty) {
-    render::CueAdaptation adaptation;
-    adaptation.actuator = declared;
-    adaptation.uncertainty = uncertainty;
-    adaptation.actuator->compensation = compensation;
-    adaptation.reverse = true;
-    auto cues =
-        render::adapt_cues(render::cue_schedule(performance), performance.duration(), adaptation);
-    std::erase_if(cues,
-                  [](const render::Cue& cue) { return cue.kind != render::Cue::Kind::drive; });
-    return cues;
-}
-
-// Drives felt on `truth`, measured against the written strength.
-ScoreFeel judge(const std::string& name, const std::vector<bench::NoteSpan>& notes,
-                const std::vector<double>& written, const std::vector<render::Cue>& drives,
-                const Declaration& truth) {
-    const bench::Plant plant(truth);
-    const auto produced = plant.respond(drives, kRate, written.size());
-    const auto produced_until = [&](double t) {
-        std::vector<render::Cue> before;
-        for (const auto& cue : drives) {
-            if (cue.at < t) {
-                before.push_back(cue);
-            }
-        }
-        return plant.respond(before, kRate, written.size());
-    };
-    return bench::measure(name, notes, written, produced, produced_until, kRate);
-}
-
-// One piece on one actuator: planned for `declared`, felt on `truth`.
-ScoreFeel feel(const Piece& piece, const Declaration& declared, const Declaration& truth,
-               bool compensation, const render::Uncertainty& uncertainty) {
-    const render::Performance performance(for_actuator(piece.bundle, declared));
-    const auto drives = drives_for(performance, declared, compensation, uncertainty);
-    const auto count =
-        static_cast<std::size_t>(std::ceil((performance.duration() + kTail) * kRate));
-    std::vector<double> written;
-    for (std::size_t k = 0; k < count; ++k) {
-        written.push_back(performance.envelope_at(static_cast<double>(k) / kRate));
-    }
-    return judge(piece.name, bench::note_spans(performance, 1.0), written, drives, truth);
-}
+// What bench/feel plays and how it judges it (shared with bench/calibrated_feel).
+using bench::feel;
+using bench::for_actuator;
+using bench::judge;
+using bench::kRate;
+using bench::kTactons;
+using bench::kTail;
+using bench::Piece;
+using bench::pieces;
 
 // A test score written directly as notes (strength, frequency), each followed by silence: the
 // notes far from an LRA's resonance that a clef fitted to it would never write, but a score may.
@@ -239,12 +125,9 @@ std::vector<TestScore> test_scores() {
             score("ERM 40/80 ms, strengths 0.3-1", example_erm(), erm)};
 }
 
-// Everything measured of one actuator, one way.
-struct Totals {
-    int notes = 0, reached = 0, silences = 0, felt = 0;
-    double onset_ms = 0, stop_ms = 0, error = 0;  // medians
+// Everything measured of one actuator, one way: the pooled figures, the taps, each piece's.
+struct Totals : bench::Pooled {
     int taps_felt = 0, taps_gaps = 0;
-    double rebound = 0, overshoot = 0;  // the most over the pieces
     std::vector<ScoreFeel> scores;
 };
 
@@ -252,27 +135,15 @@ struct Totals {
 Totals run(const std::vector<Piece>& all, const Declaration& declared, const Declaration& truth,
            bool compensation, const render::Uncertainty& uncertainty = {}) {
     Totals totals;
-    std::vector<double> onsets, stops, errors;
     for (const auto& piece : all) {
         ScoreFeel score = feel(piece, declared, truth, compensation, uncertainty);
-        totals.notes += score.notes;
-        totals.reached += score.reached;
-        totals.silences += score.silences;
-        totals.felt += score.felt;
-        onsets.insert(onsets.end(), score.onsets_ms.begin(), score.onsets_ms.end());
-        stops.insert(stops.end(), score.stops_ms.begin(), score.stops_ms.end());
-        errors.push_back(score.envelope_error);
-        totals.rebound = std::max(totals.rebound, score.max_rebound);
-        totals.overshoot = std::max(totals.overshoot, score.max_overshoot);
         if (piece.name == "taps") {
             totals.taps_felt = score.felt;
             totals.taps_gaps = score.silences;
         }
         totals.scores.push_back(std::move(score));
     }
-    totals.onset_ms = bench::median(onsets);
-    totals.stop_ms = bench::median(stops);
-    totals.error = bench::median(errors);
+    static_cast<bench::Pooled&>(totals) = bench::pool(totals.scores);
     return totals;
 }
 

@@ -40,6 +40,26 @@ double median(std::vector<double> values) {
     return n % 2 == 1 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
 }
 
+Pooled pool(const std::vector<ScoreFeel>& scores) {
+    Pooled pooled;
+    std::vector<double> onsets, stops, errors;
+    for (const ScoreFeel& score : scores) {
+        pooled.notes += score.notes;
+        pooled.reached += score.reached;
+        pooled.silences += score.silences;
+        pooled.felt += score.felt;
+        onsets.insert(onsets.end(), score.onsets_ms.begin(), score.onsets_ms.end());
+        stops.insert(stops.end(), score.stops_ms.begin(), score.stops_ms.end());
+        errors.push_back(score.envelope_error);
+        pooled.rebound = std::max(pooled.rebound, score.max_rebound);
+        pooled.overshoot = std::max(pooled.overshoot, score.max_overshoot);
+    }
+    pooled.onset_ms = median(onsets);
+    pooled.stop_ms = median(stops);
+    pooled.error = median(errors);
+    return pooled;
+}
+
 ScoreFeel measure(const std::string& name, const std::vector<NoteSpan>& notes,
                   const std::vector<double>& written, const std::vector<double>& produced,
                   const std::function<std::vector<double>(double)>& produced_until,

@@ -52,4 +52,15 @@ ScoreFeel measure(const std::string& name, const std::vector<NoteSpan>& notes,
 // The median, INFINITY counting as the largest value; NaN for none.
 double median(std::vector<double> values);
 
+// bench/feel's figures of one actuator, pooled over the pieces it played (docs/performance.md,
+// "What people feel"): the counts summed; onset and stop the medians over every note of every
+// piece (a person feels notes, not pieces); the envelope error the median of the pieces'; rebound
+// and overshoot the most of any piece.
+struct Pooled {
+    int notes = 0, reached = 0, silences = 0, felt = 0;
+    double onset_ms = 0, stop_ms = 0, error = 0;  // medians
+    double rebound = 0, overshoot = 0;            // the most over the pieces
+};
+Pooled pool(const std::vector<ScoreFeel>& scores);
+
 }  // namespace vibscore::bench
