@@ -193,15 +193,46 @@ std::optional<DrivePlanner::Step> DrivePlanner::robust_brake(double frequency_hz
     return chosen;
 }
 
+double DrivePlanner::robust_hold(double strength, double frequency_hz) const {
+    const auto& d = physics_.declaration();
+    const Uncertainty& u = options_.uncertainty;
+    if (members_.empty() || frequency_hz <= 0.0) {
+        return INFINITY;
+    }
+    // The most responsive LRA within the margins at this frequency: one resonant at it where the
+    // margin reaches it (a low Q peaks a little below its resonance, so a little above 1), else
+    // near the nearest edge; looked for over the margin's resonances and Qs.
+    const double nearest = std::clamp(frequency_hz, d.resonance_hz * (1.0 - u.resonance),
+                                      d.resonance_hz * (1.0 + u.resonance));
+    double most = 0.0;
+    for (const double q : {d.q * (1.0 - u.q), d.q, d.q * (1.0 + u.q)}) {
+        most = std::max(most, Physics::lra_gain(frequency_hz, nearest, q));
+        for (int k = -kLooks; k <= kLooks; ++k) {
+            const double f0 = d.resonance_hz * (1.0 + u.resonance * k / kLooks);
+            most = std::max(most, Physics::lra_gain(frequency_hz, f0, q));
+        }
+    }
+    // Off's hold leaves it at strength x most; the boost may take it no further from the written
+    // strength than that on the other side, and where off would be that close (near its
+    // resonance) no more than kOvershoot above: for no LRA within the margins is the held
+    // strength further off than without compensation, or above the strength by more than an
+    // overdrive may take the declared one.
+    return strength * d.rated_drive * std::max(2.0 - most, 1.0 + kOvershoot) / most;
+}
+
 State DrivePlanner::follow(const std::vector<Step>& steps, double t) const {
-    State state = state_;
+    return follow(physics_, state_, steps, t);
+}
+
+State DrivePlanner::follow(const Physics& physics, State state, const std::vector<Step>& steps,
+                           double t) {
     for (std::size_t i = 0; i < steps.size(); ++i) {
         const double from = steps[i].at;
         const double to = i + 1 < steps.size() ? std::min(steps[i + 1].at, t) : t;
         if (to <= from) {
             break;
         }
-        state = physics_.advance(state, steps[i].drive, to - from);
+        state = physics.advance(state, steps[i].drive, to - from);
     }
     return state;
 }
@@ -215,7 +246,9 @@ std::vector<DrivePlanner::Step> DrivePlanner::approach(double at, double until, 
                   physics_.time_constant_s({1.0, 0.0})});
     const double horizon = std::isfinite(until) ? until - at : 50.0 * longest;
     const double hold_amplitude =
-        strength > 0.0 ? std::min(1.0, physics_.amplitude_for(strength, frequency_hz)) : 0.0;
+        strength > 0.0 ? std::min({1.0, physics_.amplitude_for(strength, frequency_hz),
+                                   robust_hold(strength, frequency_hz)})
+                       : 0.0;
     const Drive hold{hold_amplitude, hold_amplitude > 0.0 ? frequency_hz : 0.0};
     const double now = Physics::strength(state_);
     if (std::abs(now - strength) <= tolerance(strength)) {
@@ -252,9 +285,7 @@ std::vector<DrivePlanner::Step> DrivePlanner::approach(double at, double until, 
     Drive push;
     if (now < strength) {
         push = {1.0, frequency_hz};
-    } else if (options_.reverse) {
-        // (A fall to a softer note is braked even where the phase is uncertain: coasting down
-        // would carry the next note's start above its strength.)
+    } else if (brakes_) {
         push = {-1.0, frequency_hz};
     } else {
         push = {0.0, 0.0};  // coast
@@ -288,23 +319,29 @@ double DrivePlanner::early_end(const std::vector<Step>& steps, double until,
                                double strength) const {
     const double at = steps.front().at;
     const double felt_end = strength / 2.0;
-    const auto at_end_if_cut = [&](double cut) {
-        const State coasting = follow(steps, cut);
-        return Physics::strength(physics_.advance(coasting, {0.0, 0.0}, until - cut));
-    };
-    if (at_end_if_cut(until) <= felt_end) {
-        return until;  // the note never got strong enough to linger: keep all of it
+    // Every actuator within the margins: the cut is the earliest any of them needs (one that
+    // rings longer than declared needs it sooner).
+    double cut = until;
+    for (const auto& [physics, state] : ensemble()) {
+        const auto at_end_if_cut = [&](double t) {
+            const State coasting = follow(*physics, state, steps, t);
+            return Physics::strength(physics->advance(coasting, {0.0, 0.0}, until - t));
+        };
+        if (at_end_if_cut(cut) <= felt_end) {
+            continue;  // never strong enough to linger: its drive may go on to `cut`
+        }
+        if (at_end_if_cut(at) >= felt_end) {
+            return at;  // already lingering at that strength: no more drive
+        }
+        // The strength at the end grows with the cut (the drive only ever adds), so bisect.
+        double lo = at, hi = cut;
+        for (int i = 0; i < kBisections; ++i) {
+            const double mid = 0.5 * (lo + hi);
+            (at_end_if_cut(mid) >= felt_end ? hi : lo) = mid;
+        }
+        cut = hi;
     }
-    if (at_end_if_cut(at) >= felt_end) {
-        return at;  // already lingering at that strength: no drive at all
-    }
-    // The strength at the end grows with the cut (the drive only ever adds), so bisect.
-    double lo = at, hi = until;
-    for (int i = 0; i < kBisections; ++i) {
-        const double mid = 0.5 * (lo + hi);
-        (at_end_if_cut(mid) >= felt_end ? hi : lo) = mid;
-    }
-    return hi;
+    return cut;
 }
 
 void DrivePlanner::tame(std::vector<Step>& steps, double until, double strength) const {
@@ -336,12 +373,20 @@ void DrivePlanner::tame(std::vector<Step>& steps, double until, double strength)
     if (!overshoots(last.drive.amplitude)) {
         return;
     }
-    double lo = 0.0, hi = last.drive.amplitude;
-    for (int i = 0; i < kBisections / 2; ++i) {
-        const double mid = 0.5 * (lo + hi);
-        (overshoots(mid) ? hi : lo) = mid;
+    // Never below what compensation off would hold: an LRA within the margins resonant at this
+    // frequency would then fall short of where off leaves it.
+    const double floor =
+        std::min(last.drive.amplitude, strength * physics_.declaration().rated_drive);
+    if (!overshoots(floor)) {
+        double lo = floor, hi = last.drive.amplitude;
+        for (int i = 0; i < kBisections / 2; ++i) {
+            const double mid = 0.5 * (lo + hi);
+            (overshoots(mid) ? hi : lo) = mid;
+        }
+        last.drive.amplitude = lo;
+    } else {
+        last.drive.amplitude = floor;
     }
-    last.drive.amplitude = lo;
 }
 
 void DrivePlanner::emit(double at, const Drive& drive, std::vector<Cue>& out) {

@@ -102,6 +102,9 @@ class DrivePlanner {
     std::vector<Step> approach(double at, double until, double strength, double frequency_hz) const;
     // The state at `t` following `steps` from the current state at steps.front().at.
     actuator::State follow(const std::vector<Step>& steps, double t) const;
+    // The same for any actuator from any state.
+    static actuator::State follow(const actuator::Physics& physics, actuator::State state,
+                                  const std::vector<Step>& steps, double t);
     // For a segment that silence follows: where the drive should stop so that coasting from there
     // brings the strength to half of `strength` at `until`; `until` itself when it need not.
     double early_end(const std::vector<Step>& steps, double until, double strength) const;
@@ -122,6 +125,9 @@ class DrivePlanner {
     // pushed back up, after its lowest point, by more than 30 % of its strength at the brake's
     // start (past rest a brake adds energy); nothing when coasting does as well.
     std::optional<Step> robust_brake(double frequency_hz) const;
+    // The most a hold at `frequency_hz` may drive so that no LRA within the margins settles
+    // further from `strength` than without compensation (infinite without margins).
+    double robust_hold(double strength, double frequency_hz) const;
 
     actuator::Physics physics_;
     PlannerOptions options_;
