@@ -12,15 +12,18 @@ namespace vibscore::render {
 // How far the actual LRA may be from its declaration (issue 32: part to part, mounting,
 // temperature), as fractions of the declared resonance and Q. With a margin the planner budgets
 // an LRA's plans for every actuator within it, not only the declared one (its "members": the
-// declared one and those at the margins' corners and edges, simulated alongside it): no
-// overdrive takes the declared one more than 3 % or another more than 30 % above the written
-// strength; a brake to rest is the one that stops the declared one soonest without pushing any
-// member back up, after its lowest point, by more than 30 % of where it started (past rest a
-// brake adds energy: a shorter, weaker brake as the margins grow); and a held note whose beat
-// (off resonance) would rise above its strength is driven lower. Where the resonance is uncertain
-// by more than half a bandwidth (resonance x Q > 0.5), no brake to rest at all: its phase is not
-// known, and the drive ends early instead, as without `reverse`. Both zero: the declaration is
-// taken as exact, issue 22's plans to the microsecond. An ERM's plans are not
+// declared one and those at the margins' corners and edges, simulated alongside it), so that
+// compensation is never further off than none for any of them: no overdrive takes the declared
+// one more than 3 % or another more than 30 % above the written strength; no hold drives harder
+// than leaves the most responsive LRA within the margins as close to the strength as off would
+// (3 % above where one is resonant at the note); a brake to rest is the one that stops the
+// declared one soonest without pushing any member back up, after its lowest point, by more than
+// 30 % of where it started (past rest a brake adds energy: a shorter, weaker brake as the margins
+// grow); and a held note whose beat (off resonance) would rise above its strength is driven
+// lower, never below off's drive. Where the resonance is uncertain by more than half a bandwidth
+// (resonance x Q > 0.5), nothing is braked: its phase is not known; falls coast, and before a
+// silence the drive ends early instead, for the member that rings longest. Both zero: the
+// declaration is taken as exact, issue 22's plans to the microsecond. An ERM's plans are not
 // budgeted: its exact brake and overdrive stay better than none over +-30 % in both time
 // constants (bench/feel, docs/performance.md), as coasting takes it twice as long as braking.
 struct Uncertainty {
