@@ -88,6 +88,10 @@ struct Estimate {
     // An ERM's doubt is mostly what its answer leans on the sensor's own low-pass (fitted as a
     // first-order gain on the motor's speed), not what sets the probe's steps apart.
     bool low_pass_doubt = false;
+    // An LRA sampled slower than twice its resonance: the mirror image about half the rate
+    // (rate - resonance) that the recording cannot rule out, its distance then part of the
+    // resonance's uncertainty.
+    std::optional<double> mirror_hz;
     bool trusted = false;                 // every number set and the fit good enough to use
     std::vector<std::string> problems;    // why not trusted: each a sentence a person can act on
     std::vector<std::string> unmeasured;  // keys not measured, each with its reason
@@ -129,6 +133,22 @@ Trace predicted_magnitude(const Plan& plan, const Declaration& constants, double
 // `declared` with the measured numbers of a trusted estimate in place of its own (the rest kept).
 // Throws std::invalid_argument when the estimate is not trusted or is of another kind.
 Declaration apply(const Declaration& declared, const Estimate& estimate);
+
+// The margins compensation plans a measured LRA with: as well as a trusted estimate knows its
+// numbers (twice the largest uncertainty trusted: resonance ±1 %, Q ±15 %), not a datasheet's
+// part-to-part spread.
+inline constexpr double kMeasuredResonanceTolerance = 2.0 * kMaxResonanceUncertainty;
+inline constexpr double kMeasuredQTolerance = 2.0 * kMaxQUncertainty;
+
+// An LRA whose resonance and Q were measured on this board: its tolerances no wider than the
+// measured margins (a tolerance declared tighter stays), and with them the brake back
+// (render::Uncertainty). An ERM has no tolerances and is returned as it is. The daemon's rule
+// for numbers applied by `vibscore calibrate --apply` (daemon/calibration_state.cpp).
+Declaration with_measured_margins(Declaration declared);
+
+// What the daemon plays after `vibscore calibrate --apply`: apply(), then with_measured_margins().
+// Throws as apply() does.
+Declaration apply_as_daemon(const Declaration& declared, const Estimate& estimate);
 
 // The `[actuator]` lines an estimate gives (`key = value`, one a line), the measured keys only,
 // with the strength scale and the fit's quality as `#` comments.

@@ -40,10 +40,12 @@ constexpr double kFilteredResidual = 0.95;
 // the rotation and below is beyond what a sensor that still feels the motor does).
 constexpr double kMaxFilter = 5.0;
 // The doubt a fitted low-pass leaves (see fit_erm): a share of the correction it makes, from
-// kFormDoubt where it clearly explains more to kAmbiguousDoubt where it hardly does.
+// kFormDoubt where it clearly explains more to half the span the truth may lie in where it
+// hardly does (from kAmbiguousFrom of the plain fit's residual up); that span reaches
+// kBeyondFiltered of the correction beyond the filtered fit.
 constexpr double kFormDoubt = 0.2;
-constexpr double kAmbiguousDoubt = 0.5;
 constexpr double kAmbiguousFrom = 0.8;
+constexpr double kBeyondFiltered = 0.5;
 
 struct Energy {
     const Plan& plan;
@@ -54,11 +56,12 @@ struct Energy {
 
     // The residual, and the scale and floor that give it.
     double rss(double up, double down, double delay, double* scale = nullptr,
-               double* floor = nullptr, double filter = 0.0) const {
+               double* floor = nullptr, double filter = 0.0, int stages = 1) const {
         std::vector<double> model(t.size());
         for (std::size_t k = 0; k < t.size(); ++k) {
             const double s = erm_speed(plan, up, down, delay, t[k]);
-            model[k] = s * s * s * s / (1.0 + filter * filter * s * s);
+            const double gain = 1.0 / (1.0 + filter * filter * s * s);
+            model[k] = s * s * s * s * (stages == 2 ? gain * gain : gain);
         }
         model = box_smooth(model, half);
         // Weighted least squares of energy = scale x model + floor.
@@ -125,6 +128,7 @@ ErmFit fit_erm(const Plan& plan, const std::vector<double>& t_s, const std::vect
     // drowned by the plateau.
     constexpr double lambda = 0.01;
     double filter = 0.0, filter_doubt_up = 0.0, filter_doubt_down = 0.0;
+    int stages = 1;
     {
         double a = 0.0, c = 0.0;
         model.rss(std::exp(found[0]), std::exp(found[1]), found[2], &a, &c);
@@ -140,18 +144,20 @@ ErmFit fit_erm(const Plan& plan, const std::vector<double>& t_s, const std::vect
             relative[k] = weight[k] / std::pow(shape[k] + lambda, 2.0);
         }
         const Energy second{plan, t_s, energy, relative, half};
-        const auto cost2 = [&](const std::vector<double>& p) {
+        const auto filtered_cost = [&](const std::vector<double>& p, int stages) {
             if (std::abs(p[2]) > 0.08 || p[3] < 0.0 || p[3] > kMaxFilter) {
                 return 1e300;
             }
-            return second.rss(std::exp(p[0]), std::exp(p[1]), p[2], nullptr, nullptr, p[3]);
+            return second.rss(std::exp(p[0]), std::exp(p[1]), p[2], nullptr, nullptr, p[3], stages);
         };
+        const auto cost2 = [&](const std::vector<double>& p) { return filtered_cost(p, 1); };
+        const auto cost3 = [&](const std::vector<double>& p) { return filtered_cost(p, 2); };
         // The sensor's own low-pass (many IMUs filter at ODR/2 or ODR/4) weakens the vibration
         // by its frequency, which is the motor's speed: the energy then grows slower than
-        // speed^4 and a fit without it times the motor wrong by 20-30 % at 400 Hz. A first-order
-        // gain 1 / (1 + (filter x speed)^2) is tried as a fourth number; it is kept only where
-        // it explains clearly more (bench/calibrate: filtered recordings leave 0.62-0.97 of the
-        // plain fit's residual, unfiltered ones mostly >= 0.984 but one jittered recording in
+        // speed^4 and a fit without it times the motor wrong by 20-30 % at 400 Hz. A gain
+        // 1 / (1 + (filter x speed)^2) per section is tried as a fourth number; it is kept only
+        // where it explains clearly more (bench/calibrate: filtered recordings leave 0.62-0.97 of
+        // the plain fit's residual, unfiltered ones mostly >= 0.984 but one jittered recording in
         // 64 went below 0.975 and missed by 42 %): under 0.95, so an unfiltered recording
         // keeps the plain fit and its variance, and a weak filter (little bias) is left be.
         const auto plain = [&](const std::vector<double>& p) {
@@ -160,29 +166,50 @@ ErmFit fit_erm(const Plan& plan, const std::vector<double>& t_s, const std::vect
         const std::vector<double> without = minimise(plain, found, {0.05, 0.05, 0.002}, 150);
         std::vector<double> start = found;
         start.push_back(0.0);
-        const std::vector<double> with = minimise(cost2, start, {0.05, 0.05, 0.002, 0.5}, 250);
-        const double ratio = cost2(with) / std::max(plain(without), 1e-300);
+        // Two forms of the filter: one first-order section, and two at the same corner (a
+        // gain falling twice as steeply above it: bench/calibrate seed 11, motors at 236-244 Hz
+        // through a two-stage filter at 200 Hz, timed 14-19 % short by the first-order form
+        // alone). The one that explains more is kept.
+        const std::vector<double> with1 =
+            try_filter ? minimise(cost2, start, {0.05, 0.05, 0.002, 0.5}, 250) : start;
+        const std::vector<double> with2 =
+            try_filter ? minimise(cost3, start, {0.05, 0.05, 0.002, 0.5}, 250) : start;
+        const double ratio1 = cost2(with1) / std::max(plain(without), 1e-300);
+        const double ratio2 = cost3(with2) / std::max(plain(without), 1e-300);
+        const bool two = ratio2 < ratio1;
+        const std::vector<double>& with = two ? with2 : with1;
+        const double ratio = std::min(ratio1, ratio2);
         const bool filtered = try_filter && ratio < kFilteredResidual;
         filter = filtered ? with[3] : 0.0;
+        stages = filtered && two ? 2 : 1;
         found = filtered ? std::vector<double>{with[0], with[1], with[2]} : without;
         if (try_filter) {
             // What the answer leans on the low-pass model: how far the two fits' constants
-            // differ (in log). A first-order gain is not every sensor's filter (its order and
-            // corner are the driver's), so a fifth of the correction is doubt even where the filter
-            // is clearly there (bench/calibrate: a second-order filter at rate/2 leaves up to 19 %
-            // that its first-order fit does not explain); where the two explain the recording
+            // differ (in log). Neither form is every sensor's filter (its order and corner are
+            // the driver's), so a fifth of the correction is doubt even where the filter is
+            // clearly there (bench/calibrate: a second-order filter at rate/2 leaves up to 19 %
+            // that a first-order fit does not explain). Where the two explain the recording
             // nearly alike (ratio from kAmbiguousFrom up to kFilteredResidual and beyond) the
-            // truth may lie anywhere between them, and the doubt grows to half the difference
-            // (bench/calibrate: every estimate off by 44-79 % through a filter was such a one).
+            // truth may lie anywhere from the plain fit to beyond the filtered one (a weak
+            // filter, its corner twice the rotation, bends the energy so little that the
+            // first-order gain recovers only part of it: bench/calibrate seed 7, a two-stage
+            // filter at rate/2 and motors at 101-114 Hz read at 400 Hz, the truth lay beyond the
+            // filtered fit by 0.27-0.54 of the difference); twice the doubt then reaches the far
+            // end from the answer kept: the plain fit from the filtered one, the plain one
+            // (kept when the filter explains under 5 % more: 15.5-15.8 % off in those
+            // recordings, with half the difference as doubt) from half the difference beyond
+            // the filtered one.
             const double lean = std::clamp(
                 (ratio - kAmbiguousFrom) / (kFilteredResidual - kAmbiguousFrom), 0.0, 1.0);
-            const double share = kFormDoubt + (kAmbiguousDoubt - kFormDoubt) * lean;
+            const double far = filtered ? 1.0 : 1.0 + kBeyondFiltered;
+            const double share = kFormDoubt + (0.5 * far - kFormDoubt) * lean;
             filter_doubt_up = share * std::abs(with[0] - without[0]);
             filter_doubt_down = share * std::abs(with[1] - without[1]);
         }
     }
     ErmFit out;
     out.filter = filter;
+    out.filter_stages = stages;
     out.filter_doubt_up = filter_doubt_up;
     out.filter_doubt_down = filter_doubt_down;
     out.spin_up_s = std::exp(found[0]);
@@ -238,7 +265,7 @@ ErmSpread erm_burst_spread(const Plan& plan, const std::vector<double>& t_s,
                 return 1e300;
             }
             return burst.rss(std::exp(p[0]), std::exp(p[1]), fit.delay_s, nullptr, nullptr,
-                             filtered ? p[2] : 0.0);
+                             filtered ? p[2] : 0.0, fit.filter_stages);
         };
         std::vector<double> start{std::log(fit.spin_up_s), std::log(fit.spin_down_s)};
         std::vector<double> step{0.05, 0.05};

@@ -50,6 +50,11 @@ struct LraFit {
     double samples = 0.0;
     double tone_misfit = 1.0;  // tones' steady strengths against the resonance curve, relative
     double full_scale = 0.0;   // steady peak acceleration at full-scale drive at resonance
+    // The mirror about half the sampling rate that explains the readings as well (0: none),
+    // its tones' misfit, and whether the answer is the middle of the two (a few hertz apart).
+    double rival_hz = 0.0;
+    double rival_misfit = 1.0;
+    bool rival_middle = false;
 };
 // `t_s` and `signal` (the reading along the vibration's axis); the search spans `low_hz` ..
 // `high_hz`; `rate_hz` is the sampling rate (for the alias of each candidate).
@@ -77,6 +82,7 @@ struct ErmFit {
     double rss = 0.0;
     double energy_ss = 0.0;  // the energy's own spread about the floor
     double filter = 0.0;     // the sensor low-pass kept: full-speed rotation over its corner
+    int filter_stages = 1;   // ... and its stages (first-order sections at that corner)
     // How much the constants lean on the low-pass model (log, a standard error): see fit_erm.
     double filter_doubt_up = 0.0;
     double filter_doubt_down = 0.0;

@@ -21,6 +21,10 @@ namespace {
 
 constexpr double kTwoPi = 2.0 * std::numbers::pi;
 constexpr int kMaxBasis = 6;
+// Candidates whose residuals are within this factor fit the readings alike.
+constexpr double kSameFit = 1.5;
+// A resonance and its mirror closer than this (relative) are both taken: their middle.
+constexpr double kMiddleApart = 0.018;
 
 struct Block {
     double start_s;
@@ -223,7 +227,8 @@ struct Point {
     double f0, gamma, offset, rss;
 };
 
-Point refine(const Model& model, Point start, double low_hz, double high_hz) {
+// `slack`: how far beyond the bounds the simplex may go (0: held to them).
+Point refine(const Model& model, Point start, double low_hz, double high_hz, double slack = 0.02) {
     // A local grid first (the residual has narrow valleys in frequency), then the simplex.
     Point best = start;
     const double qs[] = {2.5, 3.5, 5, 7, 10, 14, 20, 28, 40, 56, 80, 110};
@@ -242,7 +247,7 @@ Point refine(const Model& model, Point start, double low_hz, double high_hz) {
     }
     const auto cost = [&](const std::vector<double>& p) {
         const double f = p[0];
-        if (f < low_hz * 0.98 || f > high_hz * 1.02 || std::abs(p[2]) > 0.08) {
+        if (f < low_hz * (1.0 - slack) || f > high_hz * (1.0 + slack) || std::abs(p[2]) > 0.08) {
             return 1e300;
         }
         return model.rss(f, std::exp(p[1]), p[2]);
@@ -283,51 +288,83 @@ LraFit fit_lra(const Plan& plan, const std::vector<double>& t_s, const std::vect
     }
     best = refine(model, best, low_hz, high_hz);
 
+    // Sampled slower than twice the resonance, f0 and rate - f0 fit the readings alike, and the
+    // search above may settle on either, or between them where the two are a few hertz apart.
+    // So each side of half the rate gets its own best (from the answer if it lies there, else
+    // from its mirror), the search held to that side: otherwise it slides to the other, which
+    // fits exactly as well.
     std::vector<Point> candidates{best};
-    // Sampled slower than twice the resonance, f0 and rate - f0 fit the readings alike.
-    const double mirror = rate_hz - best.f0;
-    if (mirror >= low_hz && mirror <= high_hz && std::abs(mirror - best.f0) > 0.002 * best.f0) {
-        Point start{mirror, best.gamma, best.offset, model.rss(mirror, best.gamma, best.offset)};
-        // Kept on its own side of half the rate: the search would otherwise slide back to the
-        // first, which fits exactly as well.
-        const double half = 0.5 * rate_hz;
-        candidates.push_back(refine(model, start, mirror > half ? std::max(low_hz, half) : low_hz,
-                                    mirror > half ? high_hz : std::min(high_hz, half)));
+    const double half = 0.5 * rate_hz;
+    if (low_hz < half && half < high_hz) {
+        const auto side_refine = [&](const Point& from, bool below) {
+            const double side_low = below ? low_hz : half, side_high = below ? half : high_hz;
+            double f = (from.f0 < half) == below ? from.f0 : rate_hz - from.f0;
+            f = std::clamp(f, side_low, side_high);
+            const Point start{f, from.gamma, from.offset, model.rss(f, from.gamma, from.offset)};
+            return refine(model, start, side_low, side_high, 0.0);
+        };
+        const Point below = side_refine(best, true), above = side_refine(best, false);
+        // On the sensor's uniform clock the mirror of the better side, with its decay and
+        // offset, fits exactly as well: start the other side from there too, so a search that
+        // stalled on one side does not decide.
+        const bool below_better = below.rss <= above.rss;
+        const Point again = side_refine(below_better ? below : above, !below_better);
+        candidates.push_back(below_better ? below : above);
+        const Point& other = below_better ? above : below;
+        candidates.push_back(again.rss < other.rss ? again : other);
     }
     double least = 1e300;
     for (const Point& c : candidates) {
         least = std::min(least, c.rss);
     }
-    LraFit out;
-    double best_misfit = 1e300;
+    // Candidates the readings cannot tell apart are told apart by the tones: their steady
+    // strengths peak at the resonance, not at its mirror.
+    struct Judged {
+        Point point;
+        double misfit;
+        double scale;
+        double rss;
+        double quiet;
+    };
+    std::vector<Judged> judged;
     for (const Point& c : candidates) {
-        // Candidates the readings cannot tell apart are told apart by the tones.
-        if (c.rss > 1.5 * least) {
+        if (c.rss > kSameFit * least) {
             continue;
         }
         std::vector<Tone> tones;
         double quiet = 0.0;
         const double r = model.rss(c.f0, c.gamma, c.offset, &tones, &quiet);
-        const double scale = tone_misfit(tones, c.f0, c.gamma).second;
-        const double choice = best_tone_misfit(tones, c.f0, c.gamma);
-        if (choice < best_misfit) {
-            best_misfit = choice;
-            out.resonance_hz = c.f0;
-            out.decay_per_s = c.gamma;
-            out.offset_s = c.offset;
-            out.rss = r;
-            out.vibration_ss = quiet;
-            out.tone_misfit = choice;
-            out.full_scale = scale;
+        judged.push_back({c, best_tone_misfit(tones, c.f0, c.gamma),
+                          tone_misfit(tones, c.f0, c.gamma).second, r, quiet});
+    }
+    const auto chosen =
+        std::min_element(judged.begin(), judged.end(),
+                         [](const Judged& a, const Judged& b) { return a.misfit < b.misfit; });
+    LraFit out;
+    out.resonance_hz = chosen->point.f0;
+    out.decay_per_s = chosen->point.gamma;
+    out.offset_s = chosen->point.offset;
+    out.rss = chosen->rss;
+    out.vibration_ss = chosen->quiet;
+    out.tone_misfit = chosen->misfit;
+    out.full_scale = chosen->scale;
+    // The rival: the best-explaining candidate on the other side of half the rate (its mirror),
+    // which the readings explain as well and only the tones' strengths set apart.
+    for (const Judged& j : judged) {
+        const bool other_side = (j.point.f0 < half) != (out.resonance_hz < half);
+        if (other_side && std::abs(j.point.f0 / out.resonance_hz - 1.0) > 0.002 &&
+            (out.rival_hz == 0.0 || j.misfit < out.rival_misfit)) {
+            out.rival_hz = j.point.f0;
+            out.rival_misfit = j.misfit;
         }
     }
     // A resonance this close to half the sampling rate and its mirror image are a few hertz
     // apart, and the tones, a few per cent apart themselves, cannot tell which: between the two
     // the error is at most half their distance.
-    if (candidates.size() == 2 && candidates[1].rss <= 1.5 * least &&
-        candidates[0].rss <= 1.5 * least &&
-        std::abs(candidates[0].f0 - candidates[1].f0) < 0.018 * out.resonance_hz) {
-        out.resonance_hz = 0.5 * (candidates[0].f0 + candidates[1].f0);
+    if (out.rival_hz > 0.0 &&
+        std::abs(out.rival_hz - out.resonance_hz) < kMiddleApart * out.resonance_hz) {
+        out.resonance_hz = 0.5 * (out.rival_hz + out.resonance_hz);
+        out.rival_middle = true;
     }
     out.samples = static_cast<double>(t_s.size());
     return out;

@@ -85,6 +85,9 @@ int main(int argc, char** argv) {
                    "the drive reaches the actuator up to this late (uniformly random)");
     std::vector<std::string> kinds{"lra", "erm"};
     app.add_option("--kinds", kinds, "lra, erm or both");
+    std::vector<double> rates{400.0, 1000.0};
+    app.add_option("--rates", rates,
+                   "the sensor's nominal sampling rates, Hz (each 2 % off at random)");
     app.add_flag("--verbose", verbose, "one line per actuator");
     CLI11_PARSE(app, argc, argv);
 
@@ -100,7 +103,7 @@ int main(int argc, char** argv) {
                 std::find(kinds.begin(), kinds.end(), kind_name) == kinds.end()) {
                 continue;
             }
-            for (const double rate : {400.0, 1000.0}) {
+            for (const double rate : rates) {
                 const std::string key = std::string(kind == Kind::lra ? "lra" : "erm") + " " +
                                         variant + " " + std::to_string(static_cast<int>(rate));
                 order.push_back(key);
@@ -194,7 +197,8 @@ int main(int argc, char** argv) {
                                     100.0 * e.spin_down_uncertainty.value_or(
                                                 e.q_uncertainty.value_or(NAN)));
                         std::printf(" res %.3f snr %.0f %s%s\n", e.residual, e.snr_db,
-                                    e.trusted ? "trusted" : "REFUSED",
+                                    e.trusted ? (inside ? "trusted" : "trusted, MISSED")
+                                              : (inside ? "REFUSED (within targets)" : "REFUSED"),
                                     e.problems.empty() ? "" : (": " + e.problems.front()).c_str());
                         std::fflush(stdout);
                     }
