@@ -179,11 +179,9 @@ actuator::Declaration with_measured(actuator::Declaration declared,
         declared.q = *measured.q;
     }
     if (measured.resonance_hz && measured.q) {
-        // Measured on this board, they are known as well as calibrate measures (bench/calibrate:
-        // resonance within 1 %, Q within 15 %), not a datasheet's spread: tighter margins, and
-        // with them the brake back (render::Uncertainty). A tolerance declared tighter stays.
-        declared.resonance_tolerance = std::min(declared.resonance_tolerance, 0.01);
-        declared.q_tolerance = std::min(declared.q_tolerance, 0.15);
+        // Measured on this board, they are known as well as calibrate measures, not a
+        // datasheet's spread (the rule bench/calibrated_feel plays too).
+        declared = actuator::calibration::with_measured_margins(declared);
     }
     return declared;
 }
