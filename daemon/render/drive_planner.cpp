@@ -35,6 +35,9 @@ constexpr double kMemberOvershoot = 0.30;
 constexpr double kPushBack = 0.30;
 // Where a brake has stopped an actuator: below this of its strength at the brake's start.
 constexpr double kStopped = 0.10;
+// How much sooner (a fraction of coasting's stop) a brake must stop the declared one than the
+// best found so far to be preferred.
+constexpr double kBetter = 1e-4;
 // Points per brake, and per held time constant, at which the members are looked at.
 constexpr int kLooks = 32;
 // Brake frequencies tried on either side of the resonance.
@@ -184,7 +187,10 @@ std::optional<DrivePlanner::Step> DrivePlanner::robust_brake(double frequency_hz
             if (pushed_back) {
                 break;  // longer at this frequency only pushes further
             }
-            if (nominal < best - 1e-9) {
+            // A brake must be better by more than rounding: of two that stop it alike, the first
+            // found (the note's frequency first, the shorter first) is kept, whatever the build's
+            // last bit.
+            if (nominal < best - kBetter) {
                 best = nominal;
                 chosen = Step{t, {-1.0, f}};
             }

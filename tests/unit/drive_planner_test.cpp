@@ -377,6 +377,35 @@ TEST(DrivePlanner, AFallToASofterStrengthIsBrakedOnlyWhereTheBrakesPhaseIsKnown)
     EXPECT_FALSE(negative(fall(kPartToPart)));
 }
 
+TEST(DrivePlanner, AMeasuredLrasBrakeNeverBringsItBackOnceItHasStopped) {
+    // Issue 32: after a note's end the response never rises again above 10 % of its strength.
+    // With a calibration's margins the brake is robust to the LRAs within them; the declared one,
+    // once below a tenth, it may not push back up above that (the planner keeps it to 7 % where
+    // it looks, for what the model does not see).
+    for (const double frequency : {160.0, 175.0, 190.0}) {
+        DrivePlanner planner(example_lra(), {.reverse = true, .uncertainty = {0.01, 0.15}});
+        auto drives = plan(planner, 0.0, 0.3, 1.0, frequency, true);
+        const auto rest = plan(planner, 0.3, INFINITY, 0.0);
+        ASSERT_TRUE(
+            std::any_of(rest.begin(), rest.end(), [](const Cue& c) { return c.amplitude < 0.0; }))
+            << frequency << " Hz: braked";
+        drives.insert(drives.end(), rest.begin(), rest.end());
+        const double rate = 1e5;
+        const auto strength = produced_strength(example_lra(), drives, rate, 50000);
+        const double start = strength[30000];
+        bool stopped = false;
+        double after = 0.0;
+        for (std::size_t k = 30000; k < strength.size(); ++k) {
+            stopped = stopped || strength[k] < 0.1 * start;
+            if (stopped) {
+                after = std::max(after, strength[k]);
+            }
+        }
+        EXPECT_TRUE(stopped) << frequency << " Hz";
+        EXPECT_LE(after, 0.1 * start) << frequency << " Hz";
+    }
+}
+
 TEST(DrivePlanner, AnErmsExactPlansStopEveryMotorWithinThirtyPercentSoonerThanNone) {
     // Why an ERM's plans are not budgeted: planned for 40/80 ms, a motor with either time
     // constant 30 % off either way (the edges of issue 32's grid) still stops sooner after a
