@@ -106,6 +106,9 @@ ScoreFeel judge(const std::string& name, const std::vector<NoteSpan>& notes,
                 const Declaration& truth) {
     const Plant plant(truth);
     const auto produced = plant.respond(drives, kRate, written.size());
+    // As if nothing more were sent from `t` (the next note's start): the drive in force then stops
+    // there. Left on, a brake the next note cut short would go on braking for ever and spin an
+    // ERM backwards, or push an LRA back up: no player does that.
     const auto produced_until = [&](double t) {
         std::vector<render::Cue> before;
         for (const auto& cue : drives) {
@@ -113,6 +116,7 @@ ScoreFeel judge(const std::string& name, const std::vector<NoteSpan>& notes,
                 before.push_back(cue);
             }
         }
+        before.push_back(render::drive_at(t, 0.0, 0.0));
         return plant.respond(before, kRate, written.size());
     };
     return measure(name, notes, written, produced, produced_until, kRate);
