@@ -579,6 +579,31 @@ TEST(CalibrationEstimate, AnErmFarAboveATwoStageLowPassIsTimedWithThatFiltersFor
     EXPECT_NEAR(*e.spin_down_s, 0.0810, 0.0810 * 0.15);
 }
 
+TEST(CalibrationEstimate, AnErmCrossingHalfTheRateInAFastSpinUpIsTimedWithoutWhatItCannotSee) {
+    // bench/calibrate seed 101: one-axis motors at 230-243 Hz spinning up in 22 ms, read at
+    // 400 Hz, were timed 16-28 % slow and trusted: while the rotation passes 200 Hz the energy's
+    // ripple aliases to zero and stays in the average. Those readings are now left out.
+    // Timed within the issue's ±15 % each time (within 3 % here), and trusted mostly: one of
+    // the four recordings is refused for the doubt what was left out leaves.
+    int trusted = 0;
+    for (const std::uint64_t seed : {61u, 62u, 64u, 65u}) {
+        SensorOptions sensor = at(400.0, seed);
+        sensor.erm_full_speed_hz = 243.0;
+        const Estimate e = measure(erm(0.0228, 0.138), example_erm(), sensor);
+        ASSERT_TRUE(e.spin_up_s && e.spin_down_s) << seed;
+        EXPECT_NEAR(*e.spin_up_s, 0.0228, 0.0228 * 0.15) << seed;
+        EXPECT_NEAR(*e.spin_down_s, 0.138, 0.138 * 0.15) << seed;
+        trusted += e.trusted ? 1 : 0;
+    }
+    EXPECT_GE(trusted, 3);
+    // A motor that never reaches half the rate (150 Hz) loses nothing.
+    SensorOptions slower = at(400.0, 63);
+    slower.erm_full_speed_hz = 150.0;
+    const Estimate e = measure(erm(0.0228, 0.138), example_erm(), slower);
+    ASSERT_TRUE(e.trusted) << (e.problems.empty() ? "" : e.problems.front());
+    EXPECT_NEAR(*e.spin_up_s, 0.0228, 0.0228 * 0.15);
+}
+
 TEST(CalibrationEstimate, AnErmReadAtJitteredInstantsIsTimedOnItsOwnEnvelopesPhase) {
     // bench/calibrate seed 7: a motor at 174 Hz read at jittered instants; the envelope's phase
     // came from the energy fit (89.5 ms for a true 72.2) and the answer leaned on it: 83.8 ms,
