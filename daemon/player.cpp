@@ -130,6 +130,11 @@ std::uint64_t Player::play(PlaybackRequest request) {
         }
         const render::Cue cue = next->cue;
         current_->cues.pop();
+        if (!drove) {
+            // Counted from here, not from the call: what came before (a device's gain, the
+            // first cues worked out) must not shorten the first note's off-timer.
+            current_->start_us = monotonic_now_us();
+        }
         if (!execute(cue)) {
             return id;
         }

@@ -9,6 +9,7 @@
 #include "daemon/play_request.hpp"
 #include "daemon/player.hpp"
 #include "daemon/strength_scale.hpp"
+#include "tests/support/pace.hpp"
 #include "tests/support/support.hpp"
 
 namespace vibscore::daemon {
@@ -563,6 +564,28 @@ TEST_F(PlayerTest, AKernelTimerIsArmedWithTheTimeUntilTheScoreSwitchesOff) {
     EXPECT_GT(actuator.off_timers[0], 0.004);
     EXPECT_LE(actuator.off_timers[0], 0.008);
     EXPECT_LE(actuator.off_timers[1], 0.004);
+}
+
+TEST_F(PlayerTest, TheFirstKernelTimerCountsFromTheFirstDriveNotFromTheCall) {
+    // The hil guest saw the first note's timer armed 47 ms short: what the playback did before its
+    // first drive (here a slow device taking its gain) was counted against the note.
+    class SlowGainActuator : public RecordingActuator {
+      public:
+        void set_gain(double gain) override {
+            vibscore::testing::pace_for(std::chrono::milliseconds(30));  // the slow device
+            RecordingActuator::set_gain(gain);
+        }
+    };
+    SlowGainActuator slow;
+    slow.capabilities_ = {.gain_control = true, .off_timer = true};
+    RecordingListener slow_listener(loop);
+    Player slow_player{loop, slow, slow_listener};
+    slow_player.play(request());  // on at 0, stronger at 4 ms, off at 8 ms
+    loop.run();
+    ASSERT_EQ(slow.gains.size(), 1u);
+    ASSERT_EQ(slow.off_timers.size(), 2u);
+    EXPECT_GT(slow.off_timers[0], 0.004);
+    EXPECT_LE(slow.off_timers[0], 0.008);
 }
 
 TEST_F(PlayerTest, AKernelTimerIsNeverArmedPastTheMaximumOnTime) {
