@@ -328,10 +328,12 @@ double DrivePlanner::early_end(const std::vector<Step>& steps, double until,
     // Every actuator within the margins: the cut is the earliest any of them needs (one that
     // rings longer than declared needs it sooner).
     double cut = until;
-    for (const auto& [physics, state] : ensemble()) {
+    for (const auto& member : ensemble()) {
+        const Physics& physics = *member.first;
+        const State& state = member.second;
         const auto at_end_if_cut = [&](double t) {
-            const State coasting = follow(*physics, state, steps, t);
-            return Physics::strength(physics->advance(coasting, {0.0, 0.0}, until - t));
+            const State coasting = follow(physics, state, steps, t);
+            return Physics::strength(physics.advance(coasting, {0.0, 0.0}, until - t));
         };
         if (at_end_if_cut(cut) <= felt_end) {
             continue;  // never strong enough to linger: its drive may go on to `cut`
