@@ -50,14 +50,7 @@ struct Row {
     double seconds = 0.0;
 };
 
-std::string json_number(double value) {
-    if (!std::isfinite(value)) {
-        return "null";
-    }
-    char text[32];
-    std::snprintf(text, sizeof text, "%.4g", value);
-    return text;
-}
+using vibscore::bench::json_number;
 
 }  // namespace
 

@@ -135,14 +135,7 @@ std::string number(double v, int decimals) {
     return text;
 }
 
-std::string json_number(double v) {
-    if (!std::isfinite(v)) {
-        return "null";
-    }
-    char text[32];
-    std::snprintf(text, sizeof text, "%.4g", v);
-    return text;
-}
+using bench::json_number;
 
 // "1.06 (12.5/13.3; 1.5)": the worst ratio, the two figures at it, the largest difference.
 std::string cell(const Comparison& c, int decimals) {

@@ -159,14 +159,7 @@ std::string ms_text(double ms) {
     return text;
 }
 
-std::string json_number(double value) {
-    if (!std::isfinite(value)) {
-        return "null";
-    }
-    char text[32];
-    std::snprintf(text, sizeof text, "%.4g", value);
-    return text;
-}
+using bench::json_number;
 
 std::string json_totals(const Totals& t) {
     std::ostringstream out;

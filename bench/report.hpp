@@ -1,5 +1,7 @@
 #pragma once
 
+#include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <string>
 
@@ -18,6 +20,17 @@ inline std::string json_escape(const std::string& text) {
         }
     }
     return out;
+}
+
+// A number for a JSON line: four significant digits, null for NaN or infinity (JSON has
+// neither).
+inline std::string json_number(double value) {
+    if (!std::isfinite(value)) {
+        return "null";
+    }
+    char text[32];
+    std::snprintf(text, sizeof text, "%.4g", value);
+    return text;
 }
 
 // The CPU the figures were measured on, as /proc/cpuinfo names it.
