@@ -263,7 +263,7 @@ void estimate_erm(Estimate& e, const Plan& plan, const std::vector<Vec3>& vibrat
     }
     // A force along one axis: its energy's ripple (twice the rotation) aliases to zero where
     // the rotation passes half the sampling rate, and there the average keeps it, for ~20 ms
-    // of a fast spin-up; the three steps share the bias (bench/calibrate seed 101: motors at
+    // of a fast spin-up; the steps share the bias (bench/calibrate seed 101: motors at
     // 230-243 Hz read at 400 Hz, spin-ups of 22 ms timed 16-28 % slow). The fitted speed and
     // the rotation at full speed (the plateaus' spectrum; and its mirror about half the rate
     // if a phone's motor could turn that fast) say which readings fall there: the fit is made
@@ -504,7 +504,7 @@ void judge_confidence(Estimate& e) {
                      ? "the accelerometer's own low-pass hides how fast the motor turns (read "
                        "at 1 kHz, or set the device's filter_low_pass_3db_frequency above the "
                        "motor's rotation) and calibrate again"
-                     : "the probe's three steps disagree; hold the phone still on a hard "
+                     : "the probe's steps disagree; hold the phone still on a hard "
                        "surface, read the accelerometer faster (1 kHz) and calibrate again"));
         }
     }

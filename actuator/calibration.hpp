@@ -29,12 +29,14 @@ struct Plan {
     double duration_s() const { return rows.empty() ? 0.0 : rows.back().t_s; }
 };
 
-// The whole probe stays within these: short and quiet (docs/drivers.md, "Calibrating").
-inline constexpr double kMaxPlanSeconds = 3.0;
+// The whole probe stays within these: short and quiet (docs/drivers.md, "Calibrating"). At most
+// 3 s of vibration in all, within 6 s with the coasts and ring-downs between.
+inline constexpr double kMaxVibrationSeconds = 3.0;
+inline constexpr double kMaxPlanSeconds = 6.0;
 
 // The probe for this kind. `nominal` (a declaration, possibly far from the truth) may centre an
 // LRA's tones; without it the search covers every resonance the limits allow a phone LRA.
-// Never above full scale; no longer than kMaxPlanSeconds.
+// Never above full scale; no longer than kMaxPlanSeconds, driven for kMaxVibrationSeconds at most.
 Plan make_plan(Kind kind, const std::optional<Declaration>& nominal);
 
 // The resonances an LRA probe covers: its lowest and highest tone, which are also the bounds of
@@ -80,7 +82,7 @@ struct Estimate {
     double residual = 1.0;        // RMS misfit of the fitted model over RMS of the vibration, 0..
     double snr_db = 0.0;          // vibration over what is left when none is driven
     // How sure each number is, from the recording itself: a relative standard error (0.05:
-    // about ±5 %), set with the number. An ERM's from how far the probe's three steps disagree,
+    // about ±5 %), set with the number. An ERM's from how far the probe's steps disagree,
     // an LRA's from how far its ring-downs do. An estimate is trusted only while twice these
     // stay within what compensation is planned for (kMaxSpinUncertainty, ...).
     std::optional<double> spin_up_uncertainty, spin_down_uncertainty;

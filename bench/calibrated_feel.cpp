@@ -209,6 +209,21 @@ std::string off_text(const Declaration& measured, const Declaration& truth) {
     return text;
 }
 
+// The uncertainty the estimate states for its numbers, in per cent (a standard error: twice it
+// is what calibrate promises).
+std::string stated_text(const cal::Estimate& e) {
+    const auto percent = [](const std::optional<double>& u) { return u ? 100.0 * *u : 0.0; };
+    char text[96];
+    if (e.kind == actuator::Kind::lra) {
+        std::snprintf(text, sizeof text, "%.2f %%, %.1f %%", percent(e.resonance_uncertainty),
+                      percent(e.q_uncertainty));
+    } else {
+        std::snprintf(text, sizeof text, "%.1f %%, %.1f %%", percent(e.spin_up_uncertainty),
+                      percent(e.spin_down_uncertainty));
+    }
+    return text;
+}
+
 // --verbose: where a gap in envelope error between (a) and (b) comes from. The piece whose error
 // moves most; the pooled error planned for the truth with one measured number in place of the
 // true one (which number costs it); and with one true number off by about what calibrate may
@@ -357,8 +372,15 @@ int main(int argc, char** argv) {
                 same_tolerances.add(b.pooled, a.pooled);
                 exact.add(b.pooled, a_exact.pooled);
                 if (verbose) {
-                    std::printf(", measured %s (%s)\n", numbers_text(measured).c_str(),
-                                off_text(measured, truth).c_str());
+                    std::printf(", measured %s (%s; stated +-%s)\n", numbers_text(measured).c_str(),
+                                off_text(measured, truth).c_str(), stated_text(e).c_str());
+                    std::printf("      sensor %.1f Hz%s", sensor.rate_hz,
+                                sensor.jittered_sampling ? ", readings at jittered instants" : "");
+                    if (kind == actuator::Kind::erm) {
+                        std::printf(", the motor turning at %.0f Hz at full speed",
+                                    sensor.erm_full_speed_hz);
+                    }
+                    std::printf("\n");
                     print_figures("a", a.pooled);
                     print_figures("a'", a_exact.pooled);
                     print_figures("b", b.pooled);

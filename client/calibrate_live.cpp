@@ -20,7 +20,7 @@ namespace {
 
 using Result = std::map<std::string, sdbus::Variant>;
 
-// Longer than the probe (at most 3 s), the ring-down after it and the estimate: the daemon
+// Longer than the probe (at most 6 s), the ring-down after it and the estimate: the daemon
 // answers when the measurement is done.
 constexpr auto kCalibrateTimeout = std::chrono::seconds(60);
 
