@@ -108,7 +108,13 @@ std::vector<std::pair<const Physics*, State>> DrivePlanner::ensemble() const {
 
 double DrivePlanner::overdrive_budget(const Drive& push, const Drive& hold, double needed,
                                       double span, double strength) const {
-    const auto all = ensemble();
+    auto all = ensemble();
+    if (drive_.amplitude == 0.0 && Physics::strength(state_) > 0.0) {
+        // Starting again after a silence, the drive's phase is the backend's (gpio-lra starts
+        // each waveform afresh; a force-feedback device has its own), not the model's: what
+        // still rings may meet it in phase.
+        all.emplace_back(&physics_, State{Physics::strength(state_), push.frequency_hz});
+    }
     // Whether some member, overdriven for `t` and then held, goes above its limit while the
     // segment lasts (looked at over three of its time constants at most: by then it has settled).
     const auto overshoots = [&](double t) {
