@@ -306,9 +306,10 @@ std::vector<DrivePlanner::Step> DrivePlanner::approach(double at, double until, 
         }
     }
     auto reach = physics_.time_to(state_, push, strength, horizon);
-    if (!members_.empty() && push.amplitude != 0.0 && std::isfinite(until)) {
-        // Budgeted for every member: an overdrive no faster actuator overshoots with. Ending
-        // early is then a reach of its own.
+    if (physics_.is_lra() && push.amplitude != 0.0 && std::isfinite(until)) {
+        // Budgeted for every member (planned as exact too: the declared one alone, and what still
+        // rings after a silence): an overdrive no faster actuator overshoots with. Ending early
+        // is then a reach of its own.
         const double needed = reach.outcome == Outcome::horizon ? until - at : reach.after_s;
         const double budget =
             now < strength ? overdrive_budget(push, hold, needed, until - at, strength) : needed;
@@ -360,7 +361,7 @@ double DrivePlanner::early_end(const std::vector<Step>& steps, double until,
 
 void DrivePlanner::tame(std::vector<Step>& steps, double until, double strength) const {
     Step& last = steps.back();
-    if (members_.empty() || strength <= 0.0 || last.drive.amplitude <= 0.0 ||
+    if (!physics_.is_lra() || strength <= 0.0 || last.drive.amplitude <= 0.0 ||
         !std::isfinite(until) || until <= last.at) {
         return;
     }

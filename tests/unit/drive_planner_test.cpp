@@ -166,13 +166,32 @@ TEST(DrivePlanner, WithReverseANoteKeepsItsDriveToTheWrittenEnd) {
     EXPECT_EQ(drives.back().amplitude, kRated);
 }
 
-TEST(DrivePlanner, AnLraIsDrivenHarderAwayFromItsResonance) {
+TEST(DrivePlanner, AnLraIsDrivenHarderAwayFromItsResonanceAsFarAsItsBeatAllows) {
+    // Off resonance the strength beats on its way to where the hold settles it: the hold is as
+    // strong as keeps the beat's top at the strength, harder than off's and no harder than
+    // settles it there.
     DrivePlanner planner(example_lra(), {});
-    plan(planner, 0.0, 1.0, 0.5, 181.0);
+    const auto drives = plan(planner, 0.0, 1.0, 0.5, 181.0);
     const double gain = Physics::lra_gain(181.0, 175.0, 15.0);
-    EXPECT_NEAR(planner.carry().drive.amplitude, 0.5 * kRated / gain, 1e-12);
+    EXPECT_GT(planner.carry().drive.amplitude, 0.5 * kRated * 1.3);
+    EXPECT_LE(planner.carry().drive.amplitude, 0.5 * kRated / gain + 1e-12);
     EXPECT_EQ(planner.carry().drive.frequency_hz, 181.0);
-    EXPECT_NEAR(Physics::strength(planner.carry().state), 0.5, 0.01);
+    const Physics lra(example_lra());
+    double highest = 0.0;
+    State state;
+    for (std::size_t i = 0; i < drives.size(); ++i) {
+        const double next = i + 1 < drives.size() ? drives[i + 1].at : 1.0;
+        const actuator::Drive drive{drives[i].amplitude, drives[i].frequency_hz};
+        for (int k = 1; k <= 2000; ++k) {
+            highest = std::max(highest, Physics::strength(lra.advance(
+                                            state, drive, (next - drives[i].at) * k / 2000.0)));
+        }
+        state = lra.advance(state, drive, next - drives[i].at);
+    }
+    // A thousandth of rated strength above (a hairpin's steps), and a hair for the points at
+    // which the planner looks at the beat (96 over three time constants).
+    EXPECT_LE(highest, 0.5 + 0.001 + 1e-5);
+    EXPECT_GT(Physics::strength(planner.carry().state), 0.9 * 0.5);
     // Beyond what full scale gives there: full scale, and the strength stays short.
     DrivePlanner far(example_lra(), {});
     plan(far, 0.0, 1.0, 0.5, 235.0);
@@ -260,6 +279,19 @@ TEST(DrivePlanner, WithTheDeclarationRightNoNoteOvershootsOrRisesAgainAfterItsEn
                                                        {0.2, 175.0}};
     const auto played =
         play_notes(lra, lra, {.reverse = true, .uncertainty = kPartToPart}, notes, 0.150);
+    const Artefacts worst = artefacts(played, notes, 0.150);
+    EXPECT_LE(worst.overshoot, 0.05);
+    EXPECT_LE(worst.rebound, 0.10);
+}
+
+TEST(DrivePlanner, PlannedAsExactNoNoteFarFromTheResonanceOvershootsEither) {
+    // Declared with no tolerance (an admin's choice) the same holds, out to notes 9-14 % off the
+    // resonance: a hold that settles off resonance beats above the strength on the way (up to
+    // 35 % on bench/feel's 170 Hz score before), so it is lowered until the beat's top is there.
+    const Declaration lra = example_lra();
+    const std::vector<std::pair<double, double>> notes{{0.5, 155.0}, {0.8, 190.0}, {0.4, 160.0},
+                                                       {0.9, 200.0}, {0.6, 181.0}, {1.0, 175.0}};
+    const auto played = play_notes(lra, lra, {.reverse = true}, notes, 0.150);
     const Artefacts worst = artefacts(played, notes, 0.150);
     EXPECT_LE(worst.overshoot, 0.05);
     EXPECT_LE(worst.rebound, 0.10);
@@ -357,8 +389,10 @@ TEST(DrivePlanner, WithMarginsNoLraWithinThemIsHeldFurtherFromTheStrengthThanWit
     }
     // On the declared resonance nothing changes: the declared one is held at the strength.
     EXPECT_NEAR(hold_of(kPartToPart, 175.0, s), s * kRated, 1e-12);
-    // Without margins the off-resonance boost is the declared one's alone (issue 22).
-    EXPECT_NEAR(hold_of({}, 180.0, s), s * kRated / Physics::lra_gain(180.0, 175.0, 15.0), 1e-9);
+    // Without margins the off-resonance boost is the declared one's alone (issue 22), as far as
+    // its beat allows: more than with the margins.
+    EXPECT_LE(hold_of({}, 180.0, s), s * kRated / Physics::lra_gain(180.0, 175.0, 15.0) + 1e-9);
+    EXPECT_GT(hold_of({}, 180.0, s), hold_of(kPartToPart, 180.0, s));
 }
 
 TEST(DrivePlanner, AnOverdriveAfterASilenceKeepsWhatStillRingsBelowTheLimitWhateverItsPhase) {
