@@ -400,34 +400,39 @@ TEST(DrivePlanner, AnOverdriveAfterASilenceKeepsWhatStillRingsBelowTheLimitWhate
     // so what still rings from the last note may meet the next note's overdrive in any phase. As
     // the ringtone's twelfth note on bench/feel's plant: a 178 Hz note's ring-down under a note
     // at 176 Hz.
-    constexpr double s = 0.9, until = 0.17;
+    constexpr double until = 0.17;
     const Physics lra(example_lra());
+    // 3 % above by the model, and a hundredth of the strength: a soft note no more than a
+    // strong one.
     int overdriven = 0;
-    for (const double left : {0.05, 0.1, 0.13, 0.2, 0.3}) {
-        for (int p = 0; p < 8; ++p) {
-            PlannerCarry carry;
-            carry.state = {std::polar(left, 2.0 * std::numbers::pi * p / 8.0), 178.15};
-            carry.ringing_frequency_hz = 178.15;
-            carry.members.assign(8, State{});
-            DrivePlanner planner(example_lra(), {.uncertainty = kPartToPart}, carry);
-            const auto drives = plan(planner, 0.0, until, s, 176.05);
-            ASSERT_FALSE(drives.empty());
-            overdriven += drives.front().amplitude == 1.0 ? 1 : 0;
-            for (int k = 0; k < 16; ++k) {
-                State state{std::polar(left, 2.0 * std::numbers::pi * k / 16.0), 176.05};
-                double highest = 0.0;
-                for (std::size_t i = 0; i < drives.size(); ++i) {
-                    const double next = i + 1 < drives.size() ? drives[i + 1].at : until;
-                    const actuator::Drive drive{drives[i].amplitude, drives[i].frequency_hz};
-                    for (int n = 1; n <= 200; ++n) {
-                        highest = std::max(highest,
-                                           Physics::strength(lra.advance(
-                                               state, drive, (next - drives[i].at) * n / 200.0)));
+    for (const double s : {0.9, 0.4}) {
+        for (const double left : {0.05, 0.1, 0.13, 0.2, 0.3}) {
+            for (int p = 0; p < 8; ++p) {
+                PlannerCarry carry;
+                carry.state = {std::polar(left, 2.0 * std::numbers::pi * p / 8.0), 178.15};
+                carry.ringing_frequency_hz = 178.15;
+                carry.members.assign(8, State{});
+                DrivePlanner planner(example_lra(), {.uncertainty = kPartToPart}, carry);
+                const auto drives = plan(planner, 0.0, until, s, 176.05);
+                ASSERT_FALSE(drives.empty());
+                overdriven += drives.front().amplitude == 1.0 ? 1 : 0;
+                for (int k = 0; k < 16; ++k) {
+                    State state{std::polar(left, 2.0 * std::numbers::pi * k / 16.0), 176.05};
+                    double highest = 0.0;
+                    for (std::size_t i = 0; i < drives.size(); ++i) {
+                        const double next = i + 1 < drives.size() ? drives[i + 1].at : until;
+                        const actuator::Drive drive{drives[i].amplitude, drives[i].frequency_hz};
+                        for (int n = 1; n <= 200; ++n) {
+                            highest = std::max(
+                                highest, Physics::strength(lra.advance(
+                                             state, drive, (next - drives[i].at) * n / 200.0)));
+                        }
+                        state = lra.advance(state, drive, next - drives[i].at);
                     }
-                    state = lra.advance(state, drive, next - drives[i].at);
+                    EXPECT_LE(highest, 1.04 * s + 1e-9)
+                        << "strength " << s << ", left " << left << " at " << p
+                        << "/8 of a turn, met at " << k << "/16";
                 }
-                EXPECT_LE(highest, 1.03 * s + 0.01 + 1e-9)
-                    << "left " << left << " at " << p << "/8 of a turn, met at " << k << "/16";
             }
         }
     }
