@@ -21,6 +21,7 @@
 #include <thread>
 #include <vector>
 
+#include "actuator/calibration.hpp"
 #include "bench/feel_metrics.hpp"
 #include "bench/feel_pieces.hpp"
 #include "bench/feel_plant.hpp"
@@ -640,19 +641,42 @@ int main(int argc, char** argv) {
         quick ? std::vector<double>{150, 235} : std::vector<double>{150, 175, 205, 235};
     const std::vector<double> qs =
         quick ? std::vector<double>{8, 25} : std::vector<double>{8, 15, 20, 25};
+    // The artefacts of issue 32 (declared right) on each of these LRAs, planned three ways: as
+    // exact, with the default margins and with a calibration's.
+    std::vector<std::string> artefact_rows;
+    const render::Uncertainty calibrated{actuator::calibration::kMeasuredResonanceTolerance,
+                                         actuator::calibration::kMeasuredQTolerance};
     for (const double f0 : f0s) {
         for (const double q : qs) {
             const Declaration d = example_lra(f0, q);
             const Totals on = run(all, d, d, true);
             const Totals off = run(all, d, d, false);
+            const Totals with_margins = run(all, d, d, true, render::kPartToPart);
+            const Totals with_calibrated = run(all, d, d, true, calibrated);
             char label[64];
             std::snprintf(label, sizeof label, "LRA %g Hz Q %g (off error %.2f)", f0, q, off.error);
             print_row(label, on);
+            char artefacts[160];
+            std::snprintf(artefacts, sizeof artefacts,
+                          "  LRA %3g Hz Q %2g   %5.1f %5.1f      %5.1f %5.1f      %5.1f %5.1f", f0,
+                          q, 100 * on.rebound, 100 * on.overshoot, 100 * with_margins.rebound,
+                          100 * with_margins.overshoot, 100 * with_calibrated.rebound,
+                          100 * with_calibrated.overshoot);
+            artefact_rows.emplace_back(artefacts);
             sweep_json += std::string(sweep_json.empty() ? "" : ",") +
                           "{\"kind\":\"lra\",\"resonance_hz\":" + json_number(f0) +
                           ",\"q\":" + json_number(q) + ",\"off\":" + json_totals(off) +
-                          ",\"on\":" + json_totals(on) + "}";
+                          ",\"on\":" + json_totals(on) +
+                          ",\"on_margins\":" + json_totals(with_margins) +
+                          ",\"on_calibrated_margins\":" + json_totals(with_calibrated) + "}";
         }
+    }
+    std::printf(
+        "\nartefacts on these LRAs, declared right: max rebound and overshoot (%%) over the 11 "
+        "pieces\n                     exact            margins 5 %%/40 %%  calibrated 1 %%/15 %%\n"
+        "                     rebound overshoot rebound overshoot rebound overshoot\n");
+    for (const auto& row : artefact_rows) {
+        std::printf("%s\n", row.c_str());
     }
 
     // Actuators that differ from what was declared for them.
