@@ -51,6 +51,12 @@ constexpr double kMinBlindRipple = 0.5;
 // mirror of a right answer left 4.7-400 times its misfit).
 constexpr double kToneVerdict = 3.0;
 
+// The high-pass that takes gravity and the hand out of the readings (fit::high_pass): about
+// 10 ms on either side.
+int high_pass_half(double rate_hz) {
+    return std::max(1, static_cast<int>(std::lround(0.010 * rate_hz)));
+}
+
 double axis_of(const Sample& s, int axis) {
     return axis == 0 ? s.x : axis == 1 ? s.y : s.z;
 }
@@ -249,6 +255,7 @@ void estimate_erm(Estimate& e, const Plan& plan, const std::vector<Vec3>& vibrat
         weight[k] = 1.0 / (kWeightFloor * kWeightFloor + wobble * wobble);
     }
     const std::vector<double> regular = fit::regular_times(raw);
+    const int passed = high_pass_half(e.sample_rate_hz);
     fit::ErmFit best;
     bool first = true;
     std::vector<fit::ErmFit> fits;
@@ -275,7 +282,7 @@ void estimate_erm(Estimate& e, const Plan& plan, const std::vector<Vec3>& vibrat
     if (ripple > kMinBlindRipple && best.filter == 0.0) {
         const int window = std::max(3, static_cast<int>(std::lround(0.005 * e.sample_rate_hz)));
         const double full_speed_hz =
-            fit::erm_envelope(plan, regular, vibration, fits[0], window).full_speed_hz;
+            fit::erm_envelope(plan, regular, vibration, fits[0], window, passed).full_speed_hz;
         std::vector<double> rotations{full_speed_hz};
         if (e.sample_rate_hz - full_speed_hz <= kMaxRotationHz) {
             rotations.push_back(e.sample_rate_hz - full_speed_hz);
@@ -318,8 +325,9 @@ void estimate_erm(Estimate& e, const Plan& plan, const std::vector<Vec3>& vibrat
     // of 64 then missed by 42 %).
     const int window = std::max(3, static_cast<int>(std::lround(0.005 * e.sample_rate_hz)));
     const fit::ErmEnvelope on_regular =
-        fit::erm_envelope(plan, regular, vibration, fits[0], window);
-    const fit::ErmEnvelope on_raw = fit::erm_envelope(plan, raw, vibration, fits[1], window);
+        fit::erm_envelope(plan, regular, vibration, fits[0], window, passed);
+    const fit::ErmEnvelope on_raw =
+        fit::erm_envelope(plan, raw, vibration, fits[1], window, passed);
     if (on_raw.explained >= kMinEnvelopeExplained &&
         on_raw.explained > on_regular.explained + kJitteredMargin) {
         // The envelope's sinusoids follow the rotation's phase that a speed model predicts,
@@ -333,7 +341,8 @@ void estimate_erm(Estimate& e, const Plan& plan, const std::vector<Vec3>& vibrat
                                             /*try_filter=*/false);
         double moved_up = 0.0, moved_down = 0.0;
         for (int round = 1; round < kEnvelopeRounds; ++round) {
-            fit::ErmEnvelope next = fit::erm_envelope(plan, raw, vibration, coherent, window);
+            fit::ErmEnvelope next =
+                fit::erm_envelope(plan, raw, vibration, coherent, window, passed);
             const fit::ErmFit refit = fit::fit_erm(plan, raw, next.envelope, next.weight, window,
                                                    /*try_filter=*/false);
             moved_up = std::abs(std::log(refit.spin_up_s / coherent.spin_up_s));
@@ -422,8 +431,7 @@ Estimate estimate(const Plan& plan, const std::vector<Sample>& samples,
                              "): set its range wider (e.g. ±4 g), or hold the phone so the "
                              "actuator shakes it less hard");
     }
-    const int half = std::max(1, static_cast<int>(std::lround(0.010 * e.sample_rate_hz)));
-    const std::vector<Vec3> vibration = fit::high_pass(samples, half);
+    const std::vector<Vec3> vibration = fit::high_pass(samples, high_pass_half(e.sample_rate_hz));
     if (plan.kind == Kind::lra) {
         estimate_lra(e, plan, samples, vibration, raw, nominal);
     } else {

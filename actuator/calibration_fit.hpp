@@ -116,7 +116,9 @@ ErmSpread erm_burst_spread(const Plan& plan, const std::vector<double>& t_s,
 // energy does). `weight` is how well each window's phases separate the sine from the cosine
 // (near 0 where the sampling aliases the rotation to zero or half the rate, or the motor is
 // nearly still). `explained` is the share of the vibration the local sinusoids explain: the
-// readings' right time base explains more.
+// readings' right time base explains more. `high_pass_half`: the vibration went through
+// high_pass with it (the sinusoids then do too, so what it takes away is not read as a weaker
+// vibration); 0: it did not.
 struct ErmEnvelope {
     std::vector<double> envelope;
     std::vector<double> weight;
@@ -124,7 +126,8 @@ struct ErmEnvelope {
     double explained = 0.0;
 };
 ErmEnvelope erm_envelope(const Plan& plan, const std::vector<double>& t_s,
-                         const std::vector<Vec3>& vibration, const ErmFit& first, int half);
+                         const std::vector<Vec3>& vibration, const ErmFit& first, int half,
+                         int high_pass_half);
 
 // An ERM's normalised speed (1 = full scale's) at `t_s` under `plan`, shifted `delay_s`.
 double erm_speed(const Plan& plan, double spin_up_s, double spin_down_s, double delay_s,

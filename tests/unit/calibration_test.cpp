@@ -627,6 +627,24 @@ TEST(CalibrationEstimate, AnErmReadAtJitteredInstantsIsTimedOnItsOwnEnvelopesPha
     }
 }
 
+TEST(CalibrationEstimate, AnErmNearHalfTheRateReadAtJitteredInstantsIsNotTimedShort) {
+    // bench/calibrated_feel seed 33: a motor at 200 Hz read at 405.8 Hz at jittered instants,
+    // spinning up in 79.3 ms, was timed 71.6 ms and trusted at ±0.6 % (these seeds: 7.3 and 7.5 %
+    // short at ±1 %). The high-pass that takes gravity out takes 1/9 of each reading out of itself;
+    // jittered instants scatter the neighbours' phases that give it back, the more the faster
+    // the mass turns, so the vibration looked weaker at full speed than on the way there.
+    // Within 5 % now, and trusted.
+    for (const std::uint64_t seed : {73u, 74u}) {
+        SensorOptions sensor = at(405.8, seed);
+        sensor.jittered_sampling = true;
+        sensor.erm_full_speed_hz = 200.0;
+        const Estimate e = measure(erm(0.0793, 0.110), example_erm(), sensor);
+        ASSERT_TRUE(e.trusted) << seed << ": " << (e.problems.empty() ? "" : e.problems.front());
+        EXPECT_NEAR(*e.spin_up_s, 0.0793, 0.0793 * 0.05) << seed;
+        EXPECT_NEAR(*e.spin_down_s, 0.110, 0.110 * 0.05) << seed;
+    }
+}
+
 TEST(CalibrationApply, ATrustedEstimateReplacesOnlyItsOwnNumbers) {
     Estimate e;
     e.kind = Kind::lra;
