@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <initializer_list>
 #include <stdexcept>
 #include <string>
 
@@ -612,19 +613,27 @@ TEST(CalibrationEstimate, AnErmCrossingHalfTheRateInAFastSpinUpIsTimedWithoutWha
     EXPECT_NEAR(*e.spin_up_s, 0.0228, 0.0228 * 0.15);
 }
 
+// A motor turning at `full_speed_hz`, read at `rate_hz` at jittered instants: trusted, and both
+// time constants within `within` of the truth, for each recording's seed.
+void expect_jittered_erm_read_right(double rate_hz, double full_speed_hz, double spin_up_s,
+                                    double spin_down_s, std::initializer_list<std::uint64_t> seeds,
+                                    double within) {
+    for (const std::uint64_t seed : seeds) {
+        SensorOptions sensor = at(rate_hz, seed);
+        sensor.jittered_sampling = true;
+        sensor.erm_full_speed_hz = full_speed_hz;
+        const Estimate e = measure(erm(spin_up_s, spin_down_s), example_erm(), sensor);
+        ASSERT_TRUE(e.trusted) << seed << ": " << (e.problems.empty() ? "" : e.problems.front());
+        EXPECT_NEAR(*e.spin_up_s, spin_up_s, spin_up_s * within) << seed;
+        EXPECT_NEAR(*e.spin_down_s, spin_down_s, spin_down_s * within) << seed;
+    }
+}
+
 TEST(CalibrationEstimate, AnErmReadAtJitteredInstantsIsTimedOnItsOwnEnvelopesPhase) {
     // bench/calibrate seed 7: a motor at 174 Hz read at jittered instants; the envelope's phase
     // came from the energy fit (89.5 ms for a true 72.2) and the answer leaned on it: 83.8 ms,
     // 16 % off, trusted. Fitted again on the envelope its own answer predicts, it is right.
-    for (const std::uint64_t seed : {53u, 54u}) {
-        SensorOptions sensor = at(400.0, seed);
-        sensor.jittered_sampling = true;
-        sensor.erm_full_speed_hz = 174.0;
-        const Estimate e = measure(erm(0.0722, 0.186), example_erm(), sensor);
-        ASSERT_TRUE(e.trusted) << seed << ": " << (e.problems.empty() ? "" : e.problems.front());
-        EXPECT_NEAR(*e.spin_up_s, 0.0722, 0.0722 * 0.15) << seed;
-        EXPECT_NEAR(*e.spin_down_s, 0.186, 0.186 * 0.15) << seed;
-    }
+    expect_jittered_erm_read_right(400.0, 174.0, 0.0722, 0.186, {53u, 54u}, 0.15);
 }
 
 TEST(CalibrationEstimate, AnErmNearHalfTheRateReadAtJitteredInstantsIsNotTimedShort) {
@@ -634,15 +643,7 @@ TEST(CalibrationEstimate, AnErmNearHalfTheRateReadAtJitteredInstantsIsNotTimedSh
     // jittered instants scatter the neighbours' phases that give it back, the more the faster
     // the mass turns, so the vibration looked weaker at full speed than on the way there.
     // Within 5 % now, and trusted.
-    for (const std::uint64_t seed : {73u, 74u}) {
-        SensorOptions sensor = at(405.8, seed);
-        sensor.jittered_sampling = true;
-        sensor.erm_full_speed_hz = 200.0;
-        const Estimate e = measure(erm(0.0793, 0.110), example_erm(), sensor);
-        ASSERT_TRUE(e.trusted) << seed << ": " << (e.problems.empty() ? "" : e.problems.front());
-        EXPECT_NEAR(*e.spin_up_s, 0.0793, 0.0793 * 0.05) << seed;
-        EXPECT_NEAR(*e.spin_down_s, 0.110, 0.110 * 0.05) << seed;
-    }
+    expect_jittered_erm_read_right(405.8, 200.0, 0.0793, 0.110, {73u, 74u}, 0.05);
 }
 
 TEST(CalibrationApply, ATrustedEstimateReplacesOnlyItsOwnNumbers) {
