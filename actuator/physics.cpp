@@ -160,10 +160,11 @@ Physics::Reach Physics::time_to(const State& state, const Drive& drive, double l
     return rising == moves_up ? Reach{Outcome::horizon, horizon_s} : Reach{Outcome::stalled, 0.0};
 }
 
-std::optional<Physics::RestBrake> Physics::brake_to_rest(const State& state,
-                                                         double search_hz) const {
-    if (!is_lra() || std::abs(state.envelope) < 1e-12) {
-        return std::nullopt;
+std::vector<Physics::RestBrake> Physics::brakes_to_rest(const State& state, double search_hz,
+                                                        double amplitude) const {
+    std::vector<RestBrake> found;
+    if (!is_lra() || std::abs(state.envelope) < 1e-12 || !(amplitude > 0.0)) {
+        return found;
     }
     // Under anti-phase drive at f the envelope (in f's frame) is z(t) = s + (z0 - s) e^(-rate t);
     // it is 0 at t where e^(-rate t) = R = -s / (z0 - s): |R| = e^(-t/tau) fixes t, and the
@@ -174,7 +175,7 @@ std::optional<Physics::RestBrake> Physics::brake_to_rest(const State& state,
         double after_s;
     };
     const auto candidate = [&](double f) {
-        const Motion m = motion(state, {-1.0, f});
+        const Motion m = motion(state, {-amplitude, f});
         const std::complex<double> r = -m.steady / (state.envelope - m.steady);
         const double magnitude = std::abs(r);
         if (!(magnitude < 1.0) || magnitude == 0.0) {
@@ -187,7 +188,6 @@ std::optional<Physics::RestBrake> Physics::brake_to_rest(const State& state,
     const double f0 = declaration_.resonance_hz;
     const double low = std::max(1.0, f0 - search_hz), high = f0 + search_hz;
     constexpr int kSteps = 400;
-    std::optional<RestBrake> best;
     double previous_f = low;
     Candidate previous = candidate(low);
     for (int i = 1; i <= kSteps; ++i) {
@@ -204,14 +204,16 @@ std::optional<Physics::RestBrake> Physics::brake_to_rest(const State& state,
                 ((at.valid && (at.mismatch <= 0.0) == rising) ? lo : hi) = mid;
             }
             const Candidate root = candidate(0.5 * (lo + hi));
-            if (root.valid && (!best || root.after_s < best->after_s)) {
-                best = RestBrake{0.5 * (lo + hi), root.after_s};
+            if (root.valid) {
+                found.push_back({0.5 * (lo + hi), root.after_s});
             }
         }
         previous = here;
         previous_f = f;
     }
-    return best;
+    std::stable_sort(found.begin(), found.end(),
+                     [](const RestBrake& a, const RestBrake& b) { return a.after_s < b.after_s; });
+    return found;
 }
 
 Physics::Reach Physics::time_to_numeric(const State& state, const Drive& drive, double level,

@@ -2,6 +2,7 @@
 
 #include <complex>
 #include <optional>
+#include <vector>
 
 #include "actuator/declaration.hpp"
 
@@ -83,14 +84,16 @@ class Physics {
 
     // An LRA braked to rest: driven off resonance it moves out of phase with its drive, so
     // anti-phase at the drive's own frequency leaves the quadrature part of its motion ringing.
-    // This finds the frequency of a full anti-phase drive (its phase continuing the last drive's,
-    // as the backends do) under which the envelope passes exactly through zero, and when; the
-    // quickest one within `search_hz` of the resonance. Nothing for an ERM, or when none does.
+    // This finds the frequencies of an anti-phase drive of `amplitude` (0..1 of full scale; its
+    // phase continuing the last drive's, as the backends do) under which the envelope passes
+    // exactly through zero, and when: every one within `search_hz` of the resonance, the quickest
+    // first. None for an ERM, or when none does.
     struct RestBrake {
         double frequency_hz;
         double after_s;
     };
-    std::optional<RestBrake> brake_to_rest(const State& state, double search_hz) const;
+    std::vector<RestBrake> brakes_to_rest(const State& state, double search_hz,
+                                          double amplitude = 1.0) const;
 
     // The resonator's amplitude response normalised to 1 at f0 (above).
     static double lra_gain(double frequency_hz, double resonance_hz, double q);

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "actuator/physics.hpp"
+#include "actuator/resonator_motion.hpp"
 #include "daemon/render/cue_stream.hpp"
 
 namespace vibscore::render {
@@ -120,14 +121,23 @@ class DrivePlanner {
     std::vector<std::pair<const actuator::Physics*, actuator::State>> ensemble() const;
     // How long an overdrive `push` of `needed` seconds (within `span`) may last so that, once held,
     // the declared actuator goes no more than 3 % above `strength` (or above what `hold` settles
-    // it at, if more) and no other member more than 30 %.
-    double overdrive_budget(const actuator::Drive& push, const actuator::Drive& hold, double needed,
-                            double span, double strength) const;
-    // The brake to rest when the actuator is uncertain: the full anti-phase drive (frequency, and
-    // its length in `at`) under which the declared actuator stops soonest, as long as no member is
-    // pushed back up, after its lowest point, by more than 30 % of its strength at the brake's
-    // start (past rest a brake adds energy); nothing when coasting does as well.
-    std::optional<Step> robust_brake(double frequency_hz) const;
+    // it at, if more) by the model and 4.5 % by its whole motion, and no other member more than
+    // 30 %.
+    double overdrive_budget(double at, const actuator::Drive& push, const actuator::Drive& hold,
+                            double needed, double span, double strength) const;
+    // The brake to rest when the actuator is uncertain: the anti-phase drive (strength,
+    // frequency, and its length in `at`) under which the declared actuator stops soonest, as long
+    // as no member is pushed back up, after its lowest point, by more than 30 % of its strength
+    // at the brake's start (past rest a brake adds energy), nor the declared one, by its whole
+    // motion, back above quiet_level() once below; nothing when coasting does as well.
+    std::optional<Step> robust_brake(double at, double frequency_hz) const;
+    // The quickest brake to rest of the exact ones (the envelope passes through zero) under
+    // which the LRA, by its whole motion, once below quiet_level(), stays there;
+    // `any` says whether there was an exact brake at all, safe or not.
+    std::optional<Step> rest_brake(double at, bool& any) const;
+    // Below which a brake's watch keeps the LRA once it is there: kQuiet of the note it ends.
+    double quiet_level() const;
+
     // The most a hold at `frequency_hz` may drive so that no LRA within the margins settles
     // further from `strength` than without compensation (infinite without margins).
     double robust_hold(double strength, double frequency_hz) const;
@@ -137,6 +147,11 @@ class DrivePlanner {
     actuator::State state_;
     actuator::Drive drive_;
     double last_frequency_hz_ = 0.0;  // of the last drive that vibrated: braking continues it
+    double note_peak_ = 0.0;          // the last note's strongest, as written (and scaled)
+    bool silent_ = true;              // the last segment was a silence
+    // The declared LRA's whole motion under the drives emitted, to judge brakes by (a pass
+    // starts from rest: what the last one left is not carried).
+    actuator::ResonatorMotion motion_;
     std::vector<actuator::Physics> members_;  // an LRA's neighbours within the uncertainty
     std::vector<actuator::State> member_states_;
     // Whether it brakes: `reverse`, and (with members) the resonance known to within a

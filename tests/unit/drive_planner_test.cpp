@@ -297,6 +297,24 @@ TEST(DrivePlanner, PlannedAsExactNoNoteFarFromTheResonanceOvershootsEither) {
     EXPECT_LE(worst.rebound, 0.10);
 }
 
+TEST(DrivePlanner, ALowQLrasNotesFarFromItsResonanceDoNotRiseAgainAfterTheirBrake) {
+    // A low-Q LRA braked far off its resonance at full scale rang on with what the planner's
+    // envelope model leaves out (Physics::unmodelled_kick): 21 % of the note on the plant here.
+    // Planned as exact, a Q-8 LRA's notes up to 20 % off the resonance, at three lengths (three
+    // phases of the drive at each switch): none rises again above 10 % nor overshoots by 5 %.
+    // (Planned with margins its robust brake still leaves up to 10.8 % here: docs/performance.md.)
+    const Declaration lra = example_lra(175.0, 8.0);
+    const std::vector<std::pair<double, double>> notes{{0.7, 140.0}, {0.5, 210.0}, {0.9, 150.0},
+                                                       {0.7, 200.0}, {0.4, 160.0}, {0.8, 190.0},
+                                                       {0.6, 175.0}};
+    for (const double length : {0.100, 0.1013, 0.1027}) {
+        const auto played = play_notes(lra, lra, {.reverse = true}, notes, length);
+        const Artefacts worst = artefacts(played, notes, length);
+        EXPECT_LE(worst.rebound, 0.10) << length;
+        EXPECT_LE(worst.overshoot, 0.05) << length;
+    }
+}
+
 TEST(DrivePlanner, ABrakeForAnUncertainLraPushesNoneWithinTheUncertaintyBackUpPastRest) {
     // Declared 175 Hz Q 15; built anywhere within +-2.5 % of that resonance and +-40 % of that Q
     // (at +-5 % it is not braked at all: the next test).

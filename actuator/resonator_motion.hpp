@@ -1,0 +1,86 @@
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <complex>
+
+#include "actuator/physics.hpp"
+
+namespace vibscore::actuator {
+
+// An LRA's whole motion under the drives sent, exactly, to judge a brake by: Physics' envelope
+// leaves out a little of it (a few % of a note near resonance), and that little is what stays
+// when the envelope says a brake has stopped the LRA: up to 20 % of a note after a full-scale
+// brake far off a Q-8 LRA's resonance, on bench/feel's plant. The envelope drops the half of the
+// drive that turns against the resonator, and its amplitude off resonance is the forced motion's,
+// not the part of it that turns like the resonator's own ringing; both show at every change of
+// drive, and most where a brake meets rest.
+//
+// The resonator x'' + 2g x' + w0^2 x = F u cos(theta) is, in w = x' - l- x (l+- = -g +- i wd),
+// the first-order w' = l+ w + F u cos(theta), solved in closed form between changes. What it does
+// depends on the carrier's phase: the backends continue it from drive to drive, but where a
+// vibration starts it is the backend's (gpio-lra starts each waveform afresh), so the motion is
+// followed for kPhases phases of that start, and a brake is judged by the worst of them.
+class ResonatorMotion {
+  public:
+    // Every call passes the same actuator (a planner's own, which may be moved).
+
+    // At `t`, the drive `to` replaces `from` (the one in force since the last change).
+    void change(const Physics& physics, double t, const Drive& from, const Drive& to);
+
+    static constexpr int kPhases = 12;
+
+  private:
+    struct Motion {
+        std::complex<double> w{};
+        std::complex<double> carrier{1.0, 0.0};  // e^(i theta)
+    };
+    using Motions = std::array<Motion, kPhases>;
+
+  public:
+    // A brake followed as it goes on, for each phase, for a rebound: once the LRA has been below
+    // a level, how far above that level it gets again (past rest a brake adds energy); for each
+    // of kLevels levels from `quiet` x 0.8 to x 1.2, so that one a little off still holds. It
+    // keeps the actuator by reference: it lives no longer than the planning step that made it.
+    static constexpr int kLevels = 5;
+    class Brake {
+      public:
+        // The most any phase has been above a level after being below it, in strength units
+        // (negative: never), looked at at every call so far (increasing `length`s) and, for a
+        // brake ending at `length`, once it is left to ring at its own frequency.
+        double rebound_until(double length);
+
+      private:
+        friend class ResonatorMotion;
+        Brake(const Physics& physics, Motions motions, const Drive& drive, double quiet);
+        const Physics* physics_;
+        Motions motions_;
+        Drive drive_;
+        std::array<double, kLevels> levels_{};
+        std::array<std::array<bool, kLevels>, kPhases> below_{};
+        double length_ = 0.0;
+        double rebound_ = -INFINITY;
+    };
+    // The strongest any phase gets (measured at the drive's frequency) if at `t` the drive `from`
+    // in force were replaced by `first` for `first_s` and then by `then` for `then_s`, looked at
+    // `looks` times over each: an overdrive and the hold after it.
+    double strongest(const Physics& physics, double t, const Drive& from, const Drive& first,
+                     double first_s, const Drive& then, double then_s, int looks) const;
+
+    // At `t`, the drive `from` in force replaced by `brake`, watched for a rebound around
+    // `quiet`.
+    Brake braking(const Physics& physics, double t, const Drive& from, const Drive& brake,
+                  double quiet) const;
+
+  private:
+    static Motions advanced(const Physics& physics, Motions motions, const Drive& drive, double dt);
+    static Motions changed(Motions motions, const Drive& from, const Drive& to);
+    // The amplitude of x, measured at `frequency_hz` as bench/feel's plant does (driven: the
+    // drive's; left alone: the resonance).
+    static double strength(const Physics& physics, const Motion& motion, double frequency_hz);
+
+    Motions motions_{};
+    double time_ = 0.0;
+};
+
+}  // namespace vibscore::actuator

@@ -1,0 +1,94 @@
+// The declared LRA's whole motion (actuator/resonator_motion.*), against bench/feel's plant (the
+// same equation integrated step by step) and against the closed forms it must agree with.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "actuator/physics.hpp"
+#include "actuator/resonator_motion.hpp"
+#include "bench/feel_plant.hpp"
+#include "tests/support/example_actuators.hpp"
+
+namespace vibscore::actuator {
+namespace {
+
+using vibscore::testing::example_erm;
+using vibscore::testing::example_lra;
+
+TEST(ResonatorMotion, HeldLongItSettlesAtTheResonatorsSteadyStrengthAtEveryPhase) {
+    // Measured at the drive's frequency, the forced motion's amplitude is exactly
+    // u / rated x G(f), on resonance and far off it, whatever phase the vibration started at.
+    for (const double q : {8.0, 15.0, 25.0}) {
+        const Physics physics(example_lra(175.0, q));
+        for (const double f : {140.0, 175.0, 220.0}) {
+            const Drive hold{0.5, f};
+            ResonatorMotion motion;
+            motion.change(physics, 0.0, {}, hold);
+            const double settled = 20.0 * physics.time_constant_s(hold);
+            const double most = motion.strongest(physics, settled, hold, hold, 0.0, hold, 0.01, 16);
+            EXPECT_NEAR(most, physics.steady_strength(hold), 1e-6 * physics.steady_strength(hold))
+                << "Q " << q << ", " << f << " Hz";
+        }
+    }
+}
+
+TEST(ResonatorMotion, NoPhaseOfTheStartIsWeakerThanBenchFeelsPlantAndTheStrongestIsOne) {
+    // The plant starts its carrier at phase 0, one of the phases followed: at every look the
+    // strongest of them is at least the plant's, and over the note as strong as the plant gets
+    // within the spread of the phases' ellipses.
+    const Declaration lra = example_lra(175.0, 8.0);
+    const Physics physics(lra);
+    for (const double f : {140.0, 175.0, 210.0}) {
+        const Drive push{1.0, f}, hold{0.5, f};
+        const double at = 0.0123;
+        for (const double length : {0.002, 0.005, 0.011, 0.030}) {
+            ResonatorMotion motion;
+            motion.change(physics, 0.0, {}, push);
+            const double most = motion.strongest(physics, at, push, push, 0.0, hold, length, 1);
+            const std::vector<render::Cue> cues{render::drive_at(0.0, 1.0, f),
+                                                render::drive_at(at, 0.5, f)};
+            const double rate = 1e6;
+            const auto plant = bench::Plant(lra).respond(
+                cues, rate, static_cast<std::size_t>(std::round((at + length) * rate)) + 1);
+            EXPECT_GE(most, plant.back() - 1e-4) << f << " Hz, " << length << " s";
+            EXPECT_LE(most, 1.5 * plant.back() + 0.05) << f << " Hz, " << length << " s";
+        }
+    }
+}
+
+TEST(ResonatorMotion, ABrakeThatStopsItAtResonanceLeavesNoReboundAndOneThatGoesOnDoes) {
+    // At resonance the envelope's brake to rest is exact but for the 1 / 4Q the envelope leaves
+    // out: braked for as long as the envelope takes to reach zero, the LRA stays quiet; braked
+    // twice as long, it is pushed back up through rest.
+    const Physics physics(example_lra(175.0, 15.0));
+    const Drive hold{0.7, 0.0}, brake{-1.0, 0.0};
+    ResonatorMotion motion;
+    motion.change(physics, 0.0, {}, hold);
+    const double at = 20.0 * physics.time_constant_s(hold);
+    // From strength 1 under full anti-phase (strength 1 / 0.7): zero after tau ln(1 + 0.7).
+    const double to_rest = physics.time_constant_s(hold) * std::log(1.0 + 0.7);
+    auto exact = motion.braking(physics, at, hold, brake, 0.1);
+    double rebound = 0.0;
+    for (int k = 1; k <= 32; ++k) {
+        rebound = exact.rebound_until(to_rest * k / 32);
+    }
+    EXPECT_LE(rebound, 0.0);
+    auto too_long = motion.braking(physics, at, hold, brake, 0.1);
+    for (int k = 1; k <= 64; ++k) {
+        rebound = too_long.rebound_until(2.0 * to_rest * k / 64);
+    }
+    EXPECT_GT(rebound, 0.2);
+}
+
+TEST(ResonatorMotion, AnErmHasNoneOfIt) {
+    const Physics physics(example_erm());
+    ResonatorMotion motion;
+    motion.change(physics, 0.0, {}, {1.0, 0.0});
+    EXPECT_EQ(motion.strongest(physics, 0.1, {1.0, 0.0}, {-1.0, 0.0}, 0.01, {}, 0.01, 4), 0.0);
+    auto brake = motion.braking(physics, 0.1, {1.0, 0.0}, {-1.0, 0.0}, 0.1);
+    EXPECT_LT(brake.rebound_until(0.05), 0.0);
+}
+
+}  // namespace
+}  // namespace vibscore::actuator
