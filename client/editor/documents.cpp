@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <cerrno>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <stdexcept>
+#include <string_view>
 
 #include "score/bundle.hpp"
 #include "score/registry_names.hpp"
@@ -71,7 +73,17 @@ std::vector<ClefDeclaration> registry_clefs(const std::vector<std::string>& name
 
 std::string registry_document(Score score) {
     for (auto& clef : score.clefs) {
-        clef.href = std::filesystem::path(clef.href).filename().string();
+        // "lra-phone.clef.xml/" names lra-phone.clef.xml too: its file name alone is empty,
+        // which no score may have (the fuzzer found it). An href with no name at all ("/") is
+        // left as it is, for vibscored to refuse by name.
+        std::string_view href = clef.href;
+        while (href.ends_with('/')) {
+            href.remove_suffix(1);
+        }
+        const std::string name = std::filesystem::path(href).filename().string();
+        if (!name.empty()) {
+            clef.href = name;
+        }
     }
     return write_score(score);
 }
