@@ -10,6 +10,9 @@ namespace {
 
 constexpr double kTimeEpsilon = 1e-9;
 constexpr double kAmplitudeEpsilon = 1e-6;
+// The most input drives read ahead of the one being planned: a hairpin's steps come every
+// update interval, and what lies further than the planner looks ahead is not read early.
+constexpr std::size_t kMostAhead = 4096;
 
 using Stage = AdaptedCueStream::Stage;
 
@@ -242,17 +245,20 @@ class ActuatorDrives final : public Stage {
         std::vector<Cue> made;
         if (!started_) {
             started_ = true;
-            ahead_ = input_.next();
+            read_ahead(0.0);
             // Silence until the first drive: what the previous pass left ringing is stopped.
-            const double first = ahead_ ? ahead_->at : end_of_pass();
+            const double first = !ahead_.empty() ? ahead_.front().at : end_of_pass();
             planner_.segment(0.0, first, 0.0, 0.0, false, made);
-        } else if (ahead_) {
-            const Cue current = *ahead_;
-            ahead_ = input_.next();
-            const double until = ahead_ ? ahead_->at : end_of_pass();
-            const bool silence_follows = !ahead_ || !(ahead_->amplitude * scale_ > 0.0);
+        } else if (!ahead_.empty()) {
+            const Cue current = ahead_.front();
+            ahead_.pop_front();
+            read_ahead(current.at);
+            const double until = !ahead_.empty() ? ahead_.front().at : end_of_pass();
+            const bool silence_follows = ahead_.empty() || !vibrates(ahead_.front());
             planner_.segment(current.at, until, current.amplitude, current.frequency_hz,
-                             silence_follows, made);
+                             silence_follows, made,
+                             silence_follows || !vibrates(current) ? std::span<const Written>{}
+                                                                   : rest_of_note());
         } else {
             done_ = true;
             if (link_.carry && !link_.last) {
@@ -261,6 +267,40 @@ class ActuatorDrives final : public Stage {
         }
         made_.insert(made_.end(), made.begin(), made.end());
         return true;
+    }
+
+    bool vibrates(const Cue& cue) const { return cue.amplitude * scale_ > 0.0; }
+
+    // Reads on until the drive after the one at `from`, and further, as far as the planner looks
+    // ahead, while the note goes on (up to the silence that ends it).
+    void read_ahead(double from) {
+        const double horizon = from + planner_.look_ahead_s();
+        while (!input_done_ &&
+               (ahead_.empty() || (vibrates(ahead_.back()) && ahead_.back().at < horizon &&
+                                   ahead_.size() < kMostAhead))) {
+            if (auto cue = input_.next()) {
+                ahead_.push_back(*cue);
+            } else {
+                input_done_ = true;
+            }
+        }
+    }
+
+    // The drives read ahead up to the silence that ends the note, as the planner's segments;
+    // empty when that silence has not been read (further than it looks ahead).
+    std::span<const Written> rest_of_note() {
+        rest_.clear();
+        for (std::size_t i = 0; i < ahead_.size(); ++i) {
+            if (!vibrates(ahead_[i])) {
+                return rest_;
+            }
+            const double until = i + 1 < ahead_.size() ? ahead_[i + 1].at : end_of_pass();
+            rest_.push_back({ahead_[i].at, until, ahead_[i].amplitude, ahead_[i].frequency_hz});
+        }
+        if (!input_done_) {
+            rest_.clear();
+        }
+        return rest_;
     }
 
     // Where the last segment ends: the pass's end, unless the last pass brakes on after it.
@@ -272,7 +312,11 @@ class ActuatorDrives final : public Stage {
     PassLink link_;
     DrivePlanner planner_;
     std::deque<Cue> made_;
-    std::optional<Cue> ahead_;  // the next input drive
+    // The input drives read ahead: the next one, and (while a note goes on) as far as the
+    // planner looks ahead.
+    std::deque<Cue> ahead_;
+    std::vector<Written> rest_;  // rest_of_note()'s
+    bool input_done_ = false;
     bool started_ = false;
     bool done_ = false;
 };

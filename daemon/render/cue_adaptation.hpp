@@ -55,7 +55,8 @@ struct PassLink {
 // The cues of one pass (duration_s long) rewritten for an actuator, as they are asked for.
 // Position cues are kept; the result is in time order, drives before positions at the same
 // instant, as a schedule stream. It reads its input only as far ahead as the cue it makes needs
-// (a pulse period, or the run of steps that one ramp replaces).
+// (a pulse period, the run of steps that one ramp replaces, or, while a note goes on, as far as
+// the planner looks ahead for its end: DrivePlanner::look_ahead_s).
 class AdaptedCueStream final : public CueStream {
   public:
     AdaptedCueStream(std::unique_ptr<CueStream> input, double duration_s,

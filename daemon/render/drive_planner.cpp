@@ -69,6 +69,17 @@ constexpr int kFrequencies = 12;
 // so that its own ring-down ends the note on time.
 constexpr double kPhaseKnown = 0.5;
 
+// Without braking, how far before a note's end its drive may be ended early, in time constants of
+// the member that rings longest: from further, coasting brings any strength below a hundredth.
+constexpr double kLookAheadTimeConstants = 8.0;
+// At a note's end (without braking) a member may ring at no more than this share of what
+// compensation off would leave it at (the model leaves a little out: bench/feel's plant rang 1 ms
+// longer than off after a 25 ms note planned to off's level exactly) ...
+constexpr double kOffShare = 0.9;
+// ... but need not go below this of the note's strongest: where off leaves it lower, both have
+// stopped (below kQuiet) by the note's end.
+constexpr double kFeltFloor = kQuiet;
+
 // Within this of the written strength counts as there: no overdrive or brake for a rounding.
 double tolerance(double strength) {
     return 1e-6 * std::max(strength, 1e-3);
@@ -398,35 +409,76 @@ std::vector<DrivePlanner::Step> DrivePlanner::approach(double at, double until, 
     return {{at, push}, {at + reach.after_s, hold}};
 }
 
-double DrivePlanner::early_end(const std::vector<Step>& steps, double until,
-                               double strength) const {
+double DrivePlanner::early_end(const std::vector<Step>& steps, double until, double note_end,
+                               const std::vector<double>& targets) const {
     const double at = steps.front().at;
-    const double felt_end = strength / 2.0;
     // Every actuator within the margins: the cut is the earliest any of them needs (one that
     // rings longer than declared needs it sooner).
     double cut = until;
-    for (const auto& member : ensemble()) {
-        const Physics& physics = *member.first;
-        const State& state = member.second;
+    const auto all = ensemble();
+    for (std::size_t m = 0; m < all.size(); ++m) {
+        const Physics& physics = *all[m].first;
+        const State& state = all[m].second;
         const auto at_end_if_cut = [&](double t) {
             const State coasting = follow(physics, state, steps, t);
-            return Physics::strength(physics.advance(coasting, {0.0, 0.0}, until - t));
+            return Physics::strength(physics.advance(coasting, {0.0, 0.0}, note_end - t));
         };
-        if (at_end_if_cut(cut) <= felt_end) {
+        if (at_end_if_cut(cut) <= targets[m]) {
             continue;  // never strong enough to linger: its drive may go on to `cut`
         }
-        if (at_end_if_cut(at) >= felt_end) {
+        if (at_end_if_cut(at) >= targets[m]) {
             return at;  // already lingering at that strength: no more drive
         }
         // The strength at the end grows with the cut (the drive only ever adds), so bisect.
         double lo = at, hi = cut;
         for (int i = 0; i < kBisections; ++i) {
             const double mid = 0.5 * (lo + hi);
-            (at_end_if_cut(mid) >= felt_end ? hi : lo) = mid;
+            (at_end_if_cut(mid) >= targets[m] ? hi : lo) = mid;
         }
         cut = hi;
     }
     return cut;
+}
+
+std::vector<double> DrivePlanner::end_targets(double at, double until, double written,
+                                              double frequency_hz,
+                                              std::span<const Written> rest_of_note,
+                                              bool silence_follows) const {
+    // The declared actuator, for which the plan is made, ends on time when it is down to half
+    // the written strength at the written end.
+    const double felt_end = silence_follows ? written / 2.0 : INFINITY;
+    std::vector<double> targets{felt_end};
+    // The others within the margins, driven harder or softer than suits them, are held to what
+    // compensation off leaves them at (their off-shadow, carried on to the note's end).
+    for (std::size_t m = 0; m < members_.size(); ++m) {
+        const Physics& physics = members_[m];
+        State off =
+            physics.advance(off_shadow_[m], uncompensated(written, frequency_hz), until - at);
+        for (const Written& next : rest_of_note) {
+            off = physics.advance(off,
+                                  uncompensated(next.strength * options_.scale, next.frequency_hz),
+                                  next.until - next.at);
+        }
+        const double off_end = std::max(Physics::strength(off), kFeltFloor * note_peak_);
+        targets.push_back(std::min({note_peak_ / 2.0, kOffShare * off_end, felt_end}));
+    }
+    return targets;
+}
+
+Drive DrivePlanner::uncompensated(double written, double frequency_hz) const {
+    const double amplitude = std::min(1.0, written * physics_.declaration().rated_drive);
+    return {amplitude, amplitude > 0.0 ? frequency_hz : 0.0};
+}
+
+double DrivePlanner::look_ahead_s() const {
+    if (!options_.compensation || brakes_ || members_.empty()) {
+        return 0.0;  // a note's end is only ever looked at in the segment that silence follows
+    }
+    double longest = 0.0;
+    for (const auto& member : ensemble()) {
+        longest = std::max(longest, member.first->time_constant_s({}));
+    }
+    return kLookAheadTimeConstants * longest;
 }
 
 void DrivePlanner::tame(std::vector<Step>& steps, double until, double strength) const {
@@ -495,11 +547,18 @@ void DrivePlanner::emit(double at, const Drive& drive, std::vector<Cue>& out) {
 }
 
 void DrivePlanner::segment(double at, double until, double strength, double frequency_hz,
-                           bool silence_follows, std::vector<Cue>& out) {
+                           bool silence_follows, std::vector<Cue>& out,
+                           std::span<const Written> rest_of_note) {
     if (!(until > at)) {
         return;  // of two drives at one instant only the later one is ever felt
     }
     const double written = std::max(0.0, strength * options_.scale);
+    if (written > 0.0 && silent_) {
+        // A note starts: where each member would be without compensation starts from where it
+        // is.
+        off_shadow_ = member_states_;
+        note_cut_ = false;
+    }
     if (written > 0.0) {
         // A note's strength is its strongest since the last silence (a decrescendo's end is
         // judged against where it started).
@@ -508,18 +567,25 @@ void DrivePlanner::segment(double at, double until, double strength, double freq
     silent_ = written <= 0.0;
     std::vector<Step> steps;
     if (!options_.compensation) {
-        const double amplitude = std::min(1.0, written * physics_.declaration().rated_drive);
-        steps.push_back({at, {amplitude, amplitude > 0.0 ? frequency_hz : 0.0}});
+        steps.push_back({at, uncompensated(written, frequency_hz)});
+    } else if (written > 0.0 && note_cut_) {
+        steps.push_back({at, {0.0, 0.0}});  // ended early: it coasts to the note's end
     } else {
         // Silence brakes the vibration that is ringing, at its own frequency.
         const double frequency = written > 0.0 ? frequency_hz : last_frequency_hz_;
         steps = approach(at, until, written, frequency);
         tame(steps, until, written);
-        if (silence_follows && !brakes_ && written > 0.0 && std::isfinite(until)) {
-            const double cut = early_end(steps, until, written);
+        const double note_end = silence_follows        ? until
+                                : rest_of_note.empty() ? INFINITY
+                                                       : rest_of_note.back().until;
+        if (!brakes_ && written > 0.0 && std::isfinite(note_end)) {
+            const double cut = early_end(
+                steps, until, note_end,
+                end_targets(at, until, written, frequency_hz, rest_of_note, silence_follows));
             if (cut < until) {
                 std::erase_if(steps, [&](const Step& step) { return step.at >= cut; });
                 steps.push_back({cut, {0.0, 0.0}});
+                note_cut_ = true;
             }
         }
     }
@@ -528,6 +594,10 @@ void DrivePlanner::segment(double at, double until, double strength, double freq
     }
     const double end = std::isfinite(until) ? until : steps.back().at;
     for (std::size_t m = 0; m < members_.size(); ++m) {
+        if (written > 0.0) {
+            off_shadow_[m] =
+                members_[m].advance(off_shadow_[m], uncompensated(written, frequency_hz), end - at);
+        }
         for (std::size_t i = 0; i < steps.size(); ++i) {
             const double from = steps[i].at;
             const double to = i + 1 < steps.size() ? std::min(steps[i + 1].at, end) : end;

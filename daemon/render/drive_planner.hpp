@@ -1,6 +1,7 @@
 #pragma once
 
 #include <optional>
+#include <span>
 #include <utility>
 #include <vector>
 
@@ -64,6 +65,15 @@ struct PlannerCarry {
     std::vector<actuator::State> members;
 };
 
+// A constant written strength from `at` to `until` (seconds) at one frequency, as
+// DrivePlanner::segment() takes it.
+struct Written {
+    double at = 0.0;
+    double until = 0.0;
+    double strength = 0.0;
+    double frequency_hz = 0.0;
+};
+
 // Turns a written strength envelope into the drives that make a declared actuator follow it as
 // closely as it physically can (issue 22, docs/drivers.md "Compensation"). Pure: it simulates the
 // actuator with actuator::Physics alongside the drives it chooses, and never reads a clock.
@@ -89,8 +99,17 @@ class DrivePlanner {
     // infinite for the silence after the last note): appends its drives to `out` (drive cues,
     // signed amplitude -1..1, in time order) and moves the simulated actuator to `until`.
     // `silence_follows`: the written strength drops to 0 at `until`.
+    // `rest_of_note`: where silence does not follow at `until` but ends the note within
+    // look_ahead_s(), the note's segments after this one up to that silence; else empty. Without
+    // braking, a note's drive then ends early enough (in this segment, if coasting from its end
+    // would not do) that no actuator within the margins rings on at the note's end more than
+    // compensation off would leave it: a decrescendo's last steps cannot undo its first.
     void segment(double at, double until, double strength, double frequency_hz,
-                 bool silence_follows, std::vector<Cue>& out);
+                 bool silence_follows, std::vector<Cue>& out,
+                 std::span<const Written> rest_of_note = {});
+    // How far ahead of a segment segment() wants to be shown the note's end: 0 when it brakes
+    // (or does not compensate), as the end is then the brake's.
+    double look_ahead_s() const;
 
     // The actuator's state and the drive in force at the end of the last segment.
     PlannerCarry carry() const { return {state_, drive_, last_frequency_hz_, member_states_}; }
@@ -109,9 +128,20 @@ class DrivePlanner {
     // The same for any actuator from any state.
     static actuator::State follow(const actuator::Physics& physics, actuator::State state,
                                   const std::vector<Step>& steps, double t);
-    // For a segment that silence follows: where the drive should stop so that coasting from there
-    // brings the strength to half of `strength` at `until`; `until` itself when it need not.
-    double early_end(const std::vector<Step>& steps, double until, double strength) const;
+    // For a segment of a note that silence ends at `note_end`: where its drive (up to `until`)
+    // should stop so that coasting from there brings each member of the ensemble no higher than
+    // its `targets` entry at `note_end`; `until` itself when it need not.
+    double early_end(const std::vector<Step>& steps, double until, double note_end,
+                     const std::vector<double>& targets) const;
+    // How strong each member of the ensemble may still be at `note_end`: half the note's
+    // strongest, and no more than compensation off would leave it (its off-shadow, driven on
+    // through `rest_of_note`), unless that is below a felt level; in the segment that silence
+    // follows, also half its written strength (the felt end on time).
+    std::vector<double> end_targets(double at, double until, double written, double frequency_hz,
+                                    std::span<const Written> rest_of_note,
+                                    bool silence_follows) const;
+    // The drive that compensation off sends for `written` at `frequency_hz`.
+    actuator::Drive uncompensated(double written, double frequency_hz) const;
     void emit(double at, const actuator::Drive& drive, std::vector<Cue>& out);
     // Lowers the last of `steps` (the hold, or a push all the way) where an LRA would beat above
     // `strength` under it before `until` (by the model; with a margin only).
@@ -149,6 +179,10 @@ class DrivePlanner {
     double last_frequency_hz_ = 0.0;  // of the last drive that vibrated: braking continues it
     double note_peak_ = 0.0;          // the last note's strongest, as written (and scaled)
     bool silent_ = true;              // the last segment was a silence
+    bool note_cut_ = false;           // the note's drive has ended early: it coasts to its end
+    // Where each member of the ensemble would be had the note been sent uncompensated (from
+    // where it was at the note's start).
+    std::vector<actuator::State> off_shadow_;
     // The declared LRA's whole motion under the drives emitted, to judge brakes by (a pass
     // starts from rest: what the last one left is not carried).
     actuator::ResonatorMotion motion_;

@@ -98,7 +98,12 @@ TEST(ActuatorCheck, ANoteTheClefCheckCallsOutOfReachIsNamedWithNumberStringAndBa
                                 "<Bar clef=\"c\"><Note length=\"half\" number=\"5\" string=\"2\"/>"
                                 "<Note length=\"half\" number=\"5\" string=\"3\"/></Bar>"),
         {{"c.xml", clef}});
-    const auto found = warnings(bundle, example_lra());
+    // Planned as exact: within the default margins the 180 Hz hold is kept near off's, and
+    // number 5 on string 2 reaches 90 % only just (a "too short" of its own).
+    auto exact = example_lra();
+    exact.resonance_tolerance = 0.0;
+    exact.q_tolerance = 0.0;
+    const auto found = warnings(bundle, exact);
     std::vector<std::string> described;
     for (const auto& warning : found) {
         described.push_back(render::describe(warning));
