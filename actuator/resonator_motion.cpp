@@ -9,6 +9,9 @@ namespace vibscore::actuator {
 namespace {
 
 constexpr double kTwoPi = 2.0 * std::numbers::pi;
+// Looks a cycle of the drive, at the least, where the strongest is looked for: four a ripple,
+// so that no ripple's top is missed by more than 1 - cos 45 degrees of it.
+constexpr double kLooksPerCycle = 8.0;
 const std::complex<double> kI(0.0, 1.0);
 
 struct Constants {
@@ -48,18 +51,21 @@ ResonatorMotion::Motions ResonatorMotion::advanced(const Physics& physics, Motio
 }
 
 ResonatorMotion::Motions ResonatorMotion::changed(Motions motions, const Drive& from,
-                                                  const Drive& to) {
+                                                  const Drive& to, Start start) {
     if (from.amplitude == 0.0 && to.amplitude != 0.0) {
         // A vibration starts: at a phase of the backend's, against whatever still rings.
         for (int k = 0; k < kPhases; ++k) {
-            motions[k].carrier = std::polar(1.0, kTwoPi * k / kPhases);
+            const double ringing = start == Start::against_ringing && std::abs(motions[k].w) > 0.0
+                                       ? std::arg(motions[k].w)
+                                       : 0.0;
+            motions[k].carrier = std::polar(1.0, ringing + kTwoPi * k / kPhases);
         }
     }
     return motions;
 }
 
 void ResonatorMotion::change(const Physics& physics, double t, const Drive& from, const Drive& to) {
-    motions_ = changed(advanced(physics, motions_, from, t - time_), from, to);
+    motions_ = changed(advanced(physics, motions_, from, t - time_), from, to, Start::absolute);
     for (Motion& m : motions_) {
         m.carrier /= std::abs(m.carrier);  // over a long playback, rounding would creep in
     }
@@ -81,25 +87,33 @@ double ResonatorMotion::strongest(const Physics& physics, double t, const Drive&
         return 0.0;
     }
     double most = 0.0;
-    Motions motions = changed(advanced(physics, motions_, from, t - time_), from, first);
+    Motions motions =
+        changed(advanced(physics, motions_, from, t - time_), from, first, Start::against_ringing);
     const auto look = [&](const Drive& drive, double length) {
-        for (int k = 1; k <= looks && length > 0.0; ++k) {
-            motions = advanced(physics, motions, drive, length / looks);
+        // At least kLooksPerCycle a cycle: the half of the drive that turns against the
+        // resonator ripples its strength at twice the drive's frequency, by up to 1 / 4Q.
+        const int n = std::max(
+            looks,
+            static_cast<int>(std::ceil(kLooksPerCycle * physics.frequency_of(drive) * length)));
+        for (int k = 1; k <= n && length > 0.0; ++k) {
+            motions = advanced(physics, motions, drive, length / n);
             for (const Motion& m : motions) {
                 most = std::max(most, strength(physics, m, physics.frequency_of(drive)));
             }
         }
     };
     look(first, first_s);
-    motions = changed(motions, first, then);
+    motions = changed(motions, first, then, Start::against_ringing);
     look(then, then_s);
     return most;
 }
 
 ResonatorMotion::Brake ResonatorMotion::braking(const Physics& physics, double t, const Drive& from,
                                                 const Drive& brake, double quiet) const {
-    return Brake(physics, changed(advanced(physics, motions_, from, t - time_), from, brake), brake,
-                 quiet);
+    return Brake(
+        physics,
+        changed(advanced(physics, motions_, from, t - time_), from, brake, Start::absolute), brake,
+        quiet);
 }
 
 ResonatorMotion::Brake::Brake(const Physics& physics, Motions motions, const Drive& drive,

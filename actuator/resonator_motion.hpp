@@ -28,7 +28,7 @@ class ResonatorMotion {
     // At `t`, the drive `to` replaces `from` (the one in force since the last change).
     void change(const Physics& physics, double t, const Drive& from, const Drive& to);
 
-    static constexpr int kPhases = 12;
+    static constexpr int kPhases = 24;
 
   private:
     struct Motion {
@@ -74,7 +74,12 @@ class ResonatorMotion {
 
   private:
     static Motions advanced(const Physics& physics, Motions motions, const Drive& drive, double dt);
-    static Motions changed(Motions motions, const Drive& from, const Drive& to);
+    // Where a vibration starts, the phases its motions start at: `absolute` (each at its own
+    // phase k / kPhases, the same whatever rings), or `against_ringing` (each at k / kPhases of a
+    // turn from what still rings in it: every phase the new drive may meet the ringing at, for
+    // how strong the two may get together).
+    enum class Start { absolute, against_ringing };
+    static Motions changed(Motions motions, const Drive& from, const Drive& to, Start start);
     // The amplitude of x, measured at `frequency_hz` as bench/feel's plant does (driven: the
     // drive's; left alone: the resonance).
     static double strength(const Physics& physics, const Motion& motion, double frequency_hz);

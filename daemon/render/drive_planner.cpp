@@ -138,7 +138,8 @@ std::vector<std::pair<const Physics*, State>> DrivePlanner::ensemble() const {
 }
 
 double DrivePlanner::overdrive_budget(double at, const Drive& push, const Drive& hold,
-                                      double needed, double span, double strength) const {
+                                      double needed, double span, double strength,
+                                      bool note_ends) const {
     auto all = ensemble();
     if (drive_.amplitude == 0.0 && Physics::strength(state_) > 0.0) {
         // Starting again after a silence, the drive's phase is the backend's (gpio-lra starts
@@ -150,8 +151,13 @@ double DrivePlanner::overdrive_budget(double at, const Drive& push, const Drive&
     // segment lasts (looked at over three of its time constants at most: by then it has settled).
     const auto overshoots = [&](double t) {
         // The declared one's whole motion (ResonatorMotion), at any phase the backend may have
-        // started the vibration at, within the bound.
-        const double whole = std::min(span - t, 3.0 * physics_.time_constant_s(hold));
+        // started the vibration at, within the bound: for three time constants of the
+        // hold, past the segment's end too unless the note ends there (a brake's watch takes
+        // over), since a glide's and a hairpin's next steps go on much as this one (bench/feel's
+        // ringtone glide on a 205 Hz Q-8 LRA crested 5.9 % above its strength a step after the
+        // overdrive's).
+        const double settle = 3.0 * physics_.time_constant_s(hold);
+        const double whole = note_ends ? std::min(span - t, settle) : settle;
         if (physics_.is_lra() &&
             motion_.strongest(physics_, at, drive_, push, t, hold, whole, kLooks) >
                 (1.0 + kWholeOvershoot) * std::max(strength, physics_.steady_strength(hold))) {
@@ -329,7 +335,8 @@ State DrivePlanner::follow(const Physics& physics, State state, const std::vecto
 }
 
 std::vector<DrivePlanner::Step> DrivePlanner::approach(double at, double until, double strength,
-                                                       double frequency_hz) const {
+                                                       double frequency_hz,
+                                                       bool silence_follows) const {
     // An open end (the silence after the last note) needs no more than the actuator can take to
     // settle from anywhere.
     const double longest =
@@ -391,9 +398,9 @@ std::vector<DrivePlanner::Step> DrivePlanner::approach(double at, double until, 
         // rings after a silence): an overdrive no faster actuator overshoots with. Ending early
         // is then a reach of its own.
         const double needed = reach.outcome == Outcome::horizon ? until - at : reach.after_s;
-        const double budget = now < strength
-                                  ? overdrive_budget(at, push, hold, needed, until - at, strength)
-                                  : needed;
+        const double budget = now < strength ? overdrive_budget(at, push, hold, needed, until - at,
+                                                                strength, silence_follows)
+                                             : needed;
         if (budget < needed) {
             reach = {Outcome::reached, budget};
         }
@@ -573,7 +580,7 @@ void DrivePlanner::segment(double at, double until, double strength, double freq
     } else {
         // Silence brakes the vibration that is ringing, at its own frequency.
         const double frequency = written > 0.0 ? frequency_hz : last_frequency_hz_;
-        steps = approach(at, until, written, frequency);
+        steps = approach(at, until, written, frequency, silence_follows);
         tame(steps, until, written);
         const double note_end = silence_follows        ? until
                                 : rest_of_note.empty() ? INFINITY

@@ -122,7 +122,9 @@ class DrivePlanner {
     };
     // The drives that take the actuator from its state at `at` to `strength` and hold it there,
     // without regard to what follows (at most two).
-    std::vector<Step> approach(double at, double until, double strength, double frequency_hz) const;
+    // `silence_follows`: the note ends at `until` (what comes after is the brake's or the coast's).
+    std::vector<Step> approach(double at, double until, double strength, double frequency_hz,
+                               bool silence_follows) const;
     // The state at `t` following `steps` from the current state at steps.front().at.
     actuator::State follow(const std::vector<Step>& steps, double t) const;
     // The same for any actuator from any state.
@@ -152,9 +154,9 @@ class DrivePlanner {
     // How long an overdrive `push` of `needed` seconds (within `span`) may last so that, once held,
     // the declared actuator goes no more than 3 % above `strength` (or above what `hold` settles
     // it at, if more) by the model and 4.5 % by its whole motion, and no other member more than
-    // 30 %.
+    // 30 %. Its whole motion is looked at past `span` too unless `note_ends` there.
     double overdrive_budget(double at, const actuator::Drive& push, const actuator::Drive& hold,
-                            double needed, double span, double strength) const;
+                            double needed, double span, double strength, bool note_ends) const;
     // The brake to rest when the actuator is uncertain: the anti-phase drive (strength,
     // frequency, and its length in `at`) under which the declared actuator stops soonest, as long
     // as no member is pushed back up, after its lowest point, by more than 30 % of its strength
