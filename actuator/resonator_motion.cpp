@@ -64,8 +64,14 @@ ResonatorMotion::Motions ResonatorMotion::changed(Motions motions, const Drive& 
     return motions;
 }
 
+ResonatorMotion::Motions ResonatorMotion::replaced_at(const Physics& physics, double t,
+                                                      const Drive& from, const Drive& to,
+                                                      Start start) const {
+    return changed(advanced(physics, motions_, from, t - time_), from, to, start);
+}
+
 void ResonatorMotion::change(const Physics& physics, double t, const Drive& from, const Drive& to) {
-    motions_ = changed(advanced(physics, motions_, from, t - time_), from, to, Start::absolute);
+    motions_ = replaced_at(physics, t, from, to, Start::absolute);
     for (Motion& m : motions_) {
         m.carrier /= std::abs(m.carrier);  // over a long playback, rounding would creep in
     }
@@ -87,8 +93,7 @@ double ResonatorMotion::strongest(const Physics& physics, double t, const Drive&
         return 0.0;
     }
     double most = 0.0;
-    Motions motions =
-        changed(advanced(physics, motions_, from, t - time_), from, first, Start::against_ringing);
+    Motions motions = replaced_at(physics, t, from, first, Start::against_ringing);
     const auto look = [&](const Drive& drive, double length) {
         // At least kLooksPerCycle a cycle: the half of the drive that turns against the
         // resonator ripples its strength at twice the drive's frequency, by up to 1 / 4Q.
@@ -110,10 +115,7 @@ double ResonatorMotion::strongest(const Physics& physics, double t, const Drive&
 
 ResonatorMotion::Brake ResonatorMotion::braking(const Physics& physics, double t, const Drive& from,
                                                 const Drive& brake, double quiet) const {
-    return Brake(
-        physics,
-        changed(advanced(physics, motions_, from, t - time_), from, brake, Start::absolute), brake,
-        quiet);
+    return Brake(physics, replaced_at(physics, t, from, brake, Start::absolute), brake, quiet);
 }
 
 ResonatorMotion::Brake::Brake(const Physics& physics, Motions motions, const Drive& drive,

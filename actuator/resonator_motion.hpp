@@ -63,7 +63,8 @@ class ResonatorMotion {
     };
     // The strongest any phase gets (measured at the drive's frequency) if at `t` the drive `from`
     // in force were replaced by `first` for `first_s` and then by `then` for `then_s`, looked at
-    // `looks` times over each: an overdrive and the hold after it.
+    // `looks` times over each (and eight times a cycle of its drive at the least): an overdrive
+    // and the hold after it, meeting what still rings at every phase if it starts a vibration.
     double strongest(const Physics& physics, double t, const Drive& from, const Drive& first,
                      double first_s, const Drive& then, double then_s, int looks) const;
 
@@ -80,6 +81,9 @@ class ResonatorMotion {
     // how strong the two may get together).
     enum class Start { absolute, against_ringing };
     static Motions changed(Motions motions, const Drive& from, const Drive& to, Start start);
+    // The motions as they would be at `t` had `to` replaced `from` there.
+    Motions replaced_at(const Physics& physics, double t, const Drive& from, const Drive& to,
+                        Start start) const;
     // The amplitude of x, measured at `frequency_hz` as bench/feel's plant does (driven: the
     // drive's; left alone: the resonance).
     static double strength(const Physics& physics, const Motion& motion, double frequency_hz);
