@@ -108,7 +108,8 @@ class DrivePlanner {
                  bool silence_follows, std::vector<Cue>& out,
                  std::span<const Written> rest_of_note = {});
     // How far ahead of a segment segment() wants to be shown the note's end: 0 when it brakes
-    // (or does not compensate), as the end is then the brake's.
+    // (the end is then the brake's), plans as exact (only the last segment ends early) or does
+    // not compensate.
     double look_ahead_s() const;
 
     // The actuator's state and the drive in force at the end of the last segment.
@@ -135,10 +136,11 @@ class DrivePlanner {
     // its `targets` entry at `note_end`; `until` itself when it need not.
     double early_end(const std::vector<Step>& steps, double until, double note_end,
                      const std::vector<double>& targets) const;
-    // How strong each member of the ensemble may still be at `note_end`: half the note's
-    // strongest, and no more than compensation off would leave it (its off-shadow, driven on
-    // through `rest_of_note`), unless that is below a felt level; in the segment that silence
-    // follows, also half its written strength (the felt end on time).
+    // How strong each member of the ensemble may still be at `note_end`. The declared one: half
+    // the written strength in the segment that silence follows (the felt end on time), anything
+    // before it. Each other one: that too, half the note's strongest, and nine tenths of what
+    // compensation off would leave it at (its off-shadow, driven on through `rest_of_note`) or of
+    // a tenth of the note, whichever is more.
     std::vector<double> end_targets(double at, double until, double written, double frequency_hz,
                                     std::span<const Written> rest_of_note,
                                     bool silence_follows) const;
@@ -182,8 +184,8 @@ class DrivePlanner {
     double note_peak_ = 0.0;          // the last note's strongest, as written (and scaled)
     bool silent_ = true;              // the last segment was a silence
     bool note_cut_ = false;           // the note's drive has ended early: it coasts to its end
-    // Where each member of the ensemble would be had the note been sent uncompensated (from
-    // where it was at the note's start).
+    // Where each of members_ would be had the note been sent uncompensated (from where it was
+    // at the note's start).
     std::vector<actuator::State> off_shadow_;
     // The declared LRA's whole motion under the drives emitted, to judge brakes by (a pass
     // starts from rest: what the last one left is not carried).
