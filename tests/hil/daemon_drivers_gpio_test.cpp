@@ -136,6 +136,7 @@ TEST(DaemonGpio, ErmDrivesItsLineAtTheNotesStrengthAsDutyCycleWithTheEnableLine)
     ASSERT_EQ(drives[0].amplitude, 0.5);
     const double note_s = drives[1].at - drives[0].at;
 
+    GuestStallMeter stalls;
     const auto asked = Clock::now();
     const auto id = client->Play(score, {});
     std::string reason;
@@ -154,7 +155,7 @@ TEST(DaemonGpio, ErmDrivesItsLineAtTheNotesStrengthAsDutyCycleWithTheEnableLine)
     EXPECT_LT(seconds_between(asked, motor.first_rise), 0.25) << "the Play call to the first edge";
     // On for the note, within a carrier period and the onset tolerance.
     EXPECT_NEAR(seconds_between(motor.first_rise, motor.last_fall), note_s,
-                kOnsetTolerance_s + 0.01);
+                onset_tolerance_s(stalls) + 0.01);
     // The carrier's periods at the note's strength as duty cycle.
     const double periods = note_s * 100;
     const auto duties = clean_period_duties(states, 0, 0.01, motor.first_rise, motor.last_fall);
@@ -282,6 +283,7 @@ TEST(DaemonGpio, TheMaximumOnTimeCutsALongNoteShort) {
     ASSERT_EQ(drives[0].amplitude, 1.0);
     ASSERT_DOUBLE_EQ(drives[1].at, 1.0);
 
+    GuestStallMeter stalls;
     const auto id = client->Play(score, {});
     std::string reason;
     ASSERT_TRUE(client->wait_finished(id, &reason)) << daemon.daemon_log();
@@ -289,7 +291,7 @@ TEST(DaemonGpio, TheMaximumOnTimeCutsALongNoteShort) {
     const auto states = sampler.changes();
     const auto motor = driven(states, 0);
     EXPECT_EQ(motor.rises, 1u) << listing(states);
-    EXPECT_NEAR(seconds_between(motor.first_rise, motor.last_fall), 0.2, kOnsetTolerance_s)
+    EXPECT_NEAR(seconds_between(motor.first_rise, motor.last_fall), 0.2, onset_tolerance_s(stalls))
         << listing(states);
     EXPECT_EQ(sim.value(0), 0);
     EXPECT_NE(daemon.daemon_log().find("maximum on-time"), std::string::npos)

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "daemon/render/cue_adaptation.hpp"
+#include "tests/hil/guest_stalls.hpp"
 
 // What the daemon-level hil tests expect of vibscored, worked out with the code the daemon
 // itself runs: a test knows each drive's time, strength and frequency without a second copy of
@@ -42,5 +43,13 @@ bool eventually(const std::function<bool()>& condition,
 // Tolerance of an onset under TCG, relative to the first onset of the same playback: the
 // guest is emulated, and its threads can stall for milliseconds.
 constexpr double kOnsetTolerance_s = 0.025;
+
+// kOnsetTolerance_s, and the longest `stalls` saw the whole guest stop while it watched: a
+// daemon on time in a guest that was not running is late by that much, through no fault of
+// its own.
+// (Inline: the integration tests share this file's expectations but not the hil fixtures.)
+inline double onset_tolerance_s(const GuestStallMeter& stalls) {
+    return kOnsetTolerance_s + stalls.worst_s();
+}
 
 }  // namespace vibscore::hil
