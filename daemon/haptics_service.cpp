@@ -10,7 +10,6 @@
 #include "config.h"
 #include "daemon/bus_errors.hpp"
 #include "daemon/calibration_reply.hpp"
-#include "daemon/haptics_service_admission.hpp"
 #include "daemon/request_error.hpp"
 #include "dbus/haptics1_names.hpp"
 #include "dbus/name_owner_watch.hpp"
@@ -147,6 +146,14 @@ Caller HapticsService::identify_caller() {
     return dbus::with_current_message(
         getObject(),
         [&](const sdbus::Message& message) -> const Caller& { return callers_.identify(message); });
+}
+
+// The probe is the least CPU time: a document needs its budget at or above it (admission.hpp:
+// a cost above 0 needs the bucket at or above it).
+constexpr double kDocumentCpuProbe_s = 1e-9;
+
+Cost HapticsService::document_cost(std::size_t bytes) {
+    return {1.0, static_cast<double>(bytes), bytes > 0 ? kDocumentCpuProbe_s : 0.0};
 }
 
 Caller HapticsService::admit_caller(const Cost& cost, ChargedTo* charged_to) {

@@ -89,6 +89,13 @@ class HapticsService final : public sdbus::AdaptorInterfaces<org::vibscore::Hapt
     Caller admit_caller(const Cost& cost = {1.0, 0.0, 0.0}, ChargedTo* charged_to = nullptr);
     // The caller of the method being handled, not yet admitted.
     Caller identify_caller();
+    // What a request carrying `bytes` of a document costs at admission: one request, its bytes,
+    // and (when it carries any) a CPU probe, so it needs its CPU budget not overdrawn; its real
+    // CPU time is charged once its work has run.
+    static Cost document_cost(std::size_t bytes);
+    // Each refusal waiting holds its request's message (up to a megabyte): at most this many
+    // wait, the next are answered at once.
+    static constexpr std::size_t kMostRefusalsWaiting = 32;
     // Refuses a request that carried a document (admission.hpp) through `reply` about a second
     // later (admission_delay.hpp), or at once when its connection already has one waiting.
     template <typename Reply>
@@ -181,5 +188,56 @@ class HapticsService final : public sdbus::AdaptorInterfaces<org::vibscore::Hapt
     FairWorkQueue registry_work_{FairWorkQueue::Options{}};
     FairWorkQueue document_work_{FairWorkQueue::Options{}};
 };
+
+// The admission steps are templates on the reply type: defined here, for each file of the
+// service's methods (haptics_service*.cpp) that uses them.
+
+template <typename Reply>
+void HapticsService::refuse_later(const std::shared_ptr<Reply>& reply, const Caller& caller,
+                                  const RequestError& refusal) {
+    const bool queued =
+        refusals_.waiting() < kMostRefusalsWaiting &&
+        refusals_.add(caller.sender, refusal_pacing_.due(caller.uid, DelayedTasks::Clock::now()),
+                      [reply, alive = alive_, message = std::string(refusal.what())] {
+                          if (*alive) {
+                              reply->fail(std::make_exception_ptr(
+                                  RequestError(RequestError::Code::limit_exceeded, message)));
+                          }
+                      });
+    if (!queued) {
+        throw refusal;
+    }
+}
+
+template <typename Reply>
+std::optional<Caller> HapticsService::admit_document(const std::shared_ptr<Reply>& reply,
+                                                     std::size_t bytes, ChargedTo& charged_to) {
+    try {
+        return admit_caller(document_cost(bytes), &charged_to);
+    } catch (const RequestError& refusal) {
+        if (bytes == 0 || refusal.code() != RequestError::Code::limit_exceeded) {
+            throw;
+        }
+        refuse_later(reply, identify_caller(), refusal);
+        return std::nullopt;
+    }
+}
+
+template <typename Reply, typename Then>
+void HapticsService::when_allowed(const std::shared_ptr<Reply>& reply, const Caller& caller,
+                                  std::optional<Action> action, std::string what, Then then) {
+    if (!action) {
+        reply->finish(then);
+        return;
+    }
+    authorizer_.decide(
+        caller, *action,
+        [reply, what = std::move(what), then = std::move(then)](const Decision& decision) mutable {
+            reply->finish([&] {
+                decision.require(what);
+                return then();
+            });
+        });
+}
 
 }  // namespace vibscore::daemon

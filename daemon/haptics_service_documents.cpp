@@ -2,7 +2,6 @@
 
 #include "common/log.hpp"
 #include "daemon/bus_errors.hpp"
-#include "daemon/haptics_service_admission.hpp"
 #include "daemon/request_error.hpp"
 #include "daemon/thread_cpu_time.hpp"
 #include "dbus/haptics1_names.hpp"
