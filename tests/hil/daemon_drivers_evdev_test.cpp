@@ -13,6 +13,7 @@
 
 #include "tests/hil/score_expectations.hpp"
 #include "tests/hil/uinput_vibrator.hpp"
+#include "tests/hil/watched_playback.hpp"
 #include "tests/support/daemon_fixture.hpp"
 #include "tests/support/wait_until.hpp"
 
@@ -197,14 +198,11 @@ TEST(DaemonEvdev, AScorePlaysAsPeriodicEffectsAtItsTimesWithTheGainFromIntensity
     adaptation.envelopes = true;
     const auto expected = expected_plays(expected_drives(score, adaptation), true);
 
-    GuestStallMeter stalls;
-    const auto id = client->Play(score, {});
-    std::string reason;
-    ASSERT_TRUE(client->wait_finished(id, &reason)) << daemon.daemon_log();
-    EXPECT_EQ(reason, "completed") << daemon.daemon_log();
+    const auto played = play_to_the_end(daemon, score);
+    ASSERT_TRUE(played.completed);
     const auto timeline = timeline_after_the_last_stop(vibrator);
     expect_plays_follow_the_score(timeline, expected, expect_periodic_effect,
-                                  onset_tolerance_s(stalls));
+                                  played.onset_tolerance_s);
 
     // The numbers themselves, for the record: 235 Hz is a 4 ms period, full strength 0x7fff
     // (not scaled by the intensity), the crescendo an attack envelope rising over ~0.36 s.
@@ -255,16 +253,13 @@ TEST(DaemonEvdev, ARumbleOnlyDeviceFollowsACrescendoInSmallSteps) {
     adaptation.frequency = false;
     const auto expected = expected_plays(expected_drives(score, adaptation), false);
 
-    GuestStallMeter stalls;
-    const auto id = client->Play(score, {});
-    std::string reason;
-    ASSERT_TRUE(client->wait_finished(id, &reason)) << daemon.daemon_log();
-    EXPECT_EQ(reason, "completed") << daemon.daemon_log();
+    const auto played = play_to_the_end(daemon, score);
+    ASSERT_TRUE(played.completed);
     const auto timeline = timeline_after_the_last_stop(vibrator);
     // Hundreds of events: after a stall of the emulated guest the player catches up over a few
     // steps, each late by a little more than the stall.
     expect_plays_follow_the_score(timeline, expected, expect_strong_rumble,
-                                  kOnsetTolerance_s + onset_tolerance_s(stalls));
+                                  kOnsetTolerance_s + played.onset_tolerance_s);
 
     // Along the 0.8 s crescendo the magnitude rises step by step, at least 100 times a second.
     const auto seen = seen_plays(timeline);

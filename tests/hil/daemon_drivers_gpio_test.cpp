@@ -11,6 +11,7 @@
 #include "tests/hil/gpio_lines_sampler.hpp"
 #include "tests/hil/gpio_sim_chip.hpp"
 #include "tests/hil/score_expectations.hpp"
+#include "tests/hil/watched_playback.hpp"
 #include "tests/support/daemon_fixture.hpp"
 
 namespace vibscore::hil {
@@ -125,7 +126,6 @@ TEST(DaemonGpio, ErmDrivesItsLineAtTheNotesStrengthAsDutyCycleWithTheEnableLine)
                                                        "carrier-hz = 100"));
     // Started after the daemon: on the guest's one vCPU it competes with everything else.
     GpioLinesSampler sampler(sim, {0, 1});  // motor, enable
-    auto client = daemon.client();
     // Strength 0.5 for 0.8 s.
     const auto score =
         one_bar_score(kPhoneClef, "<Note length=\"whole\" number=\"4\" string=\"1\"/>");
@@ -136,12 +136,8 @@ TEST(DaemonGpio, ErmDrivesItsLineAtTheNotesStrengthAsDutyCycleWithTheEnableLine)
     ASSERT_EQ(drives[0].amplitude, 0.5);
     const double note_s = drives[1].at - drives[0].at;
 
-    GuestStallMeter stalls;
-    const auto asked = Clock::now();
-    const auto id = client->Play(score, {});
-    std::string reason;
-    ASSERT_TRUE(client->wait_finished(id, &reason)) << daemon.daemon_log();
-    EXPECT_EQ(reason, "completed");
+    const auto played = play_to_the_end(daemon, score);
+    ASSERT_TRUE(played.completed);
     ASSERT_TRUE(settles_low(sampler)) << listing(sampler.changes());
     EXPECT_EQ(sim.value(0), 0);
     EXPECT_EQ(sim.value(1), 0);
@@ -152,10 +148,11 @@ TEST(DaemonGpio, ErmDrivesItsLineAtTheNotesStrengthAsDutyCycleWithTheEnableLine)
     ASSERT_GT(motor.rises, 0u) << listing(states);
     // The note starts with the Play call (bench/evdev_latency measures such latencies; a guest
     // on a busy host can stall for tens of milliseconds).
-    EXPECT_LT(seconds_between(asked, motor.first_rise), 0.25) << "the Play call to the first edge";
+    EXPECT_LT(seconds_between(played.asked, motor.first_rise), 0.25)
+        << "the Play call to the first edge";
     // On for the note, within a carrier period and the onset tolerance.
     EXPECT_NEAR(seconds_between(motor.first_rise, motor.last_fall), note_s,
-                onset_tolerance_s(stalls) + 0.01);
+                played.onset_tolerance_s + 0.01);
     // The carrier's periods at the note's strength as duty cycle.
     const double periods = note_s * 100;
     const auto duties = clean_period_duties(states, 0, 0.01, motor.first_rise, motor.last_fall);
@@ -270,7 +267,6 @@ TEST(DaemonGpio, TheMaximumOnTimeCutsALongNoteShort) {
     DaemonFixture daemon(driver_config(
         "gpio-erm", "chip = " + sim.chip_name() + "\nline = 0\nmax-on-time-ms = 200"));
     GpioLinesSampler sampler(sim, {0});
-    auto client = daemon.client();
     // Full strength for 1 s: two tied notes make one drive.
     const auto score =
         one_bar_score(kPhoneClef,
@@ -283,15 +279,12 @@ TEST(DaemonGpio, TheMaximumOnTimeCutsALongNoteShort) {
     ASSERT_EQ(drives[0].amplitude, 1.0);
     ASSERT_DOUBLE_EQ(drives[1].at, 1.0);
 
-    GuestStallMeter stalls;
-    const auto id = client->Play(score, {});
-    std::string reason;
-    ASSERT_TRUE(client->wait_finished(id, &reason)) << daemon.daemon_log();
-    EXPECT_EQ(reason, "completed");
+    const auto played = play_to_the_end(daemon, score);
+    ASSERT_TRUE(played.completed);
     const auto states = sampler.changes();
     const auto motor = driven(states, 0);
     EXPECT_EQ(motor.rises, 1u) << listing(states);
-    EXPECT_NEAR(seconds_between(motor.first_rise, motor.last_fall), 0.2, onset_tolerance_s(stalls))
+    EXPECT_NEAR(seconds_between(motor.first_rise, motor.last_fall), 0.2, played.onset_tolerance_s)
         << listing(states);
     EXPECT_EQ(sim.value(0), 0);
     EXPECT_NE(daemon.daemon_log().find("maximum on-time"), std::string::npos)

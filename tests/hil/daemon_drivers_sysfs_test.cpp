@@ -13,6 +13,7 @@
 #include "tests/hil/pwm_sim_chip.hpp"
 #include "tests/hil/score_expectations.hpp"
 #include "tests/hil/uleds_led.hpp"
+#include "tests/hil/watched_playback.hpp"
 #include "tests/hil/written_file.hpp"
 #include "tests/support/daemon_fixture.hpp"
 
@@ -27,14 +28,6 @@ const std::string kPhoneClef = "lra-phone.clef.xml";  // quarter = 0.2 s; string
 
 bool has(const std::vector<std::string>& names, const std::string& name) {
     return std::find(names.begin(), names.end(), name) != names.end();
-}
-
-void play_to_the_end(DaemonFixture& daemon, const std::string& score) {
-    auto client = daemon.client();
-    const auto id = client->Play(score, {});
-    std::string reason;
-    ASSERT_TRUE(client->wait_finished(id, &reason)) << daemon.daemon_log();
-    EXPECT_EQ(reason, "completed") << daemon.daemon_log();
 }
 
 // An on/off actuator's expected switching: the pulse-modulated drives (docs/drivers.md).
@@ -114,8 +107,8 @@ TEST(DaemonSysfs, LedVibratorSwitchesTheLedForEachNoteAndPulsesAHalfStrengthNote
     const auto expected = expected_switches(kFullThenHalf);
     // The whole note at half strength is 20 pulses of 20 ms.
     ASSERT_GE(expected.size(), 40u);
-    GuestStallMeter stalls;
-    play_to_the_end(daemon, kFullThenHalf);
+    const auto played = play_to_the_end(daemon, kFullThenHalf);
+    ASSERT_TRUE(played.completed);
     // The fixture's thread may not have read the last switch-off yet.
     eventually([&] { return !led.changes().empty() && led.changes().back().brightness == 0; });
 
@@ -129,7 +122,7 @@ TEST(DaemonSysfs, LedVibratorSwitchesTheLedForEachNoteAndPulsesAHalfStrengthNote
             seen.emplace_back(change.time, on);
         }
     }
-    expect_switches(seen, expected, onset_tolerance_s(stalls), listing.str());
+    expect_switches(seen, expected, played.onset_tolerance_s, listing.str());
     expect_pulse_lengths(seen, expected, listing.str());
     EXPECT_EQ(led.changes().back().brightness, 0);
     for (const auto& change : led.changes()) {
@@ -233,9 +226,9 @@ TEST(DaemonSysfs, SysfsPwmErmSetsTheDutyCycleOfEachNoteAndZeroAfterwards) {
     ASSERT_EQ(expected.size(), 4u);
     EXPECT_EQ(expected[0].second, (PwmSetting{50000, 50000}));
     EXPECT_EQ(expected[2].second, (PwmSetting{50000, 25000}));
-    GuestStallMeter stalls;
-    play_to_the_end(daemon, score);
-    expect_the_channel_follows(pwm, channel, expected, onset_tolerance_s(stalls));
+    const auto played = play_to_the_end(daemon, score);
+    ASSERT_TRUE(played.completed);
+    expect_the_channel_follows(pwm, channel, expected, played.onset_tolerance_s);
     EXPECT_EQ(pwm.state(channel).duty_cycle_ns, 0u);
 
     // Closing: duty cycle 0, disabled, and unexported since the daemon exported it.
@@ -263,9 +256,9 @@ TEST(DaemonSysfs, SysfsPwmLraFollowsEachNotesFrequencyWithHalfThePeriodAtFullStr
     EXPECT_EQ(expected[0].second, (PwmSetting{6451613, 3225807}));
     // Half strength: (2/pi) asin(0.5) = 1/3 of the half period, whose fundamental is half.
     EXPECT_EQ(expected[2].second, (PwmSetting{4255319, 709220}));
-    GuestStallMeter stalls;
-    play_to_the_end(daemon, score);
-    expect_the_channel_follows(pwm, channel, expected, onset_tolerance_s(stalls));
+    const auto played = play_to_the_end(daemon, score);
+    ASSERT_TRUE(played.completed);
+    expect_the_channel_follows(pwm, channel, expected, played.onset_tolerance_s);
     EXPECT_EQ(daemon.stop_daemon(), 0) << daemon.daemon_log();
     EXPECT_FALSE(pwm.state(channel).enabled);
     EXPECT_FALSE(pwm.state(channel).requested);
@@ -281,9 +274,9 @@ TEST(DaemonSysfs, TimedOutputWritesTheOnTimeAtEachSwitchOnAndZeroAtEachSwitchOff
     const auto opened = enable.writes().size();
 
     const auto expected = expected_switches(kFullThenHalf);
-    GuestStallMeter stalls;
-    play_to_the_end(daemon, kFullThenHalf);
-    const double tolerance_s = onset_tolerance_s(stalls);
+    const auto played = play_to_the_end(daemon, kFullThenHalf);
+    ASSERT_TRUE(played.completed);
+    const double tolerance_s = played.onset_tolerance_s;
     EXPECT_EQ(daemon.stop_daemon(), 0) << daemon.daemon_log();
     // The watcher's thread reads the last switch-off on its own time, maybe after the daemon
     // has gone (as DaemonEvdev's device read its last stop after PlaybackFinished).

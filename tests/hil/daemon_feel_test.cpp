@@ -19,6 +19,7 @@
 #include "tests/hil/pwm_sim_chip.hpp"
 #include "tests/hil/score_expectations.hpp"
 #include "tests/hil/uinput_vibrator.hpp"
+#include "tests/hil/watched_playback.hpp"
 #include "tests/support/daemon_fixture.hpp"
 #include "tests/support/wait_until.hpp"
 
@@ -73,14 +74,6 @@ std::string listing(const std::vector<LinesState>& states, std::size_t limit = 6
     return out.str();
 }
 
-void play_to_the_end(DaemonFixture& daemon, const std::string& score) {
-    auto client = daemon.client();
-    const auto id = client->Play(score, {});
-    std::string reason;
-    ASSERT_TRUE(client->wait_finished(id, &reason)) << daemon.daemon_log();
-    EXPECT_EQ(reason, "completed") << daemon.daemon_log();
-}
-
 // The sampler has seen every line low again: it polls on a thread of its own, which under TCG can
 // lag the lines themselves (reading them directly is not enough before taking its changes).
 bool sampler_ends_low(const GpioLinesSampler& sampler) {
@@ -132,9 +125,9 @@ TEST(DaemonFeel, GpioErmOverdrivesTheNotesStartAndDrivesItsEndBackwards) {
     EXPECT_NEAR(drives[1].at - drives[0].at, 0.2 * std::log(2.0), 1e-6);
     EXPECT_NEAR(drives[3].at - drives[2].at, 0.2 * std::log(1.5), 1e-6);
 
-    GuestStallMeter stalls;
-    play_to_the_end(daemon, score);
-    const double tolerance_s = onset_tolerance_s(stalls);
+    const auto played = play_to_the_end(daemon, score);
+    ASSERT_TRUE(played.completed);
+    const double tolerance_s = played.onset_tolerance_s;
     ASSERT_TRUE(eventually([&] { return sim.value(0) == 0 && sim.value(1) == 0; }, 1s));
     ASSERT_TRUE(eventually([&] { return sampler_ends_low(sampler); }, 1s))
         << listing(sampler.changes(), 400);
@@ -197,9 +190,9 @@ TEST(DaemonFeel, GpioLraBrakesInAntiPhaseWithItsBridgeSwapped) {
     const double brake_s = drives[2].at - drives[1].at;
     EXPECT_NEAR(brake_s, 10.0 / (std::numbers::pi * 50.0) * std::log(2.0), 1e-4);
 
-    GuestStallMeter stalls;
-    play_to_the_end(daemon, score);
-    const double tolerance_s = onset_tolerance_s(stalls);
+    const auto played = play_to_the_end(daemon, score);
+    ASSERT_TRUE(played.completed);
+    const double tolerance_s = played.onset_tolerance_s;
     ASSERT_TRUE(eventually([&] { return sim.value(0) == 0 && sim.value(1) == 0; }, 1s));
     ASSERT_TRUE(eventually([&] { return sampler_ends_low(sampler); }, 1s))
         << listing(sampler.changes(), 400);
@@ -264,9 +257,9 @@ TEST(DaemonFeel, SysfsPwmOverdrivesThenReversesWithItsDirectionLine) {
     const auto score = whole_note();
     const auto drives = planned(score, slow_erm(), false);
     ASSERT_EQ(drives.size(), 4u);
-    GuestStallMeter stalls;
-    play_to_the_end(daemon, score);
-    const double tolerance_s = onset_tolerance_s(stalls);
+    const auto played = play_to_the_end(daemon, score);
+    ASSERT_TRUE(played.completed);
+    const double tolerance_s = played.onset_tolerance_s;
     ASSERT_TRUE(eventually([&] { return sim.value(0) == 0; }, 1s));
     ASSERT_TRUE(eventually([&] { return sampler_ends_low(direction); }, 1s));
 
@@ -336,9 +329,9 @@ TEST(DaemonFeel, EvdevOverdrivesWithFullMagnitudeAndBrakesWithANegativeOne) {
     const auto score = whole_note("4");  // 200 Hz
     const auto drives = planned(score, lra, true);
     ASSERT_EQ(drives.size(), 4u);
-    GuestStallMeter stalls;
-    play_to_the_end(daemon, score);
-    const double tolerance_s = onset_tolerance_s(stalls);
+    const auto played = play_to_the_end(daemon, score);
+    ASSERT_TRUE(played.completed);
+    const double tolerance_s = played.onset_tolerance_s;
     vibscore::testing::wait_until([&] { return vibrator.playing().empty(); }, 5s, 2ms);
     // Each start the device saw, with the magnitude of the effect it started.
     std::map<int, ff_effect> uploaded;
