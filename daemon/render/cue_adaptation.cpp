@@ -255,6 +255,9 @@ class ActuatorDrives final : public Stage {
             read_ahead(current.at);
             const double until = !ahead_.empty() ? ahead_.front().at : end_of_pass();
             const bool silence_follows = ahead_.empty() || !vibrates(ahead_.front());
+            if (current.starts_note) {
+                planner_.note_starts();
+            }
             planner_.segment(current.at, until, current.amplitude, current.frequency_hz,
                              silence_follows, made,
                              silence_follows || !vibrates(current) ? std::span<const Written>{}

@@ -104,13 +104,15 @@ std::optional<Cue> ScheduleStream::tone_drive() {
         }
         if (const auto dt = breakpoints_.next()) {
             const double amplitude = Performance::amplitude(tone, *dt);
-            if (tone.kind == Tone::Kind::sine) {
-                return drive_at(tone.onset + *dt, std::abs(amplitude),
-                                instantaneous_frequency(tone, *dt));
-            }
-            return drive_at(tone.onset + *dt,
-                            std::abs(amplitude * performance_->shape_level(tone, *dt, cursor_)),
-                            0.0);
+            Cue drive =
+                tone.kind == Tone::Kind::sine
+                    ? drive_at(tone.onset + *dt, std::abs(amplitude),
+                               instantaneous_frequency(tone, *dt))
+                    : drive_at(tone.onset + *dt,
+                               std::abs(amplitude * performance_->shape_level(tone, *dt, cursor_)),
+                               0.0);
+            drive.starts_note = *dt == 0.0;
+            return drive;
         }
         in_tone_ = false;
         ++tone_;

@@ -21,6 +21,10 @@ struct Cue {
     // to ramp_to over ramp_s seconds (0: no ramp) and holds there until the next drive.
     double ramp_to = 0.0;
     double ramp_s = 0.0;
+    // drive, as scheduled: the first of a written note (tied to the one before or not), from
+    // which on that note's strength is what its end is judged against (a glide's or a legato
+    // line's last note is felt as itself, not as the strongest before it).
+    bool starts_note = false;
     // position: the note or rest that begins now.
     std::size_t bar = 0, symbol = 0;
 };

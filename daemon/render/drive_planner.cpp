@@ -248,7 +248,7 @@ std::optional<DrivePlanner::Step> DrivePlanner::robust_brake(double at, double f
                 // A brake must be better by more than rounding: of two that stop it alike, the
                 // first found (the strongest, the note's frequency first, the shorter first) is
                 // kept, whatever the build's last bit.
-                if (nominal < best - kBetter) {
+                if (nominal < best - kBetter && !rebounds(at, brake, t)) {
                     best = nominal;
                     chosen = Step{t, brake};
                 }
@@ -263,10 +263,24 @@ double DrivePlanner::quiet_level() const {
     return kQuiet * (note_peak_ > 0.0 ? note_peak_ : Physics::strength(state_));
 }
 
+bool DrivePlanner::rebounds(double at, const Drive& brake, double length) const {
+    // Eight looks a period of that ripple (bench/feel's plant saw a 175 Hz Q-25 LRA braked at
+    // 168 Hz cross 10 % twice within 1.5 ms, between two of a brake search's looks), and never
+    // fewer than the search's.
+    const double ripple_hz = physics_.frequency_of(brake) + physics_.declaration().resonance_hz;
+    const int looks = std::max(kLooks, static_cast<int>(std::ceil(8.0 * ripple_hz * length)));
+    auto watch = motion_.braking(physics_, at, drive_, brake, quiet_level());
+    double rebound = 0.0;
+    for (int k = 1; k <= looks; ++k) {
+        // Each look keeps the worst so far; the last also judges the brake ending there.
+        rebound = watch.rebound_until(length * k / looks);
+    }
+    return rebound > 0.0;
+}
+
 std::optional<DrivePlanner::Step> DrivePlanner::rest_brake(double at, bool& any) const {
     const auto& d = physics_.declaration();
     const double search = 3.0 * d.resonance_hz / d.q;
-    const double quiet = quiet_level();
     std::optional<Step> quickest;
     any = false;
     for (const double amplitude : kBrakeAmplitudes) {
@@ -276,12 +290,7 @@ std::optional<DrivePlanner::Step> DrivePlanner::rest_brake(double at, bool& any)
                 break;  // quickest first: the rest at this amplitude are slower still
             }
             const Drive drive{-amplitude, brake.frequency_hz};
-            auto watch = motion_.braking(physics_, at, drive_, drive, quiet);
-            double rebound = 0.0;
-            for (int k = 1; k <= kLooks; ++k) {
-                rebound = watch.rebound_until(brake.after_s * k / kLooks);
-            }
-            if (rebound <= 0.0) {
+            if (!rebounds(at, drive, brake.after_s)) {
                 quickest = Step{brake.after_s, drive};
                 break;
             }
@@ -567,10 +576,11 @@ void DrivePlanner::segment(double at, double until, double strength, double freq
         note_cut_ = false;
     }
     if (written > 0.0) {
-        // A note's strength is its strongest since the last silence (a decrescendo's end is
-        // judged against where it started).
-        note_peak_ = silent_ ? written : std::max(note_peak_, written);
+        // A note's strength is its strongest since it began (a decrescendo's end is judged
+        // against where it started, a legato line's last note against itself).
+        note_peak_ = silent_ || note_starts_ ? written : std::max(note_peak_, written);
     }
+    note_starts_ = false;
     silent_ = written <= 0.0;
     std::vector<Step> steps;
     if (!options_.compensation) {

@@ -107,6 +107,10 @@ class DrivePlanner {
     void segment(double at, double until, double strength, double frequency_hz,
                  bool silence_follows, std::vector<Cue>& out,
                  std::span<const Written> rest_of_note = {});
+    // The next segment is the first of a written note, tied to the one before or after a
+    // silence: the note's strength, which its end and any rebound after it are judged against,
+    // is counted from there (a glide's last note is felt as itself).
+    void note_starts() { note_starts_ = true; }
     // How far ahead of a segment segment() wants to be shown the note's end: 0 when it brakes
     // (the end is then the brake's), plans as exact (only the last segment ends early) or does
     // not compensate.
@@ -171,6 +175,10 @@ class DrivePlanner {
     std::optional<Step> rest_brake(double at, bool& any) const;
     // Below which a brake's watch keeps the LRA once it is there: kQuiet of the note it ends.
     double quiet_level() const;
+    // Whether `brake` from `at` for `length` leaves the LRA, by its whole motion, back above
+    // quiet_level() once below it, looked at finely enough to see the ripple the brake's drive
+    // and the LRA's own ringing make together (at their frequencies' sum).
+    bool rebounds(double at, const actuator::Drive& brake, double length) const;
 
     // The most a hold at `frequency_hz` may drive so that no LRA within the margins settles
     // further from `strength` than without compensation (infinite without margins).
@@ -182,6 +190,7 @@ class DrivePlanner {
     actuator::Drive drive_;
     double last_frequency_hz_ = 0.0;  // of the last drive that vibrated: braking continues it
     double note_peak_ = 0.0;          // the last note's strongest, as written (and scaled)
+    bool note_starts_ = false;        // note_starts(): the next segment begins a written note
     bool silent_ = true;              // the last segment was a silence
     bool note_cut_ = false;           // the note's drive has ended early: it coasts to its end
     // Where each of members_ would be had the note been sent uncompensated (from where it was

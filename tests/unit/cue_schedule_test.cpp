@@ -70,6 +70,25 @@ TEST(CueSchedule, LegatoNotesChangeWithoutGoingOff) {
     EXPECT_EQ(cues[2].amplitude, 0.0);
 }
 
+TEST(CueSchedule, EachNotesFirstDriveSaysItStartsANoteAndNoStepWithinItDoes) {
+    // A legato line of a crescendo into a steady note: the drive at each note's onset starts a
+    // note, tied or not; the crescendo's steps and the silence after do not.
+    const auto cues =
+        drives(cues_for("<Note length=\"quarter\" number=\"2\" string=\"1\" legato=\"1\" "
+                        "dynamics=\"crescendo\"/>"
+                        "<Note length=\"quarter\" number=\"1\" string=\"2\" legato=\"1\"/>",
+                        sine_clef(1.0, {150, 200}, {0.5, 1.0})));
+    ASSERT_GE(cues.size(), 4u);
+    std::vector<double> starts;
+    for (const Cue& cue : cues) {
+        if (cue.starts_note) {
+            starts.push_back(cue.at);
+        }
+    }
+    EXPECT_EQ(starts, (std::vector<double>{0.0, 1.0}));
+    EXPECT_EQ(cues.back().amplitude, 0.0);
+}
+
 TEST(CueSchedule, RampsAreFollowedInSmallSteps) {
     const auto cues = drives(
         cues_for("<Note length=\"quarter\" number=\"2\" string=\"1\" dynamics=\"crescendo\"/>",
