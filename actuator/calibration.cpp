@@ -294,9 +294,10 @@ void estimate_erm(Estimate& e, const Plan& plan, const std::vector<Vec3>& vibrat
         const double band = e.sample_rate_hz / (2.0 * length);
         std::vector<double> seen = weight;
         bool blind = false;
+        const std::vector<double> speeds =
+            fit::erm_speeds(plan, best.spin_up_s, best.spin_down_s, best.delay_s, *best_times);
         for (std::size_t k = 0; k < seen.size(); ++k) {
-            const double speed = std::abs(fit::erm_speed(plan, best.spin_up_s, best.spin_down_s,
-                                                         best.delay_s, (*best_times)[k]));
+            const double speed = std::abs(speeds[k]);
             for (const double rotation : rotations) {
                 if (full_speed_hz > 0.0 &&
                     std::abs(rotation * speed - 0.5 * e.sample_rate_hz) < band) {

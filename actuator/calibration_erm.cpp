@@ -15,21 +15,38 @@
 
 namespace vibscore::actuator::calibration::fit {
 
-double erm_speed(const Plan& plan, double spin_up_s, double spin_down_s, double delay_s,
-                 double t_s) {
+std::vector<double> erm_speeds(const Plan& plan, double spin_up_s, double spin_down_s,
+                               double delay_s, const std::vector<double>& t_s) {
+    // The speed each row starts from, chained once: a reading then takes one step from the start
+    // of its row instead of the whole chain again (the fits evaluate this thousands of times over
+    // thousands of readings). The rows' times never go backwards (parse_plan_csv), so a
+    // reading's row is found by bisection.
+    const std::size_t rows = plan.rows.size();
+    std::vector<double> starts(rows), entering(rows);
     double speed = 0.0;
-    for (std::size_t i = 0; i < plan.rows.size(); ++i) {
-        const double start = plan.rows[i].t_s + delay_s;
-        if (t_s <= start) {
-            break;
+    for (std::size_t i = 0; i < rows; ++i) {
+        starts[i] = plan.rows[i].t_s + delay_s;
+        entering[i] = speed;
+        if (i + 1 < rows) {
+            const double u = plan.rows[i].amplitude;
+            const double tau = u != 0.0 ? spin_up_s : spin_down_s;
+            const double dt = (plan.rows[i + 1].t_s + delay_s) - starts[i];
+            speed = u + (speed - u) * std::exp(-dt / tau);
         }
-        const double end = i + 1 < plan.rows.size() ? plan.rows[i + 1].t_s + delay_s : INFINITY;
-        const double dt = std::min(t_s, end) - start;
+    }
+    std::vector<double> out(t_s.size(), 0.0);
+    for (std::size_t k = 0; k < t_s.size(); ++k) {
+        // The rows that start before the reading; the last of them is the one it falls in.
+        const auto after = std::lower_bound(starts.begin(), starts.end(), t_s[k]);
+        if (after == starts.begin()) {
+            continue;
+        }
+        const std::size_t i = static_cast<std::size_t>(after - starts.begin()) - 1;
         const double u = plan.rows[i].amplitude;
         const double tau = u != 0.0 ? spin_up_s : spin_down_s;
-        speed = u + (speed - u) * std::exp(-dt / tau);
+        out[k] = u + (entering[i] - u) * std::exp(-(t_s[k] - starts[i]) / tau);
     }
-    return speed;
+    return out;
 }
 
 namespace {
@@ -57,9 +74,9 @@ struct Energy {
     // The residual, and the scale and floor that give it.
     double rss(double up, double down, double delay, double* scale = nullptr,
                double* floor = nullptr, double filter = 0.0, int stages = 1) const {
-        std::vector<double> model(t.size());
+        std::vector<double> model = erm_speeds(plan, up, down, delay, t);
         for (std::size_t k = 0; k < t.size(); ++k) {
-            const double s = erm_speed(plan, up, down, delay, t[k]);
+            const double s = model[k];
             const double gain = 1.0 / (1.0 + filter * filter * s * s);
             model[k] = s * s * s * s * (stages == 2 ? gain * gain : gain);
         }
@@ -132,11 +149,10 @@ ErmFit fit_erm(const Plan& plan, const std::vector<double>& t_s, const std::vect
     {
         double a = 0.0, c = 0.0;
         model.rss(std::exp(found[0]), std::exp(found[1]), found[2], &a, &c);
-        std::vector<double> shape(t_s.size());
-        for (std::size_t k = 0; k < t_s.size(); ++k) {
-            const double speed =
-                erm_speed(plan, std::exp(found[0]), std::exp(found[1]), found[2], t_s[k]);
-            shape[k] = speed * speed * speed * speed;
+        std::vector<double> shape =
+            erm_speeds(plan, std::exp(found[0]), std::exp(found[1]), found[2], t_s);
+        for (double& speed : shape) {
+            speed = speed * speed * speed * speed;
         }
         shape = box_smooth(shape, half);
         std::vector<double> relative(t_s.size());
@@ -240,14 +256,15 @@ ErmSpread erm_burst_spread(const Plan& plan, const std::vector<double>& t_s,
         }
     }
     starts.push_back(plan.duration_s() + fit.delay_s + 1.0);
+    const std::vector<double> speeds =
+        erm_speeds(plan, fit.spin_up_s, fit.spin_down_s, fit.delay_s, t_s);
     std::vector<double> ups, downs;
     for (std::size_t b = 0; b + 1 < starts.size(); ++b) {
         // From a little before the step (the quiet, for the floor) to the next step.
         std::vector<double> t, e, w;
         for (std::size_t k = 0; k < t_s.size(); ++k) {
             if (t_s[k] >= starts[b] - 0.03 && t_s[k] < starts[b + 1]) {
-                const double s =
-                    erm_speed(plan, fit.spin_up_s, fit.spin_down_s, fit.delay_s, t_s[k]);
+                const double s = speeds[k];
                 t.push_back(t_s[k]);
                 e.push_back(energy[k]);
                 w.push_back(weight[k] / std::pow(s * s * s * s + lambda, 2.0));

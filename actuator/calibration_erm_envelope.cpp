@@ -177,10 +177,8 @@ ErmEnvelope erm_envelope(const Plan& plan, const std::vector<double>& t_s,
     if (n < 3) {
         return {};
     }
-    std::vector<double> speed(n);
-    for (std::size_t k = 0; k < n; ++k) {
-        speed[k] = erm_speed(plan, first.spin_up_s, first.spin_down_s, first.delay_s, t_s[k]);
-    }
+    const std::vector<double> speed =
+        erm_speeds(plan, first.spin_up_s, first.spin_down_s, first.delay_s, t_s);
     // On a uniform clock the plateaus cannot tell the rotation from its mirror about half the
     // rate (rate - f): both fit them alike. While the speed changes they part (the mirror's
     // local frequency moves the wrong way), so the one whose envelope explains more is kept.

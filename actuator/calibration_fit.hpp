@@ -129,8 +129,8 @@ ErmEnvelope erm_envelope(const Plan& plan, const std::vector<double>& t_s,
                          const std::vector<Vec3>& vibration, const ErmFit& first, int half,
                          int high_pass_half);
 
-// An ERM's normalised speed (1 = full scale's) at `t_s` under `plan`, shifted `delay_s`.
-double erm_speed(const Plan& plan, double spin_up_s, double spin_down_s, double delay_s,
-                 double t_s);
+// An ERM's normalised speed (1 = full scale's) at each of `t_s` under `plan`, shifted `delay_s`.
+std::vector<double> erm_speeds(const Plan& plan, double spin_up_s, double spin_down_s,
+                               double delay_s, const std::vector<double>& t_s);
 
 }  // namespace vibscore::actuator::calibration::fit
