@@ -19,8 +19,7 @@ std::vector<double> erm_speeds(const Plan& plan, double spin_up_s, double spin_d
                                double delay_s, const std::vector<double>& t_s) {
     // The speed each row starts from, chained once: a reading then takes one step from the start
     // of its row instead of the whole chain again (the fits evaluate this thousands of times over
-    // thousands of readings). The rows' times never go backwards (parse_plan_csv), so a
-    // reading's row is found by bisection.
+    // thousands of readings). The rows' times never go backwards (parse_plan_csv).
     const std::size_t rows = plan.rows.size();
     std::vector<double> starts(rows), entering(rows);
     double speed = 0.0;
@@ -35,13 +34,22 @@ std::vector<double> erm_speeds(const Plan& plan, double spin_up_s, double spin_d
         }
     }
     std::vector<double> out(t_s.size(), 0.0);
+    // The first row that starts at or after the reading: readings come in time order, so it only
+    // moves on, and is searched for again where one goes back (a reordered recording).
+    std::size_t next = 0;
     for (std::size_t k = 0; k < t_s.size(); ++k) {
-        // The rows that start before the reading; the last of them is the one it falls in.
-        const auto after = std::lower_bound(starts.begin(), starts.end(), t_s[k]);
-        if (after == starts.begin()) {
-            continue;
+        const double t = t_s[k];
+        if (next > 0 && starts[next - 1] >= t) {
+            next = static_cast<std::size_t>(std::lower_bound(starts.begin(), starts.end(), t) -
+                                            starts.begin());
         }
-        const std::size_t i = static_cast<std::size_t>(after - starts.begin()) - 1;
+        while (next < rows && starts[next] < t) {
+            ++next;
+        }
+        if (next == 0) {
+            continue;  // before the plan's first row: at rest
+        }
+        const std::size_t i = next - 1;
         const double u = plan.rows[i].amplitude;
         const double tau = u != 0.0 ? spin_up_s : spin_down_s;
         out[k] = u + (entering[i] - u) * std::exp(-(t_s[k] - starts[i]) / tau);

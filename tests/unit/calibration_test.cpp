@@ -11,6 +11,7 @@
 #include <string>
 
 #include "actuator/calibration.hpp"
+#include "actuator/calibration_fit.hpp"
 #include "actuator/vibration_sensor.hpp"
 #include "tests/support/example_actuators.hpp"
 
@@ -229,6 +230,46 @@ Declaration erm(double up_s, double down_s) {
     d.spin_up_s = up_s;
     d.spin_down_s = down_s;
     return d;
+}
+
+TEST(CalibrationErmModel, TheSpeedFollowsEachRowFromWhereThePreviousOneLeftIt) {
+    // Drive from 0.1 s to 0.4 s, coast after; the model shifted 5 ms late.
+    Plan plan;
+    plan.kind = Kind::erm;
+    plan.rows = {{0.0, 0.0, 0.0}, {0.1, 1.0, 0.0}, {0.4, 0.0, 0.0}, {0.8, 0.0, 0.0}};
+    const double up = 0.04, down = 0.09, delay = 0.005;
+    const std::vector<double> t{-0.01, 0.1, 0.105, 0.155, 0.405, 0.505, 0.9};
+    const std::vector<double> speed = fit::erm_speeds(plan, up, down, delay, t);
+    const double at_end = 1.0 - std::exp(-0.3 / up);
+    EXPECT_EQ(speed[0], 0.0);  // before the plan
+    EXPECT_EQ(speed[1], 0.0);
+    EXPECT_EQ(speed[2], 0.0);  // the drive's first instant, 5 ms late
+    EXPECT_NEAR(speed[3], 1.0 - std::exp(-0.05 / up), 1e-12);
+    EXPECT_NEAR(speed[4], at_end, 1e-12);
+    EXPECT_NEAR(speed[5], at_end * std::exp(-0.1 / down), 1e-12);
+    EXPECT_NEAR(speed[6], at_end * std::exp(-0.495 / down), 1e-12);
+}
+
+TEST(CalibrationErmModel, ReadingsOutOfOrderGetTheSpeedsTheyGetInOrder) {
+    Plan plan;
+    plan.kind = Kind::erm;
+    plan.rows = {
+        {0.0, 0.6, 0.0}, {0.2, 0.0, 0.0}, {0.2, 1.0, 0.0}, {0.5, -0.5, 0.0}, {0.7, 0.0, 0.0}};
+    std::vector<double> in_order;
+    for (double t = -0.05; t < 0.9; t += 0.0037) {
+        in_order.push_back(t);
+    }
+    std::vector<double> shuffled = in_order;
+    std::reverse(shuffled.begin() + 40, shuffled.end());
+    std::rotate(shuffled.begin(), shuffled.begin() + 90, shuffled.end());
+    const std::vector<double> ordered = fit::erm_speeds(plan, 0.03, 0.07, -0.002, in_order);
+    const std::vector<double> mixed = fit::erm_speeds(plan, 0.03, 0.07, -0.002, shuffled);
+    for (std::size_t k = 0; k < shuffled.size(); ++k) {
+        const auto where = std::find(in_order.begin(), in_order.end(), shuffled[k]);
+        ASSERT_NE(where, in_order.end());
+        EXPECT_EQ(mixed[k], ordered[static_cast<std::size_t>(where - in_order.begin())])
+            << "at " << shuffled[k] << " s";
+    }
 }
 
 TEST(CalibrationEstimate, FindsAnErmsTimeConstantsAt1kHz) {
