@@ -64,7 +64,8 @@ class ResonatorMotion {
     // The strongest any phase gets (measured at the drive's frequency) if at `t` the drive `from`
     // in force were replaced by `first` for `first_s` and then by `then` for `then_s`, looked at
     // `looks` times over each (and eight times a cycle of its drive at the least): an overdrive
-    // and the hold after it, meeting what still rings at every phase if it starts a vibration.
+    // and the hold after it, meeting what still rings at every phase if it starts a vibration,
+    // and starting at every phase of the carrier.
     double strongest(const Physics& physics, double t, const Drive& from, const Drive& first,
                      double first_s, const Drive& then, double then_s, int looks) const;
 

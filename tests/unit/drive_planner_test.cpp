@@ -321,6 +321,23 @@ TEST(DrivePlanner, ALowQLrasNotesFarFromItsResonanceDoNotRiseAgainAfterTheirBrak
     }
 }
 
+TEST(DrivePlanner, AnOverdriveStartingWhereLittleRingsOvershootsAtNoPhaseOfItsCarrier) {
+    // Six notes found by a random search (175 Hz Q-8 LRA, part-to-part margins): the last, 0.69
+    // at 199 Hz 33 ms after a brake far off resonance, went 5.6 % above its strength on the
+    // plant where the whole motion said 1.3 %. What the brake left rang in each followed motion
+    // at about the phase its last start gave it, so meeting it at k / 24 of a turn from there
+    // tried one phase of the carrier 24 times; the carrier's own phases are now tried too.
+    const Declaration lra = example_lra(175.0, 8.0);
+    const std::vector<std::pair<double, double>> notes{
+        {0.38993824406518474, 185.93277273968641}, {0.76546841153375145, 189.75018008204597},
+        {0.33702380905531454, 183.01762291350599}, {0.42514595721410009, 183.41564297900308},
+        {0.98272871522071492, 155.64530642583725}, {0.6948025645562127, 198.54576823176035}};
+    const double length = 0.043006162905937576;
+    const auto played =
+        play_notes(lra, lra, {.reverse = true, .uncertainty = kPartToPart}, notes, length);
+    EXPECT_LE(artefacts(played, notes, length).overshoot, 0.05);
+}
+
 TEST(DrivePlanner, ARobustBrakeIsWatchedFinelyEnoughToSeeItsRippleCrossTheQuietLevelAgain) {
     // Braked a little off its resonance, an LRA's strength falls with a ripple at the sum of the
     // brake's and its own frequencies (about 3 ms a period here). Watched only at a brake
