@@ -138,6 +138,14 @@ ResonatorMotion::Brake::Brake(const Physics& physics, Motions motions, const Dri
     for (int l = 0; l < kLevels; ++l) {
         levels_[l] = quiet * (0.8 + 0.4 * l / (kLevels - 1));
     }
+    // Off resonance a brake's anti-phase holds only for a while: past it the brake drives the
+    // resonator on (a 0.37 note at 171 Hz on a 150 Hz Q-25 LRA, braked at 168 Hz, was at 0.43
+    // when the next note started, and the planner's envelope said it was at rest).
+    const double driven_hz = physics.frequency_of(drive);
+    for (int k = 0; k < kPhases; ++k) {
+        ceiling_[k] =
+            std::max((1.0 + kPushUp) * strength(physics, motions_[k], driven_hz), levels_.back());
+    }
 }
 
 double ResonatorMotion::Brake::rebound_until(double length) {
@@ -152,6 +160,7 @@ double ResonatorMotion::Brake::rebound_until(double length) {
     for (int k = 0; k < kPhases; ++k) {
         const double now = strength(*physics_, motions_[k], driven_hz);
         const double left = strength(*physics_, motions_[k], own_hz);
+        rebound_ = std::max(rebound_, now - ceiling_[k]);
         for (int l = 0; l < kLevels; ++l) {
             below_[k][l] = below_[k][l] || now < levels_[l];
             if (below_[k][l]) {

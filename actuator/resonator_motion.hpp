@@ -47,8 +47,11 @@ class ResonatorMotion {
       public:
         // The most any phase has been above a level after being below it, in strength units
         // (negative: never), looked at at every call so far (increasing `length`s) and, for a
-        // brake ending at `length`, once it is left to ring at its own frequency.
+        // brake ending at `length`, once it is left to ring at its own frequency; positive too
+        // where a phase has gone more than kPushUp above its strength at the brake's start (and
+        // above the highest level): that brake adds energy instead of taking it.
         double rebound_until(double length);
+        static constexpr double kPushUp = 0.10;
 
       private:
         friend class ResonatorMotion;
@@ -57,6 +60,7 @@ class ResonatorMotion {
         Motions motions_;
         Drive drive_;
         std::array<double, kLevels> levels_{};
+        std::array<double, kPhases> ceiling_{};  // the most each phase may reach while braked
         std::array<std::array<bool, kLevels>, kPhases> below_{};
         double length_ = 0.0;
         double rebound_ = -INFINITY;

@@ -338,6 +338,24 @@ TEST(DrivePlanner, AnOverdriveStartingWhereLittleRingsOvershootsAtNoPhaseOfItsCa
     EXPECT_LE(artefacts(played, notes, length).overshoot, 0.05);
 }
 
+TEST(DrivePlanner, NoBrakeDrivesTheLraOnPastWhereItStarted) {
+    // Found by a random search (a 150 Hz Q-25 LRA planned as exact, notes up to 15 % off its
+    // resonance): the fifth note, 0.37 at 171 Hz, was braked at 168 Hz for the whole silence
+    // after it, which the envelope said brought it to rest; by the whole motion the brake drove
+    // it on, to 0.43 when the last note (0.36 at 141 Hz) started, which went 37 % above. A brake
+    // whose whole motion rises more than a tenth above where it started is not taken.
+    const Declaration lra = example_lra(150.0, 25.0);
+    const std::vector<std::pair<double, double>> notes{
+        {0.33809932974054102, 156.78512669386521}, {0.32813518039595257, 137.76294123239342},
+        {0.62018817445966667, 140.30160408584038}, {0.81015284941922339, 139.86482199694555},
+        {0.36731436684123586, 171.3232598843806},  {0.36270933508779135, 140.57076463144489}};
+    const double length = 0.026631409135763562;
+    const auto played = play_notes(lra, lra, {.reverse = true}, notes, length);
+    EXPECT_LE(artefacts(played, notes, length).overshoot, 0.05);
+    const auto start = static_cast<std::size_t>(10.0 * length * kPlantRate);
+    EXPECT_LT(played.strength[start], notes[4].first);
+}
+
 TEST(DrivePlanner, ARobustBrakeIsWatchedFinelyEnoughToSeeItsRippleCrossTheQuietLevelAgain) {
     // Braked a little off its resonance, an LRA's strength falls with a ripple at the sum of the
     // brake's and its own frequencies (about 3 ms a period here). Watched only at a brake
