@@ -122,6 +122,32 @@ TEST(ResonatorMotion, ABrakeThatStopsItAtResonanceLeavesNoReboundAndOneThatGoesO
     EXPECT_GT(rebound, 0.2);
 }
 
+TEST(ResonatorMotion, ABrakeMayTakeItATenthAboveWhereItStartedAndNoFurther) {
+    // Held at resonance long enough to settle, then "braked" by a stronger drive at the same
+    // frequency and phase: the LRA settles at the two drives' ratio of where it was. A tenth
+    // above (the last allowed, a hair under it) is no rebound; a hair over it is. A note far
+    // above the quiet level, so the levels' own watch plays no part.
+    const Physics physics(example_lra(175.0, 15.0));
+    const Drive note{0.5, 175.0};
+    const double settled = 20.0 * physics.time_constant_s(note);
+    const double edge = 1.0 + ResonatorMotion::Brake::kPushUp;
+    for (const double ratio : {edge - 1e-3, edge + 1e-3}) {
+        ResonatorMotion motion;
+        motion.change(physics, 0.0, {}, note);
+        const Drive stronger{note.amplitude * ratio, note.frequency_hz};
+        auto brake = motion.braking(physics, settled, note, stronger, 0.1 * note.amplitude);
+        double rebound = 0.0;
+        for (int k = 1; k <= 64; ++k) {
+            rebound = brake.rebound_until(settled * k / 64.0);
+        }
+        if (ratio < edge) {
+            EXPECT_LT(rebound, 0.0) << ratio;
+        } else {
+            EXPECT_GT(rebound, 0.0) << ratio;
+        }
+    }
+}
+
 TEST(ResonatorMotion, AnErmHasNoneOfIt) {
     const Physics physics(example_erm());
     ResonatorMotion motion;
