@@ -28,10 +28,10 @@ Constants constants(const Physics& physics) {
 
 }  // namespace
 
-ResonatorMotion::Motions ResonatorMotion::advanced(const Physics& physics, Motions motions,
-                                                   const Drive& drive, double dt) {
+void ResonatorMotion::advance(const Physics& physics, Motions& motions, const Drive& drive,
+                              double dt) {
     if (!physics.is_lra() || !(dt > 0.0)) {
-        return motions;
+        return;
     }
     const Constants c = constants(physics);
     const std::complex<double> l(-c.g, c.wd);
@@ -47,33 +47,40 @@ ResonatorMotion::Motions ResonatorMotion::advanced(const Physics& physics, Motio
         m.w = decay * m.w + with * m.carrier + against * std::conj(m.carrier);
         m.carrier *= turn;
     }
-    return motions;
 }
 
-ResonatorMotion::Motions ResonatorMotion::changed(Motions motions, const Drive& from,
-                                                  const Drive& to, Start start) {
-    if (from.amplitude == 0.0 && to.amplitude != 0.0) {
-        // A vibration starts: at a phase of the backend's, against whatever still rings.
-        for (int k = 0; k < kPhases; ++k) {
-            const double ringing = start == Start::against_ringing && std::abs(motions[k].w) > 0.0
-                                       ? std::arg(motions[k].w)
-                                       : 0.0;
-            motions[k].carrier = std::polar(1.0, ringing + kTwoPi * k / kPhases);
-        }
+void ResonatorMotion::start(Now& now) {
+    double loudest = 0.0;
+    for (const Motion& m : now.own) {
+        loudest = std::max(loudest, std::abs(m.w));
     }
-    return motions;
+    now.before += loudest;
+    for (int k = 0; k < kPhases; ++k) {
+        now.motions[k].carrier = std::polar(1.0, kTwoPi * k / kPhases);
+        now.own[k] = {{}, now.motions[k].carrier};
+    }
 }
 
-ResonatorMotion::Motions ResonatorMotion::replaced_at(const Physics& physics, double t,
-                                                      const Drive& from, const Drive& to,
-                                                      Start start) const {
-    return changed(advanced(physics, motions_, from, t - time_), from, to, start);
+ResonatorMotion::Now ResonatorMotion::replaced_at(const Physics& physics, double t,
+                                                  const Drive& from, const Drive& to) const {
+    Now now = now_;
+    if (physics.is_lra() && t > time_) {
+        advance(physics, now.motions, from, t - time_);
+        advance(physics, now.own, from, t - time_);
+        now.before *= std::exp(-constants(physics).g * (t - time_));
+    }
+    if (from.amplitude == 0.0 && to.amplitude != 0.0) {
+        start(now);
+    }
+    return now;
 }
 
 void ResonatorMotion::change(const Physics& physics, double t, const Drive& from, const Drive& to) {
-    motions_ = replaced_at(physics, t, from, to, Start::absolute);
-    for (Motion& m : motions_) {
-        m.carrier /= std::abs(m.carrier);  // over a long playback, rounding would creep in
+    now_ = replaced_at(physics, t, from, to);
+    for (Motions* motions : {&now_.motions, &now_.own}) {
+        for (Motion& m : *motions) {
+            m.carrier /= std::abs(m.carrier);  // over a long playback, rounding would creep in
+        }
     }
     time_ = t;
 }
@@ -86,50 +93,60 @@ double ResonatorMotion::strength(const Physics& physics, const Motion& motion,
     return std::sqrt(x * x + v * v);
 }
 
+double ResonatorMotion::strength_of_ringing(const Physics& physics, double ringing,
+                                            double frequency_hz) {
+    // (x, v / omega) is M (Re w, Im w), M = [[0, 1 / wd], [1 / omega, -g / (omega wd)]]: at the
+    // worst phase, |w| times M's largest singular value.
+    const Constants c = constants(physics);
+    const double omega = kTwoPi * frequency_hz;
+    const double sum = 1.0 / (c.wd * c.wd) + (1.0 + c.g * c.g / (c.wd * c.wd)) / (omega * omega);
+    const double det = 1.0 / (c.wd * omega);
+    return ringing * std::sqrt(0.5 * (sum + std::sqrt(std::max(0.0, sum * sum - 4.0 * det * det))));
+}
+
 double ResonatorMotion::strongest(const Physics& physics, double t, const Drive& from,
                                   const Drive& first, double first_s, const Drive& then,
                                   double then_s, int looks) const {
     if (!physics.is_lra()) {
         return 0.0;
     }
+    const double g = constants(physics).g;
     double most = 0.0;
-    Motions motions;
+    Now now = replaced_at(physics, t, from, first);
+    // Where a vibration starts, the drive's own motion, from rest at every phase of the carrier
+    // (which alone moves its strength by 7 % of a note off resonance), and what rang before
+    // it, ringing down as if alone (the resonator is linear), met where the two add up: the
+    // backend's start may put it anywhere against the carrier. (Each motion met only the ringing
+    // its own phase had left: a 0.38 note at 178 Hz on a 175 Hz Q-8 LRA, started where 4 % of
+    // it still rang, went 5.7 % above on bench/feel's plant where that said 4.6 %.)
+    bool started = from.amplitude == 0.0 && first.amplitude != 0.0;
     const auto look = [&](const Drive& drive, double length) {
         // At least kLooksPerCycle a cycle: the half of the drive that turns against the
         // resonator ripples its strength at twice the drive's frequency, by up to 1 / 4Q.
-        const int n = std::max(
-            looks,
-            static_cast<int>(std::ceil(kLooksPerCycle * physics.frequency_of(drive) * length)));
+        const double hz = physics.frequency_of(drive);
+        const int n = std::max(looks, static_cast<int>(std::ceil(kLooksPerCycle * hz * length)));
         for (int k = 1; k <= n && length > 0.0; ++k) {
-            motions = advanced(physics, motions, drive, length / n);
-            for (const Motion& m : motions) {
-                most = std::max(most, strength(physics, m, physics.frequency_of(drive)));
+            advance(physics, now.motions, drive, length / n);
+            advance(physics, now.own, drive, length / n);
+            now.before *= std::exp(-g * length / n);
+            const double rings = started ? strength_of_ringing(physics, now.before, hz) : 0.0;
+            for (const Motion& m : started ? now.own : now.motions) {
+                most = std::max(most, strength(physics, m, hz) + rings);
             }
         }
     };
-    // Where a vibration starts, each of the followed motions meets what still rings in it at
-    // k / kPhases of a turn from its own phase (against_ringing), and starts at k / kPhases of a
-    // turn of the carrier (absolute): what the start sets ringing depends on both. Where little
-    // rings, each motion's ringing is at a phase its last start set, so against_ringing alone
-    // can leave the carrier's worst phases untried (a 0.69 note at 199 Hz on a 175 Hz Q-8 LRA,
-    // 33 ms after a brake, went 5.6 % above on bench/feel's plant where this said 1.3 %).
-    const bool starts = (from.amplitude == 0.0 && first.amplitude != 0.0) ||
-                        (first.amplitude == 0.0 && then.amplitude != 0.0);
-    for (const Start start : {Start::against_ringing, Start::absolute}) {
-        motions = replaced_at(physics, t, from, first, start);
-        look(first, first_s);
-        motions = changed(motions, first, then, start);
-        look(then, then_s);
-        if (!starts) {
-            break;  // the drive goes on: the two are the same
-        }
+    look(first, first_s);
+    if (first.amplitude == 0.0 && then.amplitude != 0.0) {
+        start(now);
+        started = true;
     }
+    look(then, then_s);
     return most;
 }
 
 ResonatorMotion::Brake ResonatorMotion::braking(const Physics& physics, double t, const Drive& from,
                                                 const Drive& brake, double quiet) const {
-    return Brake(physics, replaced_at(physics, t, from, brake, Start::absolute), brake, quiet);
+    return Brake(physics, replaced_at(physics, t, from, brake).motions, brake, quiet);
 }
 
 ResonatorMotion::Brake::Brake(const Physics& physics, Motions motions, const Drive& drive,
@@ -152,7 +169,7 @@ double ResonatorMotion::Brake::rebound_until(double length) {
     if (!physics_->is_lra()) {
         return -INFINITY;
     }
-    motions_ = advanced(*physics_, motions_, drive_, length - length_);
+    advance(*physics_, motions_, drive_, length - length_);
     length_ = std::max(length_, length);
     const double driven_hz = physics_->frequency_of(drive_);
     const double own_hz = physics_->declaration().resonance_hz;

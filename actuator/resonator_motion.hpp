@@ -20,7 +20,9 @@ namespace vibscore::actuator {
 // the first-order w' = l+ w + F u cos(theta), solved in closed form between changes. What it does
 // depends on the carrier's phase: the backends continue it from drive to drive, but where a
 // vibration starts it is the backend's (gpio-lra starts each waveform afresh), so the motion is
-// followed for kPhases phases of that start, and a brake is judged by the worst of them.
+// followed for kPhases phases of that start, and a brake is judged by the worst of them. Each
+// vibration starts at a phase of its own, though, so how strong what earlier ones left may be
+// is kept too, for how strong a new one may get meeting it.
 class ResonatorMotion {
   public:
     // Every call passes the same actuator (a planner's own, which may be moved).
@@ -36,6 +38,15 @@ class ResonatorMotion {
         std::complex<double> carrier{1.0, 0.0};  // e^(i theta)
     };
     using Motions = std::array<Motion, kPhases>;
+    struct Now {
+        // The whole motion, each start of a vibration at the same phase k / kPhases.
+        Motions motions{};
+        // The vibration going on alone, from rest at each phase of its start, and the most that
+        // what rang before it may ring (|w|): each earlier vibration started at a phase of its
+        // own, so what each left may meet the others' in phase.
+        Motions own{};
+        double before = 0.0;
+    };
 
   public:
     // A brake followed as it goes on, for each phase, for a rebound: once the LRA has been below
@@ -68,8 +79,8 @@ class ResonatorMotion {
     // The strongest any phase gets (measured at the drive's frequency) if at `t` the drive `from`
     // in force were replaced by `first` for `first_s` and then by `then` for `then_s`, looked at
     // `looks` times over each (and eight times a cycle of its drive at the least): an overdrive
-    // and the hold after it, meeting what still rings at every phase if it starts a vibration,
-    // and starting at every phase of the carrier.
+    // and the hold after it, starting at every phase of the carrier, with what rang before
+    // met where the two add up.
     double strongest(const Physics& physics, double t, const Drive& from, const Drive& first,
                      double first_s, const Drive& then, double then_s, int looks) const;
 
@@ -79,21 +90,20 @@ class ResonatorMotion {
                   double quiet) const;
 
   private:
-    static Motions advanced(const Physics& physics, Motions motions, const Drive& drive, double dt);
-    // Where a vibration starts, the phases its motions start at: `absolute` (each at its own
-    // phase k / kPhases, the same whatever rings), or `against_ringing` (each at k / kPhases of a
-    // turn from what still rings in it: every phase the new drive may meet the ringing at, for
-    // how strong the two may get together).
-    enum class Start { absolute, against_ringing };
-    static Motions changed(Motions motions, const Drive& from, const Drive& to, Start start);
-    // The motions as they would be at `t` had `to` replaced `from` there.
-    Motions replaced_at(const Physics& physics, double t, const Drive& from, const Drive& to,
-                        Start start) const;
+    static void advance(const Physics& physics, Motions& motions, const Drive& drive, double dt);
+    // Where a vibration starts (at a phase of the backend's: gpio-lra starts each waveform
+    // afresh), each motion goes on from its own phase k / kPhases, and what the last one left
+    // ringing joins what rang before it.
+    static void start(Now& now);
+    // What it would be at `t` had `to` replaced `from` there.
+    Now replaced_at(const Physics& physics, double t, const Drive& from, const Drive& to) const;
     // The amplitude of x, measured at `frequency_hz` as bench/feel's plant does (driven: the
     // drive's; left alone: the resonance).
     static double strength(const Physics& physics, const Motion& motion, double frequency_hz);
+    // The most `ringing` (|w|) measures at `frequency_hz`, at whatever phase it rings.
+    static double strength_of_ringing(const Physics& physics, double ringing, double frequency_hz);
 
-    Motions motions_{};
+    Now now_;
     double time_ = 0.0;
 };
 
