@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <span>
 
 namespace vibscore::actuator {
 
@@ -28,7 +29,7 @@ Constants constants(const Physics& physics) {
 
 }  // namespace
 
-void ResonatorMotion::advance(const Physics& physics, Motions& motions, const Drive& drive,
+void ResonatorMotion::advance(const Physics& physics, std::span<Motion> motions, const Drive& drive,
                               double dt) {
     if (!physics.is_lra() || !(dt > 0.0)) {
         return;
@@ -113,24 +114,23 @@ double ResonatorMotion::strongest(const Physics& physics, double t, const Drive&
     const double g = constants(physics).g;
     double most = 0.0;
     Now now = replaced_at(physics, t, from, first);
-    // Where a vibration starts, the drive's own motion, from rest at every phase of the carrier
-    // (which alone moves its strength by 7 % of a note off resonance), and what rang before
-    // it, ringing down as if alone (the resonator is linear), met where the two add up: the
-    // backend's start may put it anywhere against the carrier. (Each motion met only the ringing
-    // its own phase had left: a 0.38 note at 178 Hz on a 175 Hz Q-8 LRA, started where 4 % of
-    // it still rang, went 5.7 % above on bench/feel's plant where that said 4.6 %.)
-    bool started = from.amplitude == 0.0 && first.amplitude != 0.0;
+    // The vibration going on, from rest at every phase of the carrier where it started (which
+    // alone moves its strength by 7 % of a note off resonance), and what rang before it, ringing
+    // down as if alone (the resonator is linear), met where the two add up: each earlier
+    // vibration started at a phase of its own. (The whole motion, every start at one phase,
+    // said 4.6 % for a 0.38 note at 178 Hz on a 175 Hz Q-8 LRA started where 4 % of it still
+    // rang, and 4.5 % for a 0.38 note on a 175 Hz Q-25 LRA overdriven out of the brake of the
+    // note before; on bench/feel's plant they went 5.7 % and 10.7 % above.)
     const auto look = [&](const Drive& drive, double length) {
         // At least kLooksPerCycle a cycle: the half of the drive that turns against the
         // resonator ripples its strength at twice the drive's frequency, by up to 1 / 4Q.
         const double hz = physics.frequency_of(drive);
         const int n = std::max(looks, static_cast<int>(std::ceil(kLooksPerCycle * hz * length)));
         for (int k = 1; k <= n && length > 0.0; ++k) {
-            advance(physics, now.motions, drive, length / n);
             advance(physics, now.own, drive, length / n);
             now.before *= std::exp(-g * length / n);
-            const double rings = started ? strength_of_ringing(physics, now.before, hz) : 0.0;
-            for (const Motion& m : started ? now.own : now.motions) {
+            const double rings = strength_of_ringing(physics, now.before, hz);
+            for (const Motion& m : now.own) {
                 most = std::max(most, strength(physics, m, hz) + rings);
             }
         }
@@ -138,7 +138,6 @@ double ResonatorMotion::strongest(const Physics& physics, double t, const Drive&
     look(first, first_s);
     if (first.amplitude == 0.0 && then.amplitude != 0.0) {
         start(now);
-        started = true;
     }
     look(then, then_s);
     return most;
@@ -146,20 +145,33 @@ double ResonatorMotion::strongest(const Physics& physics, double t, const Drive&
 
 ResonatorMotion::Brake ResonatorMotion::braking(const Physics& physics, double t, const Drive& from,
                                                 const Drive& brake, double quiet) const {
-    return Brake(physics, replaced_at(physics, t, from, brake).motions, brake, quiet);
+    return Brake(physics, replaced_at(physics, t, from, brake), brake, quiet);
 }
 
-ResonatorMotion::Brake::Brake(const Physics& physics, Motions motions, const Drive& drive,
+ResonatorMotion::Brake::Brake(const Physics& physics, const Now& now, const Drive& drive,
                               double quiet)
-    : physics_(&physics), motions_(motions), drive_(drive) {
+    : physics_(&physics), drive_(drive) {
     for (int l = 0; l < kLevels; ++l) {
         levels_[l] = quiet * (0.8 + 0.4 * l / (kLevels - 1));
+    }
+    std::copy(now.motions.begin(), now.motions.end(), motions_.begin());
+    start_ = now.motions;
+    if (now.before > 0.01 * quiet) {
+        for (int level = 1; level <= kRingingLevels; ++level) {
+            for (int r = 0; r < kRingingPhases; ++r) {
+                const auto ringing =
+                    std::polar(now.before * level / kRingingLevels, kTwoPi * r / kRingingPhases);
+                for (const Motion& m : now.own) {
+                    motions_[count_++] = {m.w + ringing, m.carrier};
+                }
+            }
+        }
     }
     // Off resonance a brake's anti-phase holds only for a while: past it the brake drives the
     // resonator on (a 0.37 note at 171 Hz on a 150 Hz Q-25 LRA, braked at 168 Hz, was at 0.43
     // when the next note started, and the planner's envelope said it was at rest).
     const double driven_hz = physics.frequency_of(drive);
-    for (int k = 0; k < kPhases; ++k) {
+    for (int k = 0; k < count_; ++k) {
         ceiling_[k] =
             std::max((1.0 + kPushUp) * strength(physics, motions_[k], driven_hz), levels_.back());
     }
@@ -169,12 +181,13 @@ double ResonatorMotion::Brake::rebound_until(double length) {
     if (!physics_->is_lra()) {
         return -INFINITY;
     }
-    advance(*physics_, motions_, drive_, length - length_);
+    advance(*physics_, std::span(motions_.data(), static_cast<std::size_t>(count_)), drive_,
+            length - length_);
     length_ = std::max(length_, length);
     const double driven_hz = physics_->frequency_of(drive_);
     const double own_hz = physics_->declaration().resonance_hz;
     double ending = -INFINITY;
-    for (int k = 0; k < kPhases; ++k) {
+    for (int k = 0; k < count_; ++k) {
         const double now = strength(*physics_, motions_[k], driven_hz);
         const double left = strength(*physics_, motions_[k], own_hz);
         rebound_ = std::max(rebound_, now - ceiling_[k]);
@@ -187,6 +200,23 @@ double ResonatorMotion::Brake::rebound_until(double length) {
         }
     }
     return std::max(rebound_, ending);
+}
+
+bool ResonatorMotion::Brake::louder_than_coasting() const {
+    if (!physics_->is_lra()) {
+        return false;
+    }
+    const Constants c = constants(*physics_);
+    const std::complex<double> coasted = std::exp(std::complex<double>(-c.g, c.wd) * length_);
+    const double own_hz = physics_->declaration().resonance_hz;
+    for (int k = 0; k < kPhases; ++k) {
+        const double left = strength(*physics_, motions_[k], own_hz);
+        const double coasting = strength(*physics_, Motion{start_[k].w * coasted}, own_hz);
+        if (left > coasting && left > levels_.back()) {
+            return true;
+        }
+    }
+    return false;
 }
 
 }  // namespace vibscore::actuator

@@ -3,6 +3,7 @@
 #include <array>
 #include <cmath>
 #include <complex>
+#include <span>
 
 #include "actuator/physics.hpp"
 
@@ -31,6 +32,10 @@ class ResonatorMotion {
     void change(const Physics& physics, double t, const Drive& from, const Drive& to);
 
     static constexpr int kPhases = 24;
+    // What rang before a vibration started meets its brake at this many phases, and at this
+    // many strengths up to the most it may be (a brake's rebound need not grow with it).
+    static constexpr int kRingingPhases = 8;
+    static constexpr int kRingingLevels = 2;
 
   private:
     struct Motion {
@@ -63,16 +68,26 @@ class ResonatorMotion {
         // above the highest level): that brake adds energy instead of taking it.
         double rebound_until(double length);
         static constexpr double kPushUp = 0.10;
+        // Whether the brake, ending at the last `length` looked at, leaves the whole motion at
+        // some phase louder than coasting would, and above the highest level (both quiet is
+        // quiet): it has driven the LRA on rather than stopped it.
+        bool louder_than_coasting() const;
 
       private:
         friend class ResonatorMotion;
-        Brake(const Physics& physics, Motions motions, const Drive& drive, double quiet);
+        Brake(const Physics& physics, const Now& now, const Drive& drive, double quiet);
+        // The whole motion at each phase and, where what rang before the vibration is more than
+        // a hundredth of the quiet level, the vibration alone with that ringing at each of
+        // kRingingPhases phases and kRingingLevels strengths up to its most.
+        static constexpr int kMost = kPhases * (1 + kRingingPhases * kRingingLevels);
         const Physics* physics_;
-        Motions motions_;
+        std::array<Motion, kMost> motions_;
+        int count_ = kPhases;
         Drive drive_;
         std::array<double, kLevels> levels_{};
-        std::array<double, kPhases> ceiling_{};  // the most each phase may reach while braked
-        std::array<std::array<bool, kLevels>, kPhases> below_{};
+        std::array<double, kMost> ceiling_{};  // the most each may reach while braked
+        std::array<std::array<bool, kLevels>, kMost> below_{};
+        Motions start_;  // the whole motion where the brake starts, to coast from instead
         double length_ = 0.0;
         double rebound_ = -INFINITY;
     };
@@ -90,7 +105,8 @@ class ResonatorMotion {
                   double quiet) const;
 
   private:
-    static void advance(const Physics& physics, Motions& motions, const Drive& drive, double dt);
+    static void advance(const Physics& physics, std::span<Motion> motions, const Drive& drive,
+                        double dt);
     // Where a vibration starts (at a phase of the backend's: gpio-lra starts each waveform
     // afresh), each motion goes on from its own phase k / kPhases, and what the last one left
     // ringing joins what rang before it.

@@ -193,7 +193,8 @@ double DrivePlanner::overdrive_budget(double at, const Drive& push, const Drive&
     return lo;
 }
 
-std::optional<DrivePlanner::Step> DrivePlanner::robust_brake(double at, double frequency_hz) const {
+std::optional<DrivePlanner::Step> DrivePlanner::robust_brake(double at, double until,
+                                                             double frequency_hz) const {
     const auto all = ensemble();
     const double level = kStopped * Physics::strength(state_);
     const double tau = physics_.time_constant_s({});
@@ -222,7 +223,8 @@ std::optional<DrivePlanner::Step> DrivePlanner::robust_brake(double at, double f
             auto watch = motion_.braking(physics_, at, drive_, brake, quiet_level());
             lowest = start;
             for (int k = 1; k <= kLooks; ++k) {
-                const double t = 1.5 * tau * k / kLooks;
+                // (Longer than till `until` is that brake cut there: looked at once.)
+                const double t = std::min(1.5 * tau * k / kLooks, until - at);
                 double nominal = 0.0;
                 bool pushed_back = false;
                 for (std::size_t i = 0; i < all.size(); ++i) {
@@ -241,16 +243,18 @@ std::optional<DrivePlanner::Step> DrivePlanner::robust_brake(double at, double f
                 if (pushed_back) {
                     break;  // longer at this frequency only pushes further
                 }
-                // The declared one, by its whole motion (ResonatorMotion), once quiet stays so.
-                if (watch.rebound_until(t) > 0.0) {
-                    continue;  // it may yet: the brake's own ringing at its end can cancel
-                }
-                // A brake must be better by more than rounding: of two that stop it alike, the
-                // first found (the strongest, the note's frequency first, the shorter first) is
-                // kept, whatever the build's last bit.
-                if (nominal < best - kBetter && !rebounds(at, brake, t)) {
+                // The declared one, by its whole motion (ResonatorMotion), once quiet stays so
+                // (where it does not, longer may yet: the brake's own ringing at its end can
+                // cancel). A brake must be better by more than rounding: of two that stop it
+                // alike, the first found (the strongest, the note's frequency first, the shorter
+                // first) is kept, whatever the build's last bit.
+                if (watch.rebound_until(t) <= 0.0 && nominal < best - kBetter &&
+                    !rebounds(at, brake, t)) {
                     best = nominal;
                     chosen = Step{t, brake};
+                }
+                if (t >= until - at) {
+                    break;
                 }
             }
         }
@@ -275,10 +279,14 @@ bool DrivePlanner::rebounds(double at, const Drive& brake, double length) const 
         // Each look keeps the worst so far; the last also judges the brake ending there.
         rebound = watch.rebound_until(length * k / looks);
     }
-    return rebound > 0.0;
+    // (A brake that drives the LRA on need never fall below the quiet level to be wrong: a 0.53
+    // note at 163 Hz on a 150 Hz Q-25 LRA, braked at 161 Hz for 33 ms, was at 0.33 where
+    // coasting leaves 0.28, and the next note went 93 % above.)
+    return rebound > 0.0 || watch.louder_than_coasting();
 }
 
-std::optional<DrivePlanner::Step> DrivePlanner::rest_brake(double at, bool& any) const {
+std::optional<DrivePlanner::Step> DrivePlanner::rest_brake(double at, double until,
+                                                           bool& any) const {
     const auto& d = physics_.declaration();
     const double search = 3.0 * d.resonance_hz / d.q;
     std::optional<Step> quickest;
@@ -290,7 +298,11 @@ std::optional<DrivePlanner::Step> DrivePlanner::rest_brake(double at, bool& any)
                 break;  // quickest first: the rest at this amplitude are slower still
             }
             const Drive drive{-amplitude, brake.frequency_hz};
-            if (!rebounds(at, drive, brake.after_s)) {
+            // A brake that outlasts the silence is cut by the next note, and judged there (a
+            // 0.53 note at 163 Hz on a 150 Hz Q-25 LRA was braked at 161 Hz for the 33 ms of
+            // silence after it, judged by the 88 ms the envelope took to rest; at 33 ms it was
+            // at 0.33, where coasting leaves 0.28, and the next note went 93 % above).
+            if (!rebounds(at, drive, std::min(brake.after_s, until - at))) {
                 quickest = Step{brake.after_s, drive};
                 break;
             }
@@ -367,7 +379,7 @@ std::vector<DrivePlanner::Step> DrivePlanner::approach(double at, double until, 
     if (strength == 0.0 && options_.reverse && !members_.empty()) {
         // To rest, whatever the actuator within the uncertainty: the brake (frequency, length)
         // under which the worst of them stops soonest against coasting; none if none helps.
-        const auto brake = robust_brake(at, frequency_hz);
+        const auto brake = robust_brake(at, until, frequency_hz);
         if (!brake || brake->at < options_.min_pulse_s) {
             return {{at, hold}};
         }
@@ -379,7 +391,7 @@ std::vector<DrivePlanner::Step> DrivePlanner::approach(double at, double until, 
     if (strength == 0.0 && options_.reverse && physics_.is_lra() && frequency_hz > 0.0) {
         // To rest off resonance: anti-phase at the frequency that leaves nothing ringing.
         bool any = false;
-        if (const auto brake = rest_brake(at, any)) {
+        if (const auto brake = rest_brake(at, until, any)) {
             if (at + brake->at >= until) {
                 return {{at, brake->drive}};
             }

@@ -167,17 +167,20 @@ class DrivePlanner {
     // frequency, and its length in `at`) under which the declared actuator stops soonest, as long
     // as no member is pushed back up, after its lowest point, by more than 30 % of its strength
     // at the brake's start (past rest a brake adds energy), nor the declared one, by its whole
-    // motion, back above quiet_level() once below; nothing when coasting does as well.
-    std::optional<Step> robust_brake(double at, double frequency_hz) const;
+    // motion, back above quiet_level() once below; nothing when coasting does as well. Each is
+    // judged as long as it is used: no longer than till `until`, where the next note cuts it.
+    std::optional<Step> robust_brake(double at, double until, double frequency_hz) const;
     // The quickest brake to rest of the exact ones (the envelope passes through zero) under
     // which the LRA, by its whole motion, once below quiet_level(), stays there;
-    // `any` says whether there was an exact brake at all, safe or not.
-    std::optional<Step> rest_brake(double at, bool& any) const;
+    // `any` says whether there was an exact brake at all, safe or not. Judged to `until` where
+    // it lasts longer.
+    std::optional<Step> rest_brake(double at, double until, bool& any) const;
     // Below which a brake's watch keeps the LRA once it is there: kQuiet of the note it ends.
     double quiet_level() const;
     // Whether `brake` from `at` for `length` leaves the LRA, by its whole motion, back above
     // quiet_level() once below it, looked at finely enough to see the ripple the brake's drive
-    // and the LRA's own ringing make together (at their frequencies' sum).
+    // and the LRA's own ringing make together (at their frequencies' sum), or louder at its end
+    // than coasting would.
     bool rebounds(double at, const actuator::Drive& brake, double length) const;
 
     // The most a hold at `frequency_hz` may drive so that no LRA within the margins settles

@@ -373,6 +373,51 @@ TEST(DrivePlanner, ANoteStartingWhereEarlierNotesStillRingIsJudgedMeetingThemAtT
     EXPECT_LE(artefacts(played, notes, length).overshoot, 0.05);
 }
 
+TEST(DrivePlanner, ABrakeIsJudgedAgainstTheRingingEarlierNotesLeftAtEveryPhase) {
+    // Found by a random search (a 150 Hz Q-25 LRA planned as exact, notes up to 15 % off its
+    // resonance): the third note, 0.32 at 140 Hz, started where a little of the 0.85 before it
+    // still rang; its brake, judged by the whole motion with every note started at one phase,
+    // left it at rest, but where the earlier ringing met it at another it rose again to 12.9 %.
+    const Declaration lra = example_lra(150.0, 25.0);
+    const std::vector<std::pair<double, double>> notes{
+        {0.66340658345684433, 148.48249660837561}, {0.84530070575184801, 140.60926777568352},
+        {0.32368200697411337, 140.14207795850484}, {0.95109427064480268, 142.50120178707141},
+        {0.36116453543330768, 135.52842038449486}, {0.66287688743640494, 134.85391497158486}};
+    const double length = 0.035009580442206131;
+    const auto played = play_notes(lra, lra, {.reverse = true}, notes, length);
+    EXPECT_LE(artefacts(played, notes, length).rebound, 0.10);
+}
+
+TEST(DrivePlanner, ABrakeLongerThanItsSilenceIsJudgedWhereTheNextNoteCutsIt) {
+    // A random search's draw (a 150 Hz Q-25 LRA planned as exact): the envelope took 88 ms to
+    // bring the third note (0.53 at 163 Hz) to rest under a brake at 161 Hz, so the brake was
+    // judged over 88 ms; the next note cut it after 33, where it had driven the LRA on (0.33,
+    // where coasting leaves 0.28), and that note went 93 % above its strength.
+    const Declaration lra = example_lra(150.0, 25.0);
+    const std::vector<std::pair<double, double>> notes{
+        {0.7087993373274204, 170.57504899195209},  {0.56614519561102616, 169.28324189805221},
+        {0.53364579873916851, 163.06993281485686}, {0.30673695405406431, 164.40781772195996},
+        {0.42008330955004181, 153.90841647692918}, {0.83011427948402638, 152.45885279549131}};
+    const double length = 0.033387180768699315;
+    const auto played = play_notes(lra, lra, {.reverse = true}, notes, length);
+    EXPECT_LE(artefacts(played, notes, length).overshoot, 0.05);
+}
+
+TEST(DrivePlanner, AnOverdriveOutOfABrakeMeetsWhatEarlierNotesLeftAtTheWorstPhase) {
+    // A random search's draw (a 175 Hz Q-25 LRA planned as exact): the fifth note, 0.38 at
+    // 174 Hz, was overdriven straight out of the brake of the note before (no new start: the
+    // carrier goes on), where the notes before that still rang at phases of their own; judged
+    // with every note started at one phase, it went 10.7 % above its strength.
+    const Declaration lra = example_lra(175.0, 25.0);
+    const std::vector<std::pair<double, double>> notes{
+        {0.76068790115466944, 199.46041195108077}, {0.71978495519591912, 149.71403267474338},
+        {0.31333449292160087, 166.28538729932887}, {0.77653127960669677, 189.46828077239502},
+        {0.38222592720058479, 173.51863300072318}, {0.80846349516631233, 161.46106341021851}};
+    const double length = 0.03067426476852991;
+    const auto played = play_notes(lra, lra, {.reverse = true}, notes, length);
+    EXPECT_LE(artefacts(played, notes, length).overshoot, 0.05);
+}
+
 TEST(DrivePlanner, ARobustBrakeIsWatchedFinelyEnoughToSeeItsRippleCrossTheQuietLevelAgain) {
     // Braked a little off its resonance, an LRA's strength falls with a ripple at the sum of the
     // brake's and its own frequencies (about 3 ms a period here). Watched only at a brake

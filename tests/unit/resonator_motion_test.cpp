@@ -148,6 +148,33 @@ TEST(ResonatorMotion, ABrakeMayTakeItATenthAboveWhereItStartedAndNoFurther) {
     }
 }
 
+TEST(ResonatorMotion, ABrakeLeavingItLouderThanCoastingWouldHasDrivenItOnUnlessBothAreQuiet) {
+    // Settled at resonance, then driven on, in phase, at a fraction of the note: long after, it
+    // holds at that fraction where coasting would have left nothing. Above the highest level
+    // (1.2 x the quiet level, a tenth of the note) that is a brake that drove it on; below, both
+    // are quiet. Braked in anti-phase to rest, it is quieter than coasting.
+    const Physics physics(example_lra(175.0, 15.0));
+    const Drive note{0.5, 175.0};
+    const double settled = 20.0 * physics.time_constant_s(note);
+    const double strength = physics.steady_strength(note), quiet = 0.1 * strength;
+    const auto louder = [&](const Drive& brake, double length) {
+        ResonatorMotion motion;
+        motion.change(physics, 0.0, {}, note);
+        auto watch = motion.braking(physics, settled, note, brake, quiet);
+        for (int k = 1; k <= 64; ++k) {
+            watch.rebound_until(length * k / 64.0);
+        }
+        return watch.louder_than_coasting();
+    };
+    EXPECT_FALSE(louder({0.11 * note.amplitude, 175.0}, settled));
+    EXPECT_TRUE(louder({0.13 * note.amplitude, 175.0}, settled));
+    // From strength s under full anti-phase (strength 1 / rated): zero after tau ln(1 + s rated).
+    const double to_rest = physics.time_constant_s(note) *
+                           std::log(1.0 + strength * physics.declaration().rated_drive);
+    EXPECT_FALSE(louder({-1.0, 175.0}, to_rest));
+    EXPECT_TRUE(louder({0.5 * note.amplitude, 175.0}, to_rest));
+}
+
 TEST(ResonatorMotion, AnErmHasNoneOfIt) {
     const Physics physics(example_erm());
     ResonatorMotion motion;
