@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
-#include <span>
+#include <tuple>
 
 namespace vibscore::actuator {
 
@@ -29,7 +29,19 @@ Constants constants(const Physics& physics) {
 
 }  // namespace
 
-void ResonatorMotion::advance(const Physics& physics, std::span<Motion> motions, const Drive& drive,
+// e^(i phi) at each phase a brake is judged at.
+const std::array<std::complex<double>, ResonatorMotion::kPhases>& phases() {
+    static const auto table = [] {
+        std::array<std::complex<double>, ResonatorMotion::kPhases> t{};
+        for (int k = 0; k < ResonatorMotion::kPhases; ++k) {
+            t[k] = std::polar(1.0, kTwoPi * k / ResonatorMotion::kPhases);
+        }
+        return t;
+    }();
+    return table;
+}
+
+void ResonatorMotion::advance(const Physics& physics, Phased& motion, const Drive& drive,
                               double dt) {
     if (!physics.is_lra() || !(dt > 0.0)) {
         return;
@@ -44,29 +56,23 @@ void ResonatorMotion::advance(const Physics& physics, std::span<Motion> motions,
     const std::complex<double> with = 0.5 * c.force * u * (turn - decay) / (kI * omega - l);
     const std::complex<double> against =
         0.5 * c.force * u * (std::conj(turn) - decay) / (-kI * omega - l);
-    for (Motion& m : motions) {
-        m.w = decay * m.w + with * m.carrier + against * std::conj(m.carrier);
-        m.carrier *= turn;
-    }
+    motion.with = decay * motion.with + with * motion.carrier;
+    motion.against = decay * motion.against + against * std::conj(motion.carrier);
+    motion.carrier *= turn;
 }
 
 void ResonatorMotion::start(Now& now) {
-    double loudest = 0.0;
-    for (const Motion& m : now.own) {
-        loudest = std::max(loudest, std::abs(m.w));
-    }
-    now.before += loudest;
-    for (int k = 0; k < kPhases; ++k) {
-        now.motions[k].carrier = std::polar(1.0, kTwoPi * k / kPhases);
-        now.own[k] = {{}, now.motions[k].carrier};
-    }
+    // At its loudest phase, |w| is |with| + |against|.
+    now.before += std::abs(now.own.with) + std::abs(now.own.against);
+    now.motion.carrier = 1.0;
+    now.own = {};
 }
 
 ResonatorMotion::Now ResonatorMotion::replaced_at(const Physics& physics, double t,
                                                   const Drive& from, const Drive& to) const {
     Now now = now_;
     if (physics.is_lra() && t > time_) {
-        advance(physics, now.motions, from, t - time_);
+        advance(physics, now.motion, from, t - time_);
         advance(physics, now.own, from, t - time_);
         now.before *= std::exp(-constants(physics).g * (t - time_));
     }
@@ -78,31 +84,22 @@ ResonatorMotion::Now ResonatorMotion::replaced_at(const Physics& physics, double
 
 void ResonatorMotion::change(const Physics& physics, double t, const Drive& from, const Drive& to) {
     now_ = replaced_at(physics, t, from, to);
-    for (Motions* motions : {&now_.motions, &now_.own}) {
-        for (Motion& m : *motions) {
-            m.carrier /= std::abs(m.carrier);  // over a long playback, rounding would creep in
-        }
+    for (Phased* motion : {&now_.motion, &now_.own}) {
+        // Over a long playback, rounding would creep in.
+        motion->carrier /= std::abs(motion->carrier);
     }
     time_ = t;
 }
 
-double ResonatorMotion::strength(const Physics& physics, const Motion& motion,
-                                 double frequency_hz) {
-    const Constants c = constants(physics);
-    const double x = motion.w.imag() / c.wd;
-    const double v = (motion.w.real() - c.g * x) / (kTwoPi * frequency_hz);
-    return std::sqrt(x * x + v * v);
-}
-
-double ResonatorMotion::strength_of_ringing(const Physics& physics, double ringing,
-                                            double frequency_hz) {
-    // (x, v / omega) is M (Re w, Im w), M = [[0, 1 / wd], [1 / omega, -g / (omega wd)]]: at the
-    // worst phase, |w| times M's largest singular value.
+ResonatorMotion::Measure ResonatorMotion::measure(const Physics& physics, double frequency_hz) {
     const Constants c = constants(physics);
     const double omega = kTwoPi * frequency_hz;
-    const double sum = 1.0 / (c.wd * c.wd) + (1.0 + c.g * c.g / (c.wd * c.wd)) / (omega * omega);
-    const double det = 1.0 / (c.wd * omega);
-    return ringing * std::sqrt(0.5 * (sum + std::sqrt(std::max(0.0, sum * sum - 4.0 * det * det))));
+    const auto z = [&](std::complex<double> w) {
+        const double x = w.imag() / c.wd;
+        return std::complex<double>(x, (w.real() - c.g * x) / omega);
+    };
+    // z is real-linear in w: a w + b conj(w), read off at w = 1 and w = i.
+    return {0.5 * (z(1.0) - kI * z(kI)), 0.5 * (z(1.0) + kI * z(kI))};
 }
 
 double ResonatorMotion::strongest(const Physics& physics, double t, const Drive& from,
@@ -115,24 +112,25 @@ double ResonatorMotion::strongest(const Physics& physics, double t, const Drive&
     double most = 0.0;
     Now now = replaced_at(physics, t, from, first);
     // The vibration going on, from rest at every phase of the carrier where it started (which
-    // alone moves its strength by 7 % of a note off resonance), and what rang before it, ringing
-    // down as if alone (the resonator is linear), met where the two add up: each earlier
-    // vibration started at a phase of its own. (The whole motion, every start at one phase,
-    // said 4.6 % for a 0.38 note at 178 Hz on a 175 Hz Q-8 LRA started where 4 % of it still
-    // rang, and 4.5 % for a 0.38 note on a 175 Hz Q-25 LRA overdriven out of the brake of the
-    // note before; on bench/feel's plant they went 5.7 % and 10.7 % above.)
+    // alone moves its strength by 7 % of a note off resonance; at its loudest phase it measures
+    // |first| + |second|), and what rang before it, ringing down as if alone (the resonator is
+    // linear), met where the two add up: each earlier vibration started at a phase of its own.
+    // (The whole motion, every start at one phase, said 4.6 % for a 0.38 note at 178 Hz on a
+    // 175 Hz Q-8 LRA started where 4 % of it still rang, and 4.5 % for a 0.38 note on a 175 Hz
+    // Q-25 LRA overdriven out of the brake of the note before; on bench/feel's plant they went
+    // 5.7 % and 10.7 % above.)
     const auto look = [&](const Drive& drive, double length) {
         // At least kLooksPerCycle a cycle: the half of the drive that turns against the
         // resonator ripples its strength at twice the drive's frequency, by up to 1 / 4Q.
         const double hz = physics.frequency_of(drive);
+        const Measure at_hz = measure(physics, hz);
         const int n = std::max(looks, static_cast<int>(std::ceil(kLooksPerCycle * hz * length)));
         for (int k = 1; k <= n && length > 0.0; ++k) {
             advance(physics, now.own, drive, length / n);
             now.before *= std::exp(-g * length / n);
-            const double rings = strength_of_ringing(physics, now.before, hz);
-            for (const Motion& m : now.own) {
-                most = std::max(most, strength(physics, m, hz) + rings);
-            }
+            const auto [first_part, second_part] = at_hz.of(now.own);
+            most = std::max(
+                most, std::abs(first_part) + std::abs(second_part) + at_hz.loudest(now.before));
         }
     };
     look(first, first_s);
@@ -148,57 +146,106 @@ ResonatorMotion::Brake ResonatorMotion::braking(const Physics& physics, double t
     return Brake(physics, replaced_at(physics, t, from, brake), brake, quiet);
 }
 
+struct ResonatorMotion::Brake::Seen {
+    Seen(const Measure& measure, const Phased& motion, std::complex<double> rang)
+        : ringing(measure.of(rang)) {
+        std::tie(first, second) = measure.of(motion);
+    }
+    double at(std::complex<double> e) const {
+        return std::abs(first * e + second * std::conj(e) + ringing);
+    }
+    // The least and the most over every phase.
+    double least() const {
+        return std::abs(std::abs(first) - std::abs(second)) - std::abs(ringing);
+    }
+    double most() const { return std::abs(first) + std::abs(second) + std::abs(ringing); }
+    std::complex<double> first, second, ringing;
+};
+
+template <class Judge>
+void ResonatorMotion::Brake::each(Judge judge) const {
+    for (int group = 0; group <= ringings_; ++group) {
+        const Phased& motion = group == 0 ? whole_ : own_;
+        const std::complex<double> ringing = group == 0 ? 0.0 : ringing_[group - 1];
+        judge(group, Seen(driven_, motion, ringing), Seen(resting_, motion, ringing));
+    }
+}
+
 ResonatorMotion::Brake::Brake(const Physics& physics, const Now& now, const Drive& drive,
                               double quiet)
-    : physics_(&physics), drive_(drive) {
+    : physics_(&physics),
+      whole_(now.motion),
+      own_(now.own),
+      drive_(drive),
+      driven_(measure(physics, physics.frequency_of(drive))),
+      resting_(measure(physics, physics.declaration().resonance_hz)),
+      start_(now.motion) {
     for (int l = 0; l < kLevels; ++l) {
         levels_[l] = quiet * (0.8 + 0.4 * l / (kLevels - 1));
     }
-    std::copy(now.motions.begin(), now.motions.end(), motions_.begin());
-    start_ = now.motions;
     if (now.before > 0.01 * quiet) {
         for (int level = 1; level <= kRingingLevels; ++level) {
             for (int r = 0; r < kRingingPhases; ++r) {
-                const auto ringing =
+                ringing_[ringings_++] =
                     std::polar(now.before * level / kRingingLevels, kTwoPi * r / kRingingPhases);
-                for (const Motion& m : now.own) {
-                    motions_[count_++] = {m.w + ringing, m.carrier};
-                }
             }
         }
     }
     // Off resonance a brake's anti-phase holds only for a while: past it the brake drives the
     // resonator on (a 0.37 note at 171 Hz on a 150 Hz Q-25 LRA, braked at 168 Hz, was at 0.43
     // when the next note started, and the planner's envelope said it was at rest).
-    const double driven_hz = physics.frequency_of(drive);
-    for (int k = 0; k < count_; ++k) {
-        ceiling_[k] =
-            std::max((1.0 + kPushUp) * strength(physics, motions_[k], driven_hz), levels_.back());
-    }
+    const auto& e = phases();
+    each([&](int group, const Seen& driven, const Seen&) {
+        lowest_ceiling_[group] = INFINITY;
+        for (int k = 0; k < kPhases; ++k) {
+            double& ceiling = ceiling_[group * kPhases + k];
+            ceiling = std::max((1.0 + kPushUp) * driven.at(e[k]), levels_.back());
+            lowest_ceiling_[group] = std::min(lowest_ceiling_[group], ceiling);
+        }
+    });
 }
 
 double ResonatorMotion::Brake::rebound_until(double length) {
     if (!physics_->is_lra()) {
         return -INFINITY;
     }
-    advance(*physics_, std::span(motions_.data(), static_cast<std::size_t>(count_)), drive_,
-            length - length_);
-    length_ = std::max(length_, length);
-    const double driven_hz = physics_->frequency_of(drive_);
-    const double own_hz = physics_->declaration().resonance_hz;
-    double ending = -INFINITY;
-    for (int k = 0; k < count_; ++k) {
-        const double now = strength(*physics_, motions_[k], driven_hz);
-        const double left = strength(*physics_, motions_[k], own_hz);
-        rebound_ = std::max(rebound_, now - ceiling_[k]);
-        for (int l = 0; l < kLevels; ++l) {
-            below_[k][l] = below_[k][l] || now < levels_[l];
-            if (below_[k][l]) {
-                rebound_ = std::max(rebound_, now - levels_[l]);
-                ending = std::max(ending, left - levels_[l]);
-            }
+    const double dt = length - length_;
+    if (dt > 0.0) {
+        advance(*physics_, whole_, drive_, dt);
+        advance(*physics_, own_, drive_, dt);
+        // What rang before rings down alone: the drive's part is in own_.
+        const Constants c = constants(*physics_);
+        const std::complex<double> decay = std::exp(std::complex<double>(-c.g, c.wd) * dt);
+        for (int r = 0; r < ringings_; ++r) {
+            ringing_[r] *= decay;
         }
     }
+    length_ = std::max(length_, length);
+    const auto& e = phases();
+    double ending = -INFINITY;
+    each([&](int group, const Seen& driven, const Seen& resting) {
+        if (!any_below_[group] && driven.least() >= levels_.back() &&
+            driven.most() < lowest_ceiling_[group]) {
+            return;  // no phase has been or is below a level, nor reaches its ceiling
+        }
+        for (int k = 0; k < kPhases; ++k) {
+            const int i = group * kPhases + k;
+            const double now = driven.at(e[k]);
+            rebound_ = std::max(rebound_, now - ceiling_[i]);
+            double left = NAN;
+            for (int l = 0; l < kLevels; ++l) {
+                below_[i][l] = below_[i][l] || now < levels_[l];
+                if (below_[i][l]) {
+                    any_below_[group] = true;
+                    if (std::isnan(left)) {
+                        left = resting.at(e[k]);
+                    }
+                    rebound_ = std::max(rebound_, now - levels_[l]);
+                    ending = std::max(ending, left - levels_[l]);
+                }
+            }
+        }
+    });
     return std::max(rebound_, ending);
 }
 
@@ -208,11 +255,11 @@ bool ResonatorMotion::Brake::louder_than_coasting() const {
     }
     const Constants c = constants(*physics_);
     const std::complex<double> coasted = std::exp(std::complex<double>(-c.g, c.wd) * length_);
-    const double own_hz = physics_->declaration().resonance_hz;
-    for (int k = 0; k < kPhases; ++k) {
-        const double left = strength(*physics_, motions_[k], own_hz);
-        const double coasting = strength(*physics_, Motion{start_[k].w * coasted}, own_hz);
-        if (left > coasting && left > levels_.back()) {
+    const Seen left(resting_, whole_, 0.0);
+    const Seen coasting(resting_, Phased{start_.with * coasted, start_.against * coasted}, 0.0);
+    for (const std::complex<double> e : phases()) {
+        const double loudness = left.at(e);
+        if (loudness > coasting.at(e) && loudness > levels_.back()) {
             return true;
         }
     }

@@ -3,7 +3,7 @@
 #include <array>
 #include <cmath>
 #include <complex>
-#include <span>
+#include <utility>
 
 #include "actuator/physics.hpp"
 
@@ -20,10 +20,12 @@ namespace vibscore::actuator {
 // The resonator x'' + 2g x' + w0^2 x = F u cos(theta) is, in w = x' - l- x (l+- = -g +- i wd),
 // the first-order w' = l+ w + F u cos(theta), solved in closed form between changes. What it does
 // depends on the carrier's phase: the backends continue it from drive to drive, but where a
-// vibration starts it is the backend's (gpio-lra starts each waveform afresh), so the motion is
-// followed for kPhases phases of that start, and a brake is judged by the worst of them. Each
-// vibration starts at a phase of its own, though, so how strong what earlier ones left may be
-// is kept too, for how strong a new one may get meeting it.
+// vibration starts it is the backend's (gpio-lra starts each waveform afresh). Being linear, the
+// motion for every phase phi of that start is two numbers (one turning with e^(i phi), one
+// against it), followed once: the strongest is then exact over every phase, and a brake is
+// judged by the worst of kPhases of them. Each vibration starts at a phase of its own, though,
+// so how strong what earlier ones left may be is kept too, for how strong a new one may get
+// meeting it.
 class ResonatorMotion {
   public:
     // Every call passes the same actuator (a planner's own, which may be moved).
@@ -31,26 +33,42 @@ class ResonatorMotion {
     // At `t`, the drive `to` replaces `from` (the one in force since the last change).
     void change(const Physics& physics, double t, const Drive& from, const Drive& to);
 
-    static constexpr int kPhases = 24;
+    // A brake is judged at this many phases of the start of its vibrations: between them its
+    // strength may dip below a level and rise again (a 0.55 note at 263 Hz on a 235 Hz Q-8 LRA,
+    // braked at 202 Hz, judged at 24 phases, rose again to 10.9 % at a phase between two).
+    static constexpr int kPhases = 96;
     // What rang before a vibration started meets its brake at this many phases, and at this
     // many strengths up to the most it may be (a brake's rebound need not grow with it).
     static constexpr int kRingingPhases = 8;
     static constexpr int kRingingLevels = 2;
 
   private:
-    struct Motion {
-        std::complex<double> w{};
-        std::complex<double> carrier{1.0, 0.0};  // e^(i theta)
+    // The motion for every phase phi at which a vibration starts, at once: the resonator is
+    // linear, so w(phi) = with e^(i phi) + against e^(-i phi), the carrier being
+    // carrier e^(i phi).
+    struct Phased {
+        std::complex<double> with{}, against{};
+        std::complex<double> carrier{1.0, 0.0};
     };
-    using Motions = std::array<Motion, kPhases>;
     struct Now {
-        // The whole motion, each start of a vibration at the same phase k / kPhases.
-        Motions motions{};
-        // The vibration going on alone, from rest at each phase of its start, and the most that
-        // what rang before it may ring (|w|): each earlier vibration started at a phase of its
-        // own, so what each left may meet the others' in phase.
-        Motions own{};
+        // The whole motion, each start of a vibration at the same phase.
+        Phased motion{};
+        // The vibration going on alone, from rest, and the most that what rang before it may
+        // ring (|w|): each earlier vibration started at a phase of its own, so what each left may
+        // meet the others' in phase.
+        Phased own{};
         double before = 0.0;
+    };
+    // How a motion measures at one frequency: x + i v / omega is a w + b conj(w).
+    struct Measure {
+        std::complex<double> a, b;
+        // At phase phi of a Phased: first e^(i phi) + second e^(-i phi).
+        std::pair<std::complex<double>, std::complex<double>> of(const Phased& p) const {
+            return {a * p.with + b * std::conj(p.against), a * p.against + b * std::conj(p.with)};
+        }
+        std::complex<double> of(std::complex<double> w) const { return a * w + b * std::conj(w); }
+        // The most a |w| of `ringing` measures, at whatever phase it rings.
+        double loudest(double ringing) const { return ringing * (std::abs(a) + std::abs(b)); }
     };
 
   public:
@@ -72,22 +90,38 @@ class ResonatorMotion {
         // some phase louder than coasting would, and above the highest level (both quiet is
         // quiet): it has driven the LRA on rather than stopped it.
         bool louder_than_coasting() const;
+        // Whether some phase has already risen again (or past its ceiling), wherever the brake
+        // ends: longer looks cannot take that back.
+        bool has_rebounded() const { return rebound_ > 0.0; }
 
       private:
         friend class ResonatorMotion;
         Brake(const Physics& physics, const Now& now, const Drive& drive, double quiet);
-        // The whole motion at each phase and, where what rang before the vibration is more than
-        // a hundredth of the quiet level, the vibration alone with that ringing at each of
-        // kRingingPhases phases and kRingingLevels strengths up to its most.
-        static constexpr int kMost = kPhases * (1 + kRingingPhases * kRingingLevels);
+        // How one motion of the watch measures at phase phi: |first e^(i phi) +
+        // second e^(-i phi) + ringing|.
+        struct Seen;
+        // Calls `judge(group, as measured under the brake, as left to ring)` for the whole
+        // motion (group 0) and, where what rang before the vibration is more than a hundredth
+        // of the quiet level, for the vibration alone with that ringing at each of
+        // kRingingPhases phases and kRingingLevels strengths up to its most (groups 1 on);
+        // each group is kPhases phases.
+        template <class Judge>
+        void each(Judge judge) const;
+        static constexpr int kRingings = kRingingPhases * kRingingLevels;
+        static constexpr int kGroups = 1 + kRingings;
+        static constexpr int kMost = kPhases * kGroups;
         const Physics* physics_;
-        std::array<Motion, kMost> motions_;
-        int count_ = kPhases;
+        Phased whole_, own_;
+        std::array<std::complex<double>, kRingings> ringing_{};
+        int ringings_ = 0;
         Drive drive_;
+        Measure driven_{}, resting_{};
         std::array<double, kLevels> levels_{};
         std::array<double, kMost> ceiling_{};  // the most each may reach while braked
         std::array<std::array<bool, kLevels>, kMost> below_{};
-        Motions start_;  // the whole motion where the brake starts, to coast from instead
+        std::array<double, kGroups> lowest_ceiling_{};
+        std::array<bool, kGroups> any_below_{};
+        Phased start_;  // the whole motion where the brake starts, to coast from instead
         double length_ = 0.0;
         double rebound_ = -INFINITY;
     };
@@ -105,19 +139,16 @@ class ResonatorMotion {
                   double quiet) const;
 
   private:
-    static void advance(const Physics& physics, std::span<Motion> motions, const Drive& drive,
-                        double dt);
+    static void advance(const Physics& physics, Phased& motion, const Drive& drive, double dt);
     // Where a vibration starts (at a phase of the backend's: gpio-lra starts each waveform
-    // afresh), each motion goes on from its own phase k / kPhases, and what the last one left
-    // ringing joins what rang before it.
+    // afresh), the motion goes on from each phase, and what the last one left ringing joins
+    // what rang before it.
     static void start(Now& now);
     // What it would be at `t` had `to` replaced `from` there.
     Now replaced_at(const Physics& physics, double t, const Drive& from, const Drive& to) const;
-    // The amplitude of x, measured at `frequency_hz` as bench/feel's plant does (driven: the
+    // The amplitude of x measured at `frequency_hz` as bench/feel's plant does (driven: the
     // drive's; left alone: the resonance).
-    static double strength(const Physics& physics, const Motion& motion, double frequency_hz);
-    // The most `ringing` (|w|) measures at `frequency_hz`, at whatever phase it rings.
-    static double strength_of_ringing(const Physics& physics, double ringing, double frequency_hz);
+    static Measure measure(const Physics& physics, double frequency_hz);
 
     Now now_;
     double time_ = 0.0;

@@ -268,14 +268,14 @@ double DrivePlanner::quiet_level() const {
 }
 
 bool DrivePlanner::rebounds(double at, const Drive& brake, double length) const {
-    // Eight looks a period of that ripple (bench/feel's plant saw a 175 Hz Q-25 LRA braked at
-    // 168 Hz cross 10 % twice within 1.5 ms, between two of a brake search's looks), and never
-    // fewer than the search's.
+    // Eight looks a period of the ripple the brake and the LRA's own ringing make together
+    // (bench/feel's plant saw a 175 Hz Q-25 LRA braked at 168 Hz cross 10 % twice within
+    // 1.5 ms, between two of a brake search's looks), and never fewer than the search's.
     const double ripple_hz = physics_.frequency_of(brake) + physics_.declaration().resonance_hz;
     const int looks = std::max(kLooks, static_cast<int>(std::ceil(8.0 * ripple_hz * length)));
     auto watch = motion_.braking(physics_, at, drive_, brake, quiet_level());
     double rebound = 0.0;
-    for (int k = 1; k <= looks; ++k) {
+    for (int k = 1; k <= looks && !watch.has_rebounded(); ++k) {
         // Each look keeps the worst so far; the last also judges the brake ending there.
         rebound = watch.rebound_until(length * k / looks);
     }

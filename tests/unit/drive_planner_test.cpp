@@ -403,6 +403,20 @@ TEST(DrivePlanner, ABrakeLongerThanItsSilenceIsJudgedWhereTheNextNoteCutsIt) {
     EXPECT_LE(artefacts(played, notes, length).overshoot, 0.05);
 }
 
+TEST(DrivePlanner, ABrakeIsJudgedAtPhasesCloseEnoughThatNoneDipsAndRisesBetweenThem) {
+    // A random search's draw (a 235 Hz Q-8 LRA planned as exact): the last note, 0.55 at 263 Hz,
+    // braked a quarter of full scale at 202 Hz, dipped below 10 % and rose again to 10.9 % at a
+    // phase of its start between two of the 24 the brake was judged at.
+    const Declaration lra = example_lra(235.0, 8.0);
+    const std::vector<std::pair<double, double>> notes{
+        {0.76979845886736442, 221.63865525810121}, {0.69408315424700096, 262.77048605284142},
+        {0.45890689406390223, 255.83301511571904}, {0.60214087864808041, 217.65202635625602},
+        {0.63120415343779446, 205.84865152075292}, {0.55219059732339204, 263.29624920117698}};
+    const double length = 0.052766696539811156;
+    const auto played = play_notes(lra, lra, {.reverse = true}, notes, length);
+    EXPECT_LE(artefacts(played, notes, length).rebound, 0.10);
+}
+
 TEST(DrivePlanner, AnOverdriveOutOfABrakeMeetsWhatEarlierNotesLeftAtTheWorstPhase) {
     // A random search's draw (a 175 Hz Q-25 LRA planned as exact): the fifth note, 0.38 at
     // 174 Hz, was overdriven straight out of the brake of the note before (no new start: the
