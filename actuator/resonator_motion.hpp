@@ -79,13 +79,25 @@ class ResonatorMotion {
     static constexpr int kLevels = 5;
     class Brake {
       public:
+        // Follows the brake on to `length` (increasing from call to call), for each phase and
+        // level keeping the least it has been and how far above the level it has risen since.
+        void look(double length);
         // The most any phase has been above a level after being below it, in strength units
-        // (negative: never), looked at at every call so far (increasing `length`s) and, for a
-        // brake ending at `length`, once it is left to ring at its own frequency; positive too
-        // where a phase has gone more than kPushUp above its strength at the brake's start (and
-        // above the highest level): that brake adds energy instead of taking it.
+        // (negative: never), over every look so far; positive too where a phase has gone more
+        // than kPushUp above its strength at the brake's start (and above the highest level):
+        // that brake adds energy instead of taking it.
+        double rebound() const { return rebound_; }
+        // For the brake ending at the last look, the most any phase that has been below a level
+        // is above it there as measured left to ring at the LRA's own frequency.
+        double rebound_left() const;
+        // look(length), then the larger of rebound() and rebound_left().
         double rebound_until(double length);
         static constexpr double kPushUp = 0.10;
+        // A rise counts past this much of the level: the measure of a motion that turns at
+        // the LRA's own frequency, taken at another, wobbles at twice it (a full-scale brake on
+        // a 175 Hz Q-15 LRA at its resonance, looked at sixteen times a ripple, dips below quiet
+        // and comes back 0.5 % of it above, 0.05 % of the note).
+        static constexpr double kRiseSlack = 0.01;
         // Whether the brake, ending at the last `length` looked at, leaves the whole motion at
         // some phase louder than coasting would, and above the highest level (both quiet is
         // quiet): it has driven the LRA on rather than stopped it.
@@ -107,6 +119,10 @@ class ResonatorMotion {
         // each group is kPhases phases.
         template <class Judge>
         void each(Judge judge) const;
+        // The most any phase (or one between two) rises above a level once below it (less
+        // kRiseSlack), `loudness(k)` being how loud phase k of `group` is.
+        template <class Loudness>
+        double rise(int group, Loudness loudness) const;
         static constexpr int kRingings = kRingingPhases * kRingingLevels;
         static constexpr int kGroups = 1 + kRingings;
         static constexpr int kMost = kPhases * kGroups;
@@ -118,7 +134,7 @@ class ResonatorMotion {
         Measure driven_{}, resting_{};
         std::array<double, kLevels> levels_{};
         std::array<double, kMost> ceiling_{};  // the most each may reach while braked
-        std::array<std::array<bool, kLevels>, kMost> below_{};
+        std::array<double, kMost> lowest_{};   // the least each has been, from the brake's start
         std::array<double, kGroups> lowest_ceiling_{};
         std::array<bool, kGroups> any_below_{};
         Phased start_;  // the whole motion where the brake starts, to coast from instead

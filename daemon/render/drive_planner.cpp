@@ -248,8 +248,9 @@ std::optional<DrivePlanner::Step> DrivePlanner::robust_brake(double at, double u
                 // cancel). A brake must be better by more than rounding: of two that stop it
                 // alike, the first found (the strongest, the note's frequency first, the shorter
                 // first) is kept, whatever the build's last bit.
-                if (watch.rebound_until(t) <= 0.0 && nominal < best - kBetter &&
-                    !rebounds(at, brake, t)) {
+                watch.look(t);
+                if (watch.rebound() <= 0.0 && nominal < best - kBetter &&
+                    watch.rebound_left() <= 0.0 && !rebounds(at, brake, t)) {
                     best = nominal;
                     chosen = Step{t, brake};
                 }
@@ -268,17 +269,17 @@ double DrivePlanner::quiet_level() const {
 }
 
 bool DrivePlanner::rebounds(double at, const Drive& brake, double length) const {
-    // Eight looks a period of the ripple the brake and the LRA's own ringing make together
+    // Sixteen looks a period of the ripple the brake and the LRA's own ringing make together
     // (bench/feel's plant saw a 175 Hz Q-25 LRA braked at 168 Hz cross 10 % twice within
-    // 1.5 ms, between two of a brake search's looks), and never fewer than the search's.
+    // 1.5 ms, between two of a brake search's looks; with eight, a note on a 175 Hz Q-25 LRA
+    // rose again to 10.05 % at a ripple's top between two), and never fewer than the search's.
     const double ripple_hz = physics_.frequency_of(brake) + physics_.declaration().resonance_hz;
-    const int looks = std::max(kLooks, static_cast<int>(std::ceil(8.0 * ripple_hz * length)));
+    const int looks = std::max(kLooks, static_cast<int>(std::ceil(16.0 * ripple_hz * length)));
     auto watch = motion_.braking(physics_, at, drive_, brake, quiet_level());
-    double rebound = 0.0;
     for (int k = 1; k <= looks && !watch.has_rebounded(); ++k) {
-        // Each look keeps the worst so far; the last also judges the brake ending there.
-        rebound = watch.rebound_until(length * k / looks);
+        watch.look(length * k / looks);
     }
+    const double rebound = watch.has_rebounded() ? watch.rebound() : watch.rebound_left();
     // (A brake that drives the LRA on need never fall below the quiet level to be wrong: a 0.53
     // note at 163 Hz on a 150 Hz Q-25 LRA, braked at 161 Hz for 33 ms, was at 0.33 where
     // coasting leaves 0.28, and the next note went 93 % above.)

@@ -417,6 +417,37 @@ TEST(DrivePlanner, ABrakeIsJudgedAtPhasesCloseEnoughThatNoneDipsAndRisesBetweenT
     EXPECT_LE(artefacts(played, notes, length).rebound, 0.10);
 }
 
+TEST(DrivePlanner, ABrakeIsLookedAtOftenEnoughToSeeTheTopOfEveryRipple) {
+    // A random search's draw (a 175 Hz Q-25 LRA planned as exact): the fifth note, 0.74 at
+    // 180 Hz, braked with the LRA looked at eight times a period of the ripple the brake makes
+    // with its own ringing, rose again to 10.05 %, a ripple's top between two looks; sixteen see
+    // it.
+    const Declaration lra = example_lra(175.0, 25.0);
+    const std::vector<std::pair<double, double>> notes{
+        {0.94403866477523057, 193.4510978409123},  {0.36111780552727096, 169.79277852043617},
+        {0.31780568303774076, 161.86969949327644}, {0.88464480683648805, 199.9662252651091},
+        {0.74218188807173102, 180.30790599409843}, {0.84119810312898902, 176.53040552643958}};
+    const double length = 0.072397798166601399;
+    const auto played = play_notes(lra, lra, {.reverse = true}, notes, length);
+    EXPECT_LE(artefacts(played, notes, length).rebound, 0.10);
+}
+
+TEST(DrivePlanner, APhaseBetweenTwoJudgedThatDipsToQuietIsAsLoudAfterAsWhereItLiesBetweenThem) {
+    // A random search's draw (a 175 Hz Q-8 LRA with the part-to-part margins): the last note,
+    // 0.62 at 173 Hz, braked at 185 Hz, rose again to 10.2 % just after the brake at the phase
+    // bench/feel's plant started it at, between the phase of the 96 judged that dipped below
+    // 10 % (and stayed under it) and the one beside it that did not dip.
+    const Declaration lra = example_lra(175.0, 8.0);
+    const std::vector<std::pair<double, double>> notes{
+        {0.84761545314774489, 154.28019583851159}, {0.47690146443155551, 200.79148256773036},
+        {0.51915916420012698, 183.50497687174857}, {0.34661011249105195, 190.78493108577345},
+        {0.8320104581063128, 159.60572424665941},  {0.62486362421874631, 173.45455001260186}};
+    const double length = 0.062457038170433715;
+    const auto played =
+        play_notes(lra, lra, {.reverse = true, .uncertainty = kPartToPart}, notes, length);
+    EXPECT_LE(artefacts(played, notes, length).rebound, 0.10);
+}
+
 TEST(DrivePlanner, AnOverdriveOutOfABrakeMeetsWhatEarlierNotesLeftAtTheWorstPhase) {
     // A random search's draw (a 175 Hz Q-25 LRA planned as exact): the fifth note, 0.38 at
     // 174 Hz, was overdriven straight out of the brake of the note before (no new start: the
