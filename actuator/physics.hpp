@@ -73,7 +73,8 @@ class Physics {
     // above, whichever side it starts on), looking no further than `horizon_s`:
     //  reached  - it gets there after `after_s`;
     //  stalled  - it turns back (or stops) before getting there, after `after_s` (an LRA beating
-    //             off resonance; an ERM settling short of the level): driving on would not help;
+    //             off resonance; an ERM settling short of the level): driving on would not help
+    //             (a dip first, where what rings meets a push against it, is not turning back);
     //  horizon  - still on its way at `horizon_s`.
     struct Reach {
         enum class Outcome { reached, stalled, horizon };

@@ -219,6 +219,26 @@ TEST(ActuatorPhysics, TimeToReachOffResonanceFindsTheFirstCrossingOrThePeak) {
               Physics::strength(physics.advance(at_rest(), {1.0, 235.0}, peak.after_s + 1e-4)));
 }
 
+TEST(ActuatorPhysics, APushMeetingWhatRingsAgainstItGoesThroughItsLeastAndOnToTheLevel) {
+    // What a brake left (a hair of it, in anti-phase) is first taken down by a push off
+    // resonance, and then up: the push gets there, it does not stall at once. A brake meeting
+    // what rings in phase with it would first make it louder: that one does stall at once.
+    const Physics physics(lra(8.0, 235.0));
+    const Drive push{1.0, 248.0};
+    const State residue{{-0.0008, 0.0001}, 248.0};
+    const auto reach = physics.time_to(residue, push, 0.5, 1.0);
+    ASSERT_EQ(reach.outcome, Outcome::reached);
+    EXPECT_NEAR(Physics::strength(physics.advance(residue, push, reach.after_s)), 0.5, 1e-9);
+    EXPECT_LT(Physics::strength(physics.advance(residue, push, 1e-5)), Physics::strength(residue));
+    // Still in the dip at the horizon: on its way, not stalled.
+    EXPECT_EQ(physics.time_to(residue, push, 0.5, 1e-5).outcome, Outcome::horizon);
+
+    const State ringing{{-0.5, 0.05}, 248.0};
+    const auto brake = physics.time_to(ringing, {-1.0, 248.0}, 0.2, 1.0);
+    EXPECT_EQ(brake.outcome, Outcome::stalled);
+    EXPECT_EQ(brake.after_s, 0.0);
+}
+
 TEST(ActuatorPhysics, RejectsImpossibleConstants) {
     for (auto spoil :
          {+[](Declaration& d) { d.q = 0.0; }, +[](Declaration& d) { d.spin_down_s = -1.0; },

@@ -148,6 +148,36 @@ TEST(ResonatorMotion, ABrakeMayTakeItATenthAboveWhereItStartedAndNoFurther) {
     }
 }
 
+TEST(ResonatorMotion, ARiseAfterADipCountsOnlyPastItsSlackAboveTheLevel) {
+    // Settled at resonance, then braked in anti-phase by a weak drive for long: the LRA goes
+    // through rest (below every level) and settles, reversed, at the brake's own steady strength,
+    // where the measure at the drive's frequency no longer wobbles. Settled just under the slack
+    // above the lowest level (0.8 x quiet) is no rebound; just over it is. Both are above the
+    // level itself, so without the slack both would be.
+    const Physics physics(example_lra(175.0, 15.0));
+    const Drive note{0.5, 175.0}, brake{-0.05, 175.0};
+    const double settled = 20.0 * physics.time_constant_s(note);
+    const double reversed = physics.steady_strength(brake);
+    const double edge = 1.0 + ResonatorMotion::Brake::kRiseSlack;
+    for (const double above : {edge - 2e-3, edge + 2e-3}) {
+        const double quiet = reversed / (0.8 * above);
+        ResonatorMotion motion;
+        motion.change(physics, 0.0, {}, note);
+        auto watch = motion.braking(physics, settled, note, brake, quiet);
+        double rebound = 0.0;
+        for (int k = 1; k <= 64; ++k) {
+            rebound = watch.rebound_until(settled * k / 64.0);
+        }
+        if (above < edge) {
+            EXPECT_LT(rebound, 0.0) << above;
+        } else {
+            EXPECT_GT(rebound, 0.0) << above;
+        }
+        // Settled: the rise is the brake's strength less the slack's share of the lowest level.
+        EXPECT_NEAR(rebound, reversed - 0.8 * quiet * edge, 1e-4 * reversed) << above;
+    }
+}
+
 TEST(ResonatorMotion, ABrakeLeavingItLouderThanCoastingWouldHasDrivenItOnUnlessBothAreQuiet) {
     // Settled at resonance, then driven on, in phase, at a fraction of the note: long after, it
     // holds at that fraction where coasting would have left nothing. Above the highest level
