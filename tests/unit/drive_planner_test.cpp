@@ -448,6 +448,26 @@ TEST(DrivePlanner, APhaseBetweenTwoJudgedThatDipsToQuietIsAsLoudAfterAsWhereItLi
     EXPECT_LE(artefacts(played, notes, length).rebound, 0.10);
 }
 
+TEST(DrivePlanner, ATapAfterABrakedTapIsPushedToItsStrengthWhatLittleTheBrakeLeft) {
+    // bench/feel's taps (ten 50 ms taps a second at 248 Hz) on a 235 Hz Q-8 LRA with the
+    // part-to-part margins: each brake leaves a hair of the tap ringing in anti-phase, which the
+    // next tap's push first takes down through its least. Every tap, not only the first, gets its
+    // push and reaches 90 % of its strength (the nine after the first were held without it, at
+    // 78 %).
+    const Declaration lra = example_lra(235.0, 8.0);
+    const std::vector<std::pair<double, double>> taps(10, {1.0, 248.22});
+    const double length = 0.05;
+    const auto played =
+        play_notes(lra, lra, {.reverse = true, .uncertainty = kPartToPart}, taps, length);
+    for (std::size_t i = 0; i < taps.size(); ++i) {
+        const auto from =
+            played.strength.begin() + static_cast<std::ptrdiff_t>(2.0 * length * i * kPlantRate);
+        const double most =
+            *std::max_element(from, from + static_cast<std::ptrdiff_t>(length * kPlantRate));
+        EXPECT_GE(most, 0.9) << "tap " << i;
+    }
+}
+
 TEST(DrivePlanner, AnOverdriveOutOfABrakeMeetsWhatEarlierNotesLeftAtTheWorstPhase) {
     // A random search's draw (a 175 Hz Q-25 LRA planned as exact): the fifth note, 0.38 at
     // 174 Hz, was overdriven straight out of the brake of the note before (no new start: the
