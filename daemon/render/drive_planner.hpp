@@ -130,6 +130,13 @@ class DrivePlanner {
     // `silence_follows`: the note ends at `until` (what comes after is the brake's or the coast's).
     std::vector<Step> approach(double at, double until, double strength, double frequency_hz,
                                bool silence_follows) const;
+    // A brake of `length` (from `at`, to `hold` after it) of up to kWholeHalfCycles half cycles
+    // of its carrier, made a whole number of them long and as much weaker as lands the LRA, by
+    // the model, where the brake would have; nothing where it need not or cannot be.
+    std::optional<std::vector<Step>> in_half_cycles(double at, double until,
+                                                    const actuator::Drive& push,
+                                                    const actuator::Drive& hold,
+                                                    double length) const;
     // The state at `t` following `steps` from the current state at steps.front().at.
     actuator::State follow(const std::vector<Step>& steps, double t) const;
     // The same for any actuator from any state.
