@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "actuator/physics.hpp"
 #include "actuator/resonator_motion.hpp"
@@ -15,6 +16,22 @@ namespace {
 
 using vibscore::testing::example_erm;
 using vibscore::testing::example_lra;
+
+// `note` from rest, settled by `settled`, then `brake` watched around `quiet` to `length` in 64
+// looks; the watch, and the largest rebound it said at its last look.
+std::pair<ResonatorMotion::Brake, double> braked_after_settling(const Physics& physics,
+                                                                const Drive& note, double settled,
+                                                                const Drive& brake, double quiet,
+                                                                double length) {
+    ResonatorMotion motion;
+    motion.change(physics, 0.0, {}, note);
+    auto watch = motion.braking(physics, settled, note, brake, quiet);
+    double rebound = 0.0;
+    for (int k = 1; k <= 64; ++k) {
+        rebound = watch.rebound_until(length * k / 64.0);
+    }
+    return {watch, rebound};
+}
 
 TEST(ResonatorMotion, HeldLongItSettlesAtTheResonatorsSteadyStrengthAtEveryPhase) {
     // Measured at the drive's frequency, the forced motion's amplitude is exactly
@@ -132,14 +149,10 @@ TEST(ResonatorMotion, ABrakeMayTakeItATenthAboveWhereItStartedAndNoFurther) {
     const double settled = 20.0 * physics.time_constant_s(note);
     const double edge = 1.0 + ResonatorMotion::Brake::kPushUp;
     for (const double ratio : {edge - 1e-3, edge + 1e-3}) {
-        ResonatorMotion motion;
-        motion.change(physics, 0.0, {}, note);
         const Drive stronger{note.amplitude * ratio, note.frequency_hz};
-        auto brake = motion.braking(physics, settled, note, stronger, 0.1 * note.amplitude);
-        double rebound = 0.0;
-        for (int k = 1; k <= 64; ++k) {
-            rebound = brake.rebound_until(settled * k / 64.0);
-        }
+        const double rebound =
+            braked_after_settling(physics, note, settled, stronger, 0.1 * note.amplitude, settled)
+                .second;
         if (ratio < edge) {
             EXPECT_LT(rebound, 0.0) << ratio;
         } else {
@@ -161,13 +174,8 @@ TEST(ResonatorMotion, ARiseAfterADipCountsOnlyPastItsSlackAboveTheLevel) {
     const double edge = 1.0 + ResonatorMotion::Brake::kRiseSlack;
     for (const double above : {edge - 2e-3, edge + 2e-3}) {
         const double quiet = reversed / (0.8 * above);
-        ResonatorMotion motion;
-        motion.change(physics, 0.0, {}, note);
-        auto watch = motion.braking(physics, settled, note, brake, quiet);
-        double rebound = 0.0;
-        for (int k = 1; k <= 64; ++k) {
-            rebound = watch.rebound_until(settled * k / 64.0);
-        }
+        const double rebound =
+            braked_after_settling(physics, note, settled, brake, quiet, settled).second;
         if (above < edge) {
             EXPECT_LT(rebound, 0.0) << above;
         } else {
@@ -188,13 +196,8 @@ TEST(ResonatorMotion, ABrakeLeavingItLouderThanCoastingWouldHasDrivenItOnUnlessB
     const double settled = 20.0 * physics.time_constant_s(note);
     const double strength = physics.steady_strength(note), quiet = 0.1 * strength;
     const auto louder = [&](const Drive& brake, double length) {
-        ResonatorMotion motion;
-        motion.change(physics, 0.0, {}, note);
-        auto watch = motion.braking(physics, settled, note, brake, quiet);
-        for (int k = 1; k <= 64; ++k) {
-            watch.rebound_until(length * k / 64.0);
-        }
-        return watch.louder_than_coasting();
+        return braked_after_settling(physics, note, settled, brake, quiet, length)
+            .first.louder_than_coasting();
     };
     EXPECT_FALSE(louder({0.11 * note.amplitude, 175.0}, settled));
     EXPECT_TRUE(louder({0.13 * note.amplitude, 175.0}, settled));
