@@ -527,6 +527,27 @@ TEST(DrivePlanner, ABrakeUpToFourHalfCyclesLongIsMadeWholeHalfCyclesAndLongerOne
     }
 }
 
+TEST(DrivePlanner, ABrakeNoWeakerWholeHalfCycleLandsWhereItShouldKeepsItsFullScale) {
+    // Far off a Q-5 LRA's resonance (150 Hz on 175 Hz), from 0.6 at 3/16 of a turn off the
+    // drive's phase, the full brake to 0.54 takes a sixth of a half cycle; a weaker brake over a
+    // whole half cycle beats elsewhere and lands it at 0.54 at no strength. The brake is kept as
+    // the envelope planned it, full scale, and lands there.
+    const Declaration lra = example_lra(175.0, 5.0);
+    const double f = 150.0, half = 0.5 / f, s = 0.54;
+    PlannerCarry carry;
+    carry.state = {std::polar(0.6, 2.0 * std::numbers::pi * 3.0 / 16.0), f};
+    carry.drive = {0.5, f};
+    carry.ringing_frequency_hz = f;
+    DrivePlanner planner(lra, {.reverse = true}, carry);
+    const auto drives = plan(planner, 0.0, 0.05, s, f);
+    ASSERT_EQ(drives.size(), 2u);
+    EXPECT_EQ(drives[0].amplitude, -1.0);
+    EXPECT_LT(drives[1].at, half);
+    const State landed = Physics(lra).advance(
+        carry.state, {drives[0].amplitude, drives[0].frequency_hz}, drives[1].at);
+    EXPECT_NEAR(Physics::strength(landed), s, 1e-6);
+}
+
 TEST(DrivePlanner, AnOverdriveOutOfABrakeMeetsWhatEarlierNotesLeftAtTheWorstPhase) {
     // A random search's draw (a 175 Hz Q-25 LRA planned as exact): the fifth note, 0.38 at
     // 174 Hz, was overdriven straight out of the brake of the note before (no new start: the
