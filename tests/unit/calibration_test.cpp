@@ -280,6 +280,21 @@ TEST(CalibrationEstimate, FindsAnErmsTimeConstantsAt1kHz) {
     EXPECT_NEAR(*e.full_scale_accel, 10.0, 2.0);
 }
 
+TEST(CalibrationEstimate, ASlowMotorsCoastIsNotTimedShortByTheHighPassThatTakesGravityOut) {
+    // A motor turning at 104 Hz at full speed slows, as it coasts, to where a high-pass of
+    // ±10 ms takes much of its vibration out: timed 2.8 % short that way, with a doubt of
+    // hundredths of a per cent (bench/calibrate at 1 kHz without noise, jitter or delay).
+    SensorOptions sensor = at(1000.0, 3);
+    sensor.noise_rms = 0.0;
+    sensor.bits = 0;
+    sensor.jitter_s = 0.0;
+    sensor.erm_full_speed_hz = 104.0;
+    const Estimate e = measure(erm(0.0533, 0.0858), example_erm(), sensor, 0.0);
+    ASSERT_TRUE(e.trusted) << (e.problems.empty() ? "" : e.problems.front());
+    EXPECT_NEAR(*e.spin_down_s, 0.0858, 0.0858 * 0.005);
+    EXPECT_NEAR(*e.spin_up_s, 0.0533, 0.0533 * 0.005);
+}
+
 TEST(CalibrationEstimate, FindsAnErmsTimeConstantsAt400HzWithARotatingForce) {
     SensorOptions sensor = at(400.0, 6);
     sensor.erm_rotating = true;
@@ -594,7 +609,7 @@ TEST(CalibrationEstimate, AnLraJustBelowHalfTheRateIsTimedOnItsOwnSideNotAtItsMi
     }
 }
 
-TEST(CalibrationConfidence, AnErmBehindAWeakLowPassThatTheFitCannotTellIsRefused) {
+TEST(CalibrationConfidence, AnErmBehindAWeakLowPassIsNeverTrustedBeyondTheTarget) {
     // bench/calibrate seed 7: motors turning at 103-110 Hz read at 400 Hz through a two-stage
     // low-pass at 200 Hz. The fit with the filter explains under 5 % more than the plain one, so
     // the plain one was kept, 15.5-15.8 % short on the spin-up, and trusted (±11-14 %).
@@ -602,11 +617,16 @@ TEST(CalibrationConfidence, AnErmBehindAWeakLowPassThatTheFitCannotTellIsRefused
     sensor.low_pass_hz = 200.0;
     sensor.low_pass_order = 2;
     sensor.erm_full_speed_hz = 105.0;
+    // Since the energy's high-pass no longer takes the end of each coast out
+    // (erm_energy_high_pass_half), the plain fit is 11 % short on both and says ±6.6 %: trusted,
+    // within the issue's ±15 %, and twice its doubt reaches the truth. Either way never trusted
+    // beyond the target.
     const Estimate weak = measure(erm(0.0272, 0.0617), example_erm(), sensor);
-    ASSERT_TRUE(weak.spin_up_s.has_value());
-    EXPECT_FALSE(weak.trusted) << *weak.spin_up_s;
-    EXPECT_TRUE(mentions(weak.problems, "the accelerometer's own low-pass hides how fast"))
-        << (weak.problems.empty() ? "" : weak.problems.front());
+    ASSERT_TRUE(weak.trusted) << (weak.problems.empty() ? "" : weak.problems.front());
+    EXPECT_NEAR(*weak.spin_up_s, 0.0272, 0.0272 * 0.15);
+    EXPECT_NEAR(*weak.spin_down_s, 0.0617, 0.0617 * 0.15);
+    EXPECT_LE(std::abs(std::log(*weak.spin_up_s / 0.0272)), 2.0 * *weak.spin_up_uncertainty);
+    EXPECT_LE(std::abs(std::log(*weak.spin_down_s / 0.0617)), 2.0 * *weak.spin_down_uncertainty);
     // The neighbouring motor turning at 124 Hz: the filter shows, and the estimate is trusted.
     sensor.erm_full_speed_hz = 124.0;
     const Estimate shown = measure(erm(0.0506, 0.1957), example_erm(), sensor);
