@@ -541,7 +541,7 @@ void judge_confidence(Estimate& e) {
     e.trusted = e.problems.empty();
 }
 
-Trace measured_magnitude(const std::vector<Sample>& samples) {
+Trace measured_magnitude(const std::vector<Sample>& samples, Kind kind) {
     Trace trace;
     if (samples.size() < 3) {
         return trace;
@@ -551,8 +551,8 @@ Trace measured_magnitude(const std::vector<Sample>& samples) {
         raw[k] = samples[k].t_s;
     }
     const double rate = std::max(1.0, fit::median_rate(raw));
-    const std::vector<Vec3> vibration =
-        fit::high_pass(samples, std::max(1, static_cast<int>(std::lround(0.010 * rate))));
+    const std::vector<Vec3> vibration = fit::high_pass(
+        samples, kind == Kind::erm ? erm_energy_high_pass_half(rate) : high_pass_half(rate));
     std::vector<double> energy(samples.size());
     for (std::size_t k = 0; k < samples.size(); ++k) {
         energy[k] = vibration[k][0] * vibration[k][0] + vibration[k][1] * vibration[k][1] +

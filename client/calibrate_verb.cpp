@@ -170,7 +170,7 @@ void write_calibration_picture(const std::string& path, const cal::Plan& plan,
                                const std::optional<actuator::Declaration>& declared) {
     pictures::picture_format_for(path);
     pictures::CalibrationPicture::Traces traces;
-    traces.recorded = cal::measured_magnitude(samples);
+    traces.recorded = cal::measured_magnitude(samples, plan.kind);
     const double scale = estimate.full_scale_accel.value_or(1.0);
     actuator::Declaration base;
     if (declared) {
