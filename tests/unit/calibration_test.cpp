@@ -618,9 +618,9 @@ TEST(CalibrationConfidence, AnErmBehindAWeakLowPassIsNeverTrustedBeyondTheTarget
     sensor.low_pass_order = 2;
     sensor.erm_full_speed_hz = 105.0;
     // Since the energy's high-pass no longer takes the end of each coast out
-    // (erm_energy_high_pass_half), the plain fit is 11 % short on both and says ±6.6 %: trusted,
-    // within the issue's ±15 %, and twice its doubt reaches the truth. Either way never trusted
-    // beyond the target.
+    // (erm_energy_high_pass_half), the plain fit reads the spin-up 11 % short and the spin-down
+    // 11 % long, and says ±6.6 %: trusted, within the issue's ±15 %, and twice its doubt reaches
+    // the truth. Either way never trusted beyond the target.
     const Estimate weak = measure(erm(0.0272, 0.0617), example_erm(), sensor);
     ASSERT_TRUE(weak.trusted) << (weak.problems.empty() ? "" : weak.problems.front());
     EXPECT_NEAR(*weak.spin_up_s, 0.0272, 0.0272 * 0.15);
