@@ -122,9 +122,9 @@ Estimate estimate(const Plan& plan, const std::vector<Sample>& samples,
 
 // For pictures and checks: the vibration's magnitude in a recording after the slowly varying
 // part (gravity, the hand) is taken out as the estimate of that `kind` takes it out, smoothed
-// over about a period; and the magnitude the
-// model predicts at the same times for this plan under `constants` (the fitted numbers, or the
-// declared ones), `full_scale_accel` m/s² peak at full-scale drive.
+// over about a period; and the magnitude the model predicts at the same times for this plan
+// under `constants` (the fitted numbers, or the declared ones), `full_scale_accel` m/s² peak at
+// full-scale drive.
 struct Trace {
     std::vector<double> t_s;
     std::vector<double> magnitude;
