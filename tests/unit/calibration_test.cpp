@@ -49,6 +49,16 @@ SensorOptions at(double rate_hz, std::uint64_t seed = 1) {
     return sensor;
 }
 
+// A sensor with none of the imperfections (noise, quantisation, timestamp jitter): what is left
+// of an estimate's error is the estimate's own.
+SensorOptions flawless(double rate_hz, std::uint64_t seed = 1) {
+    SensorOptions sensor = at(rate_hz, seed);
+    sensor.noise_rms = 0.0;
+    sensor.bits = 0;
+    sensor.jitter_s = 0.0;
+    return sensor;
+}
+
 TEST(CalibrationPlan, EveryProbeIsShortAndWithinFullScale) {
     std::vector<Plan> plans{make_plan(Kind::erm, std::nullopt), make_plan(Kind::lra, std::nullopt),
                             make_plan(Kind::erm, example_erm()),
@@ -284,10 +294,7 @@ TEST(CalibrationEstimate, ASlowMotorsCoastIsNotTimedShortByTheHighPassThatTakesG
     // A motor turning at 104 Hz at full speed slows, as it coasts, to where a high-pass of
     // ±10 ms takes much of its vibration out: timed 2.8 % short that way, with a doubt of
     // hundredths of a per cent (bench/calibrate at 1 kHz without noise, jitter or delay).
-    SensorOptions sensor = at(1000.0, 3);
-    sensor.noise_rms = 0.0;
-    sensor.bits = 0;
-    sensor.jitter_s = 0.0;
+    SensorOptions sensor = flawless(1000.0, 3);
     sensor.erm_full_speed_hz = 104.0;
     const Estimate e = measure(erm(0.0533, 0.0858), example_erm(), sensor, 0.0);
     ASSERT_TRUE(e.trusted) << (e.problems.empty() ? "" : e.problems.front());
@@ -773,12 +780,9 @@ TEST(CalibrationPictures, ASlowMotorsCoastIsDrawnAsTheEstimateSawIt) {
     // the estimate fitted (the ERM's ±40 ms), so its coasts end where the prediction does.
     const Declaration truth = erm(0.04, 0.1);
     const Plan plan = make_plan(Kind::erm, truth);
-    SensorOptions sensor = at(1000.0);
+    SensorOptions sensor = flawless(1000.0);
     sensor.erm_rotating = true;
     sensor.erm_full_speed_hz = 100.0;
-    sensor.noise_rms = 0.0;
-    sensor.bits = 0;
-    sensor.jitter_s = 0.0;
     const std::vector<Sample> samples = record(plan, truth, sensor);
     const Trace measured = measured_magnitude(samples, Kind::erm);
     const Trace predicted = predicted_magnitude(plan, truth, 10.0, measured.t_s);
