@@ -341,9 +341,7 @@ void estimate_erm(Estimate& e, const Plan& plan, const std::vector<Vec3>& vibrat
     // the phase-coherent envelope. Which time base is right shows in how much of the vibration
     // the local sinusoids explain on each. On a uniform clock the energy fit stands: its ripple
     // aliases to a frequency the average removes, where the envelope's local frequency would
-    // meet the same alias as the speed changes and mislead it. The envelope's fit does not try
-    // a sensor low-pass: on jittered readings its residual gain is noise (bench/calibrate: one
-    // of 64 then missed by 42 %).
+    // meet the same alias as the speed changes and mislead it.
     const int window = std::max(3, static_cast<int>(std::lround(0.005 * e.sample_rate_hz)));
     const fit::ErmEnvelope on_regular =
         fit::erm_envelope(plan, regular, vibration, fits[0], window, passed);
@@ -359,13 +357,13 @@ void estimate_erm(Estimate& e, const Plan& plan, const std::vector<Vec3>& vibrat
         // 89.5 -> 83.8 -> 76.3 -> 72.0 ms). What the last round still moved is doubt.
         fit::ErmEnvelope envelope = on_raw;
         fit::ErmFit coherent = fit::fit_erm(plan, raw, envelope.envelope, envelope.weight, window,
-                                            /*try_filter=*/false);
+                                            fit::ErmTrace::coherent_envelope);
         double moved_up = 0.0, moved_down = 0.0;
         for (int round = 1; round < kEnvelopeRounds; ++round) {
             fit::ErmEnvelope next =
                 fit::erm_envelope(plan, raw, vibration, coherent, window, passed);
             const fit::ErmFit refit = fit::fit_erm(plan, raw, next.envelope, next.weight, window,
-                                                   /*try_filter=*/false);
+                                                   fit::ErmTrace::coherent_envelope);
             moved_up = std::abs(std::log(refit.spin_up_s / coherent.spin_up_s));
             moved_down = std::abs(std::log(refit.spin_down_s / coherent.spin_down_s));
             coherent = refit;
@@ -373,8 +371,8 @@ void estimate_erm(Estimate& e, const Plan& plan, const std::vector<Vec3>& vibrat
         }
         spin_up_s = coherent.spin_up_s;
         spin_down_s = coherent.spin_down_s;
-        steps =
-            fit::erm_burst_spread(plan, raw, envelope.envelope, envelope.weight, window, coherent);
+        steps = fit::erm_burst_spread(plan, raw, envelope.envelope, envelope.weight, window,
+                                      coherent, fit::ErmTrace::coherent_envelope);
         steps.spin_up = std::hypot(steps.spin_up, moved_up);
         steps.spin_down = std::hypot(steps.spin_down, moved_down);
         used = coherent;

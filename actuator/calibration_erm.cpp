@@ -8,6 +8,10 @@
 // average, so the smoothing shifts and rounds both alike and does not bias the time constants.
 // The scale and the noise floor are linear least squares; the constants and delay are searched,
 // and, where it clearly explains more, a first-order sensor low-pass on the vibration.
+//
+// The phase-coherent envelope (erm_envelope) is no average: it is the model's own force at each
+// reading, scaled by how much stronger the vibration around it is, so its model is speed^4 at
+// the reading itself.
 #include <algorithm>
 #include <cmath>
 
@@ -78,17 +82,23 @@ struct Energy {
     const std::vector<double>& energy;
     const std::vector<double>& weight;
     int half;
+    ErmTrace trace;
+
+    // The trace the speed model predicts, at full speed 1.
+    std::vector<double> predicted(double up, double down, double delay, double filter = 0.0,
+                                  int stages = 1) const {
+        std::vector<double> model = erm_speeds(plan, up, down, delay, t);
+        for (double& s : model) {
+            const double gain = 1.0 / (1.0 + filter * filter * s * s);
+            s = s * s * s * s * (stages == 2 ? gain * gain : gain);
+        }
+        return trace == ErmTrace::averaged_energy ? box_smooth(model, half) : model;
+    }
 
     // The residual, and the scale and floor that give it.
     double rss(double up, double down, double delay, double* scale = nullptr,
                double* floor = nullptr, double filter = 0.0, int stages = 1) const {
-        std::vector<double> model = erm_speeds(plan, up, down, delay, t);
-        for (std::size_t k = 0; k < t.size(); ++k) {
-            const double s = model[k];
-            const double gain = 1.0 / (1.0 + filter * filter * s * s);
-            model[k] = s * s * s * s * (stages == 2 ? gain * gain : gain);
-        }
-        model = box_smooth(model, half);
+        const std::vector<double> model = predicted(up, down, delay, filter, stages);
         // Weighted least squares of energy = scale x model + floor.
         double sw = 0.0, sm = 0.0, sy = 0.0, smm = 0.0, smy = 0.0, syy = 0.0;
         for (std::size_t k = 0; k < t.size(); ++k) {
@@ -117,8 +127,11 @@ struct Energy {
 }  // namespace
 
 ErmFit fit_erm(const Plan& plan, const std::vector<double>& t_s, const std::vector<double>& energy,
-               const std::vector<double>& weight, int half, bool try_filter) {
-    const Energy model{plan, t_s, energy, weight, half};
+               const std::vector<double>& weight, int half, ErmTrace trace) {
+    const Energy model{plan, t_s, energy, weight, half, trace};
+    // A sensor low-pass is not tried on the coherent envelope: on readings at jittered instants
+    // its residual gain is noise (bench/calibrate: one of 64 then missed by 42 %).
+    const bool try_filter = trace == ErmTrace::averaged_energy;
     // Coarse: both time constants on a log grid (5 ms .. 1.3 s), no delay.
     double best_up = 0.04, best_down = 0.08, best_delay = 0.0, best = 1e300;
     for (double up = 0.005; up < 0.6; up *= 1.15) {
@@ -157,17 +170,13 @@ ErmFit fit_erm(const Plan& plan, const std::vector<double>& t_s, const std::vect
     {
         double a = 0.0, c = 0.0;
         model.rss(std::exp(found[0]), std::exp(found[1]), found[2], &a, &c);
-        std::vector<double> shape =
-            erm_speeds(plan, std::exp(found[0]), std::exp(found[1]), found[2], t_s);
-        for (double& speed : shape) {
-            speed = speed * speed * speed * speed;
-        }
-        shape = box_smooth(shape, half);
+        const std::vector<double> shape =
+            model.predicted(std::exp(found[0]), std::exp(found[1]), found[2]);
         std::vector<double> relative(t_s.size());
         for (std::size_t k = 0; k < t_s.size(); ++k) {
             relative[k] = weight[k] / std::pow(shape[k] + lambda, 2.0);
         }
-        const Energy second{plan, t_s, energy, relative, half};
+        const Energy second{plan, t_s, energy, relative, half, trace};
         const auto filtered_cost = [&](const std::vector<double>& p, int stages) {
             if (std::abs(p[2]) > 0.08 || p[3] < 0.0 || p[3] > kMaxFilter) {
                 return 1e300;
@@ -253,7 +262,7 @@ ErmFit fit_erm(const Plan& plan, const std::vector<double>& t_s, const std::vect
 
 ErmSpread erm_burst_spread(const Plan& plan, const std::vector<double>& t_s,
                            const std::vector<double>& energy, const std::vector<double>& weight,
-                           int half, const ErmFit& fit) {
+                           int half, const ErmFit& fit, ErmTrace trace) {
     // Weighed as the fit weighed them: by the relative error of the fitted energy.
     constexpr double lambda = 0.01;
     ErmSpread out;
@@ -281,7 +290,7 @@ ErmSpread erm_burst_spread(const Plan& plan, const std::vector<double>& t_s,
         if (t.size() < 20) {
             continue;
         }
-        const Energy burst{plan, t, e, w, half};
+        const Energy burst{plan, t, e, w, half, trace};
         // A low-pass the whole fit kept is free here too: where the recording cannot tell it
         // from a slower motor, each step settles elsewhere along that valley.
         const bool filtered = fit.filter > 0.0;

@@ -87,12 +87,16 @@ struct ErmFit {
     double filter_doubt_up = 0.0;
     double filter_doubt_down = 0.0;
 };
-// `energy`: |vibration|^2 smoothed by box_smooth over `half`; `weight`: how much each reading's
-// energy is to be believed (weighted least squares).
-// `try_filter`: whether a sensor low-pass on the vibration is tried (kept only where it clearly
-// explains more).
+// What an ERM's trace is at each reading: |vibration|^2 smoothed by box_smooth over `half` (the
+// mean of speed^4 there), or erm_envelope's (speed^4 at the reading).
+enum class ErmTrace { averaged_energy, coherent_envelope };
+
+// `energy`: the trace; `weight`: how much each reading's is to be believed (weighted least
+// squares). A sensor low-pass on the vibration is tried on the averaged energy (kept only where
+// it clearly explains more).
 ErmFit fit_erm(const Plan& plan, const std::vector<double>& t_s, const std::vector<double>& energy,
-               const std::vector<double>& weight, int half, bool try_filter = true);
+               const std::vector<double>& weight, int half,
+               ErmTrace trace = ErmTrace::averaged_energy);
 
 // How far the probe's steps disagree: each step (its rise and its coast) fitted alone, the
 // delay and sensor low-pass of `fit` held, starting from `fit`'s constants; the standard error
@@ -106,19 +110,20 @@ struct ErmSpread {
 };
 ErmSpread erm_burst_spread(const Plan& plan, const std::vector<double>& t_s,
                            const std::vector<double>& energy, const std::vector<double>& weight,
-                           int half, const ErmFit& fit);
+                           int half, const ErmFit& fit, ErmTrace trace = ErmTrace::averaged_energy);
 
 // An ERM's vibration envelope independent of the phase at which the readings fall (for readings
 // at jittered instants, where |vibration|^2 carries the sampled phase as noise): the rotation
 // frequency at full speed from the plateaus' spectrum, the phase the speed model `first`
 // predicts from it, and in a window of 2 `half` + 1 readings around each one the sinusoid at
-// that phase fitted per axis (amplitude^2 summed over the axes, so it goes with speed^4 as the
-// energy does). `weight` is how well each window's phases separate the sine from the cosine
-// (near 0 where the sampling aliases the rotation to zero or half the rate, or the motor is
-// nearly still). `explained` is the share of the vibration the local sinusoids explain: the
-// readings' right time base explains more. `high_pass_half`: the vibration went through
-// high_pass with it (the sinusoids then do too, so what it takes away is not read as a weaker
-// vibration); 0: it did not.
+// that phase, carrying the force that model predicts (speed^2), fitted per axis: how much
+// stronger the vibration is than the model there, times the model's force at the reading
+// (amplitude^2 summed over the axes, so it goes with speed^4 as the energy does). `weight` is how
+// well each window's phases separate the sine from the cosine (near 0 where the sampling aliases
+// the rotation to zero or half the rate, or the motor is nearly still). `explained` is the share of
+// the vibration the local sinusoids explain: the readings' right time base explains more.
+// `high_pass_half`: the vibration went through high_pass with it (the sinusoids then do too, so
+// what it takes away is not read as a weaker vibration); 0: it did not.
 struct ErmEnvelope {
     std::vector<double> envelope;
     std::vector<double> weight;

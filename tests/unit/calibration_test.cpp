@@ -714,6 +714,24 @@ TEST(CalibrationEstimate, AnErmNearHalfTheRateReadAtJitteredInstantsIsNotTimedSh
     expect_jittered_erm_read_right(405.8, 200.0, 0.0793, 0.110, {73u, 74u}, 0.05);
 }
 
+TEST(CalibrationEstimate, AnErmsCoastReadAtJitteredInstantsIsNotTimedShort) {
+    // The phase-coherent envelope fitted sinusoids of one amplitude over a few milliseconds: a
+    // window's mean amplitude, which a coast's falling force leaves below its mean energy, and
+    // what the high-pass takes from a changing amplitude went unmodelled. Every coast read short:
+    // this motor by 1.4-1.5 % at ±0.06 % (bench/calibrate seed 32 without noise or delay). With
+    // sinusoids carrying the force the speed model predicts, within hundredths of a per cent.
+    for (const std::uint64_t seed : {3u, 4u}) {
+        SensorOptions sensor = flawless(400.0, seed);
+        sensor.jittered_sampling = true;
+        sensor.jitter_s = 0.001;
+        sensor.erm_full_speed_hz = 173.0;
+        const Estimate e = measure(erm(0.0298, 0.1093), example_erm(), sensor, 0.0);
+        ASSERT_TRUE(e.trusted) << seed << ": " << (e.problems.empty() ? "" : e.problems.front());
+        EXPECT_NEAR(*e.spin_down_s, 0.1093, 0.1093 * 0.003) << seed;
+        EXPECT_NEAR(*e.spin_up_s, 0.0298, 0.0298 * 0.005) << seed;
+    }
+}
+
 TEST(CalibrationApply, ATrustedEstimateReplacesOnlyItsOwnNumbers) {
     Estimate e;
     e.kind = Kind::lra;
