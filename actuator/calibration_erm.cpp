@@ -129,9 +129,6 @@ struct Energy {
 ErmFit fit_erm(const Plan& plan, const std::vector<double>& t_s, const std::vector<double>& energy,
                const std::vector<double>& weight, int half, ErmTrace trace) {
     const Energy model{plan, t_s, energy, weight, half, trace};
-    // A sensor low-pass is not tried on the coherent envelope: on readings at jittered instants
-    // its residual gain is noise (bench/calibrate: one of 64 then missed by 42 %).
-    const bool try_filter = trace == ErmTrace::averaged_energy;
     // Coarse: both time constants on a log grid (5 ms .. 1.3 s), no delay.
     double best_up = 0.04, best_down = 0.08, best_delay = 0.0, best = 1e300;
     for (double up = 0.005; up < 0.6; up *= 1.15) {
@@ -203,42 +200,38 @@ ErmFit fit_erm(const Plan& plan, const std::vector<double>& t_s, const std::vect
         // gain falling twice as steeply above it: bench/calibrate seed 11, motors at 236-244 Hz
         // through a two-stage filter at 200 Hz, timed 14-19 % short by the first-order form
         // alone). The one that explains more is kept.
-        const std::vector<double> with1 =
-            try_filter ? minimise(cost2, start, {0.05, 0.05, 0.002, 0.5}, 250) : start;
-        const std::vector<double> with2 =
-            try_filter ? minimise(cost3, start, {0.05, 0.05, 0.002, 0.5}, 250) : start;
+        const std::vector<double> with1 = minimise(cost2, start, {0.05, 0.05, 0.002, 0.5}, 250);
+        const std::vector<double> with2 = minimise(cost3, start, {0.05, 0.05, 0.002, 0.5}, 250);
         const double ratio1 = cost2(with1) / std::max(plain(without), 1e-300);
         const double ratio2 = cost3(with2) / std::max(plain(without), 1e-300);
         const bool two = ratio2 < ratio1;
         const std::vector<double>& with = two ? with2 : with1;
         const double ratio = std::min(ratio1, ratio2);
-        const bool filtered = try_filter && ratio < kFilteredResidual;
+        const bool filtered = ratio < kFilteredResidual;
         filter = filtered ? with[3] : 0.0;
         stages = filtered && two ? 2 : 1;
         found = filtered ? std::vector<double>{with[0], with[1], with[2]} : without;
-        if (try_filter) {
-            // What the answer leans on the low-pass model: how far the two fits' constants
-            // differ (in log). Neither form is every sensor's filter (its order and corner are
-            // the driver's), so a fifth of the correction is doubt even where the filter is
-            // clearly there (bench/calibrate: a second-order filter at rate/2 leaves up to 19 %
-            // that a first-order fit does not explain). Where the two explain the recording
-            // nearly alike (ratio from kAmbiguousFrom up to kFilteredResidual and beyond) the
-            // truth may lie anywhere from the plain fit to beyond the filtered one (a weak
-            // filter, its corner twice the rotation, bends the energy so little that the
-            // first-order gain recovers only part of it: bench/calibrate seed 7, a two-stage
-            // filter at rate/2 and motors at 101-114 Hz read at 400 Hz, the truth lay beyond the
-            // filtered fit by 0.27-0.54 of the difference); twice the doubt then reaches the far
-            // end from the answer kept: the plain fit from the filtered one, the plain one
-            // (kept when the filter explains under 5 % more: 15.5-15.8 % off in those
-            // recordings, with half the difference as doubt) from half the difference beyond
-            // the filtered one.
-            const double lean = std::clamp(
-                (ratio - kAmbiguousFrom) / (kFilteredResidual - kAmbiguousFrom), 0.0, 1.0);
-            const double far = filtered ? 1.0 : 1.0 + kBeyondFiltered;
-            const double share = kFormDoubt + (0.5 * far - kFormDoubt) * lean;
-            filter_doubt_up = share * std::abs(with[0] - without[0]);
-            filter_doubt_down = share * std::abs(with[1] - without[1]);
-        }
+        // What the answer leans on the low-pass model: how far the two fits' constants
+        // differ (in log). Neither form is every sensor's filter (its order and corner are
+        // the driver's), so a fifth of the correction is doubt even where the filter is
+        // clearly there (bench/calibrate: a second-order filter at rate/2 leaves up to 19 %
+        // that a first-order fit does not explain). Where the two explain the recording
+        // nearly alike (ratio from kAmbiguousFrom up to kFilteredResidual and beyond) the
+        // truth may lie anywhere from the plain fit to beyond the filtered one (a weak
+        // filter, its corner twice the rotation, bends the energy so little that the
+        // first-order gain recovers only part of it: bench/calibrate seed 7, a two-stage
+        // filter at rate/2 and motors at 101-114 Hz read at 400 Hz, the truth lay beyond the
+        // filtered fit by 0.27-0.54 of the difference); twice the doubt then reaches the far
+        // end from the answer kept: the plain fit from the filtered one, the plain one
+        // (kept when the filter explains under 5 % more: 15.5-15.8 % off in those
+        // recordings, with half the difference as doubt) from half the difference beyond
+        // the filtered one.
+        const double lean =
+            std::clamp((ratio - kAmbiguousFrom) / (kFilteredResidual - kAmbiguousFrom), 0.0, 1.0);
+        const double far = filtered ? 1.0 : 1.0 + kBeyondFiltered;
+        const double share = kFormDoubt + (0.5 * far - kFormDoubt) * lean;
+        filter_doubt_up = share * std::abs(with[0] - without[0]);
+        filter_doubt_down = share * std::abs(with[1] - without[1]);
     }
     ErmFit out;
     out.filter = filter;

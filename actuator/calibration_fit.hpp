@@ -92,8 +92,8 @@ struct ErmFit {
 enum class ErmTrace { averaged_energy, coherent_envelope };
 
 // `energy`: the trace; `weight`: how much each reading's is to be believed (weighted least
-// squares). A sensor low-pass on the vibration is tried on the averaged energy (kept only where
-// it clearly explains more).
+// squares). A sensor low-pass on the vibration is tried (kept only where it clearly explains
+// more).
 ErmFit fit_erm(const Plan& plan, const std::vector<double>& t_s, const std::vector<double>& energy,
                const std::vector<double>& weight, int half,
                ErmTrace trace = ErmTrace::averaged_energy);

@@ -732,6 +732,28 @@ TEST(CalibrationEstimate, AnErmsCoastReadAtJitteredInstantsIsNotTimedShort) {
     }
 }
 
+TEST(CalibrationEstimate, AnErmReadAtJitteredInstantsThroughTheSensorsLowPassIsNotTrustedWrong) {
+    // A sensor that low-passes the vibration weakens a fast motor more than a slow one: the
+    // energy grows slower than speed^4. The phase-coherent envelope's fit did not try the filter:
+    // this motor was trusted with its spin-up 17 % short and its spin-down 30 % long (bench/
+    // calibrate seed 32, readings at jittered instants through a first-order filter at a
+    // quarter of 400 Hz: 3-5 of 12 trusted 20-28 % off). It tries it as the energy's fit does,
+    // with what the answer leans on it as doubt.
+    for (const std::uint64_t seed : {5u, 6u}) {
+        SensorOptions sensor = at(400.0, seed);
+        sensor.jittered_sampling = true;
+        sensor.low_pass_hz = 100.0;
+        sensor.low_pass_order = 1;
+        sensor.erm_full_speed_hz = 176.0;
+        const Estimate e = measure(erm(0.0209, 0.0779), example_erm(), sensor);
+        ASSERT_TRUE(e.trusted) << seed << ": " << (e.problems.empty() ? "" : e.problems.front());
+        EXPECT_NEAR(*e.spin_up_s, 0.0209, 0.0209 * 0.15) << seed;
+        EXPECT_NEAR(*e.spin_down_s, 0.0779, 0.0779 * 0.15) << seed;
+        EXPECT_LE(std::abs(*e.spin_up_s / 0.0209 - 1.0), 2.0 * *e.spin_up_uncertainty) << seed;
+        EXPECT_LE(std::abs(*e.spin_down_s / 0.0779 - 1.0), 2.0 * *e.spin_down_uncertainty) << seed;
+    }
+}
+
 TEST(CalibrationApply, ATrustedEstimateReplacesOnlyItsOwnNumbers) {
     Estimate e;
     e.kind = Kind::lra;
