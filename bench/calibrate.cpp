@@ -62,8 +62,9 @@ int main(int argc, char** argv) {
     int count = 24;
     std::uint64_t seed = 32;
     bool verbose = false;
-    std::vector<std::string> variants{"uniform",    "sampled-jitter", "rotating-erm",
-                                      "spring-lra", "low-pass-1",     "low-pass-2"};
+    std::vector<std::string> variants{"uniform",          "sampled-jitter", "rotating-erm",
+                                      "spring-lra",       "low-pass-1",     "low-pass-2",
+                                      "jittered-low-pass"};
     app.add_option("--count", count, "actuators of each kind per rate and variant");
     app.add_option("--seed", seed, "the random actuators' and sensors' seed");
     app.add_option("--variants", variants,
@@ -72,7 +73,8 @@ int main(int argc, char** argv) {
                    "(the ERM's force turning in a plane), spring-lra (the phone feels the LRA's "
                    "spring, not its mass's acceleration), low-pass-1 (the sensor's own "
                    "first-order low-pass at a quarter of its rate), low-pass-2 (second-order at "
-                   "half its rate)");
+                   "half its rate), jittered-low-pass (readings taken at jittered times through "
+                   "low-pass-1's filter)");
     double max_delay_ms = 15.0;
     app.add_option("--max-delay-ms", max_delay_ms,
                    "the drive reaches the actuator up to this late (uniformly random)");
@@ -119,8 +121,9 @@ int main(int argc, char** argv) {
                     sensor.erm_full_speed_hz = between(100.0, 250.0);
                     sensor.erm_rotating = variant == "rotating-erm";
                     sensor.lra_spring = variant == "spring-lra";
-                    sensor.jittered_sampling = variant == "sampled-jitter";
-                    if (variant == "low-pass-1") {
+                    sensor.jittered_sampling =
+                        variant == "sampled-jitter" || variant == "jittered-low-pass";
+                    if (variant == "low-pass-1" || variant == "jittered-low-pass") {
                         sensor.low_pass_hz = sensor.rate_hz / 4.0;
                         sensor.low_pass_order = 1;
                     } else if (variant == "low-pass-2") {
