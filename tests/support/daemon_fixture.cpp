@@ -4,6 +4,8 @@
 #include <fcntl.h>
 #include <signal.h>
 #include <spawn.h>
+#include <sys/socket.h>
+#include <sys/un.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -11,6 +13,8 @@
 #include <fstream>
 #include <sstream>
 #include <thread>
+
+#include "tests/support/wait_until.hpp"
 
 extern char** environ;
 
@@ -84,6 +88,34 @@ bool Process::running() {
         return false;
     }
     return true;
+}
+
+void wait_until_bus_accepts(Process& bus, const std::filesystem::path& socket,
+                            const std::filesystem::path& log) {
+    sockaddr_un address{};
+    address.sun_family = AF_UNIX;
+    const std::string path = socket.string();
+    if (path.size() >= sizeof address.sun_path) {
+        throw std::runtime_error("the bus socket's path is too long: " + path);
+    }
+    path.copy(address.sun_path, path.size());
+    const auto accepts = [&] {
+        const UniqueFd fd(::socket(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0));
+        return fd.get() >= 0 && ::connect(fd.get(), reinterpret_cast<const sockaddr*>(&address),
+                                          sizeof address) == 0;
+    };
+    bool exited = false;
+    const bool ready = wait_until(
+        [&] {
+            exited = !bus.running();
+            return exited || accepts();
+        },
+        std::chrono::seconds(5));
+    if (!ready || exited) {
+        throw std::runtime_error(std::string("the bus ") +
+                                 (exited ? "exited at start" : "did not listen within 5 s") +
+                                 ":\n" + read_file(log));
+    }
 }
 
 HapticsClient::HapticsClient(std::unique_ptr<sdbus::IConnection> connection)
@@ -190,9 +222,7 @@ DaemonFixture::DaemonFixture(const std::string& extra_config, bool with_polkit) 
         std::vector<std::string>{"/usr/bin/dbus-daemon", "--config-file=" + bus_config,
                                  "--address=" + bus_address_, "--nofork", "--nopidfile"},
         dir_.path() / "bus.log");
-    for (int i = 0; i < 500 && !std::filesystem::exists(socket); ++i) {
-        std::this_thread::sleep_for(std::chrono::milliseconds(10));
-    }
+    wait_until_bus_accepts(*bus_, socket, dir_.path() / "bus.log");
     // Other users (the permission tests, polkitd) must reach the socket and the trace.
     std::filesystem::permissions(dir_.path(), std::filesystem::perms::all);
     setenv("DBUS_SYSTEM_BUS_ADDRESS", bus_address_.c_str(), 1);

@@ -45,6 +45,13 @@ class Process {
     UniqueFd stdin_;
 };
 
+// Waits until the dbus-daemon `bus`, logging to `log`, accepts connections on its Unix socket
+// `socket`; throws with the log if it exits or has not within 5 s. Its socket file appears at
+// bind(), before it listens: a client that connects in between is refused ("Connection
+// refused"), as a test that waited only for the file once was.
+void wait_until_bus_accepts(Process& bus, const std::filesystem::path& socket,
+                            const std::filesystem::path& log);
+
 // A signal seen by the test client, in arrival order.
 struct SeenSignal {
     std::string name;  // PlaybackStarted, PlaybackPosition, PlaybackFinished, RegistryChanged

@@ -41,13 +41,7 @@ SessionBus::SessionBus(const std::vector<std::pair<std::string, std::string>>& a
                                  "/usr/bin/dbus-daemon", "--config-file=" + config.string(),
                                  "--address=" + address_, "--nofork", "--nopidfile"},
         dir_.path() / "bus.log");
-    for (int i = 0; i < 500 && !std::filesystem::exists(socket); ++i) {
-        std::this_thread::sleep_for(std::chrono::milliseconds(10));
-    }
-    if (!std::filesystem::exists(socket)) {
-        throw std::runtime_error("the session bus did not start:\n" +
-                                 read_file(dir_.path() / "bus.log"));
-    }
+    wait_until_bus_accepts(*bus_, socket, dir_.path() / "bus.log");
 }
 
 SessionBus::~SessionBus() = default;
