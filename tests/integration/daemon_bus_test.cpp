@@ -862,5 +862,43 @@ TEST_F(DaemonWithPolkit, AStoppedPolkitHoldsOnlyTheCallsThatAskedIt) {
     daemon.polkit().signal(SIGCONT);
 }
 
+// The fixtures' bus is ready when its socket accepts a connection: a socket file bound but not
+// yet listening (dbus-daemon between bind() and listen()) is not, and a bus that exits at start
+// says so with its log.
+TEST(BusFixture, ABusIsReadyOnlyOnceItsSocketAcceptsAndOneThatExitsSaysSo) {
+    const testing::TempDir dir;
+    const auto socket_path = dir.path() / "bus";
+    const UniqueFd fd(socket(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0));
+    ASSERT_GE(fd.get(), 0);
+    sockaddr_un address{};
+    address.sun_family = AF_UNIX;
+    std::strncpy(address.sun_path, socket_path.c_str(), sizeof address.sun_path - 1);
+    ASSERT_EQ(bind(fd.get(), reinterpret_cast<sockaddr*>(&address), sizeof address), 0);
+    testing::Process running({"/bin/cat"}, dir.path() / "running.log", /*stdin_pipe=*/true);
+    try {
+        testing::wait_until_bus_accepts(running, socket_path, dir.path() / "running.log");
+        ADD_FAILURE() << "a socket that is bound but not listening was taken as ready";
+    } catch (const std::runtime_error& e) {
+        EXPECT_NE(std::string(e.what()).find("did not listen within 5 s"), std::string::npos)
+            << e.what();
+    }
+    ASSERT_EQ(listen(fd.get(), 4), 0);
+    EXPECT_NO_THROW(
+        testing::wait_until_bus_accepts(running, socket_path, dir.path() / "running.log"));
+    running.close_stdin();
+    EXPECT_EQ(running.wait(), 0);
+
+    dir.write("exited.log", "Failed to start message bus: the reason\n");
+    testing::Process exited({"/bin/true"}, dir.path() / "exited-output.log");
+    try {
+        testing::wait_until_bus_accepts(exited, dir.path() / "none", dir.path() / "exited.log");
+        ADD_FAILURE() << "a bus that exited was taken as ready";
+    } catch (const std::runtime_error& e) {
+        const std::string what = e.what();
+        EXPECT_NE(what.find("exited at start"), std::string::npos) << what;
+        EXPECT_NE(what.find("the reason"), std::string::npos) << what;
+    }
+}
+
 }  // namespace
 }  // namespace vibscore
