@@ -26,11 +26,15 @@ class DaemonWatch {
 
   private:
     sdbus::IConnection& connection_;
-    sdbus::Slot match_;
     std::mutex mutex_;
     std::string owner_;           // the followed daemon's unique name; empty: none
     std::set<std::string> left_;  // unique names that have left the service's name
     bool restarted_ = false;      // a new owner took the name after owner_ left
+    // Last, so it goes first: releasing it waits for a callback running on the event loop's
+    // thread (sdbus-c++ holds one lock while it dispatches and while it releases a slot), and
+    // none runs after it. Declared before the state, a NameOwnerChanged that came as the watch
+    // was destroyed wrote into a set already destroyed.
+    sdbus::Slot match_;
 };
 
 }  // namespace vibscore::client

@@ -6,9 +6,16 @@
 #include <poll.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
+#include <memory>
+#include <thread>
 
+#include "client/editor/daemon_watch.hpp"
+#include "dbus/haptics1_names.hpp"
+#include "dbus/sdbus_compat.hpp"
 #include "tests/support/daemon_fixture.hpp"
+#include "tests/support/wait_until.hpp"
 
 namespace vibscore {
 namespace {
@@ -50,6 +57,44 @@ TEST(EditorDaemonLink, APlaybackThatEndsNormallyIsNotReportedTwice) {
     EXPECT_EQ(reason_finished(link, id), "stopped");
     daemon.kill_daemon();
     EXPECT_EQ(reason_finished(link, id, std::chrono::milliseconds(500)), "");
+}
+
+// `vibscore play --wait` watches vibscored's name; the name's changes come on the event loop's
+// thread and may come as the watch is destroyed. None may reach it once it is gone: a change
+// written into its state after that state was destroyed was a leak the sanitizer build caught
+// at exit (once in CI). Thousands of watches come and go here while the name changes owner as
+// fast as the bus allows; then one watch must still see its daemon leave.
+TEST(ClientDaemonWatch, GoesSafelyWhileTheNameChangesOnAnotherThreadAndSeesTheDaemonLeave) {
+    testing::DaemonFixture daemon;
+    ASSERT_EQ(daemon.stop_daemon(), 0);
+    const auto watching = sdbus::createSystemBusConnection();
+    watching->enterEventLoopAsync();
+    const auto owner = sdbus::createSystemBusConnection();
+    {
+        std::atomic<bool> done{false};
+        std::thread changing([&] {
+            const auto flapping = sdbus::createSystemBusConnection();
+            while (!done) {
+                dbus::request_name(*flapping, haptics1::kBusName);
+                dbus::release_name(*flapping, haptics1::kBusName);
+            }
+        });
+        for (int watch = 0; watch < 2000; ++watch) {
+            const auto passing = std::make_unique<client::DaemonWatch>(*watching);
+            passing->follow();
+            (void)passing->gone();
+        }
+        done = true;
+        changing.join();
+    }
+    dbus::request_name(*owner, haptics1::kBusName);
+    client::DaemonWatch watch(*watching);
+    watch.follow();
+    EXPECT_EQ(watch.gone(), std::nullopt);
+    dbus::release_name(*owner, haptics1::kBusName);
+    EXPECT_TRUE(testing::wait_until([&] { return watch.gone().has_value(); }));
+    EXPECT_EQ(watch.gone(), "vibscored left the bus");
+    watching->leaveEventLoop();
 }
 
 }  // namespace
