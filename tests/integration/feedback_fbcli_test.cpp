@@ -50,6 +50,13 @@ double ms_between(std::int64_t from_ns, std::int64_t to_ns) {
     return static_cast<double>(to_ns - from_ns) / 1e6;
 }
 
+// How far the time between two drives the sim stamped may be from the written time between
+// them. The sim stamps each with the wall clock when the playback thread wakes to send it, and a
+// loaded machine wakes it late: 28 ms once on this 2-core VM with CI's package builds beside the
+// suite, where 25 ms had been allowed. The drives' order and strengths are checked exactly;
+// the times catch a step played longer or shorter than written by more than this.
+constexpr double kStampSlackMs = 50.0;
+
 // AssignScore on a connection of its own: "" when stored, else the error's name and message.
 std::string assign_score(const SessionBus& session, const std::string& event,
                          const std::string& score) {
@@ -140,7 +147,7 @@ void expect_plays(const std::vector<TraceRow>& rows, const std::vector<render::C
             EXPECT_EQ(rows[i].frequency_hz, expected[i].frequency_hz) << what << " drive " << i;
         }
         EXPECT_NEAR(ms_between(rows[0].time_ns, rows[i].time_ns),
-                    (expected[i].at - expected[0].at) * 1000.0, 25.0)
+                    (expected[i].at - expected[0].at) * 1000.0, kStampSlackMs)
             << what << " drive " << i;
     }
     for (std::size_t i = expected.size(); i < rows.size(); ++i) {
@@ -288,11 +295,11 @@ TEST_F(FeedbackApi, HapticVibratePlaysItsStepsAndAnEmptyPatternEndsThem) {
     ASSERT_GE(rows.size(), 4u);
     EXPECT_EQ(rows[0].amplitude, 1.0);
     EXPECT_EQ(rows[1].amplitude, 0.0);
-    EXPECT_NEAR(ms_between(rows[0].time_ns, rows[1].time_ns), 100.0, 25.0);
+    EXPECT_NEAR(ms_between(rows[0].time_ns, rows[1].time_ns), 100.0, kStampSlackMs);
     EXPECT_NEAR(rows[2].amplitude, 0.2222, 1e-9);  // the nearest ninth of the strongest step
-    EXPECT_NEAR(ms_between(rows[0].time_ns, rows[2].time_ns), 150.0, 25.0);
+    EXPECT_NEAR(ms_between(rows[0].time_ns, rows[2].time_ns), 150.0, kStampSlackMs);
     EXPECT_EQ(rows[3].amplitude, 0.0);
-    EXPECT_NEAR(ms_between(rows[0].time_ns, rows[3].time_ns), 250.0, 25.0);
+    EXPECT_NEAR(ms_between(rows[0].time_ns, rows[3].time_ns), 250.0, kStampSlackMs);
 
     EXPECT_TRUE(client->Vibrate("org.vibscore.test", {{0.8, 5000u}}));
     EXPECT_TRUE(wait_last_amplitude(0.8));
@@ -318,7 +325,7 @@ TEST_F(FeedbackApi, HapticPatternsAreCutDownAsFeedbackdCutsThemAndSilentGetsFals
     EXPECT_EQ(
         std::count_if(rows.begin(), rows.end(), [](const auto& row) { return row.amplitude > 0; }),
         5);
-    EXPECT_NEAR(ms_between(rows.front().time_ns, rows.back().time_ns), 180.0, 25.0);
+    EXPECT_NEAR(ms_between(rows.front().time_ns, rows.back().time_ns), 180.0, kStampSlackMs);
     EXPECT_EQ(error_of([&] {
                   client->Vibrate("a", {{0.5, 10u}, {std::nan(""), 10u}});
               }),
@@ -347,11 +354,11 @@ TEST_F(FeedbackApi, FeedbackdsOwnThemePlaysItsRumblesAsFeedbackdWould) {
     EXPECT_NEAR(rows[0].amplitude, strength, 1e-9);
     EXPECT_EQ(rows[0].frequency_hz, 0.0);  // the actuator's own, as a rumble motor's
     EXPECT_EQ(rows[1].amplitude, 0.0);
-    EXPECT_NEAR(ms_between(rows[0].time_ns, rows[1].time_ns), 150.0, 25.0);
+    EXPECT_NEAR(ms_between(rows[0].time_ns, rows[1].time_ns), 150.0, kStampSlackMs);
     EXPECT_NEAR(rows[2].amplitude, strength, 1e-9);
-    EXPECT_NEAR(ms_between(rows[0].time_ns, rows[2].time_ns), 250.0, 25.0);
+    EXPECT_NEAR(ms_between(rows[0].time_ns, rows[2].time_ns), 250.0, kStampSlackMs);
     EXPECT_EQ(rows[3].amplitude, 0.0);
-    EXPECT_NEAR(ms_between(rows[0].time_ns, rows[3].time_ns), 400.0, 25.0);
+    EXPECT_NEAR(ms_between(rows[0].time_ns, rows[3].time_ns), 400.0, kStampSlackMs);
     // A Sound-only event vibrates no more than feedbackd would make it.
     const auto before = daemon.trace_rows().size();
     EXPECT_EQ(fbcli({"-E", "camera-shutter"}), 0);
