@@ -8,7 +8,6 @@
 #include <sys/un.h>
 #include <unistd.h>
 
-#include <cstring>
 
 #include <algorithm>
 #include <cmath>
@@ -563,10 +562,8 @@ TEST_F(DaemonBus, TellsTheServiceManagerItIsReadyAndAlive) {
     const auto socket_path = daemon.store().parent_path() / "notify";
     const int fd = socket(AF_UNIX, SOCK_DGRAM | SOCK_CLOEXEC, 0);
     ASSERT_GE(fd, 0);
-    sockaddr_un address{};
-    address.sun_family = AF_UNIX;
-    std::strncpy(address.sun_path, socket_path.c_str(), sizeof address.sun_path - 1);
-    ASSERT_EQ(bind(fd, reinterpret_cast<sockaddr*>(&address), sizeof address), 0);
+    const sockaddr_un address = testing::unix_socket_address(socket_path);
+    ASSERT_EQ(bind(fd, reinterpret_cast<const sockaddr*>(&address), sizeof address), 0);
     const timeval timeout{2, 0};
     setsockopt(fd, SOL_SOCKET, SO_RCVTIMEO, &timeout, sizeof timeout);
     daemon.kill_daemon();
@@ -870,10 +867,8 @@ TEST(BusFixture, ABusIsReadyOnlyOnceItsSocketAcceptsAndOneThatExitsSaysSo) {
     const auto socket_path = dir.path() / "bus";
     const UniqueFd fd(socket(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0));
     ASSERT_GE(fd.get(), 0);
-    sockaddr_un address{};
-    address.sun_family = AF_UNIX;
-    std::strncpy(address.sun_path, socket_path.c_str(), sizeof address.sun_path - 1);
-    ASSERT_EQ(bind(fd.get(), reinterpret_cast<sockaddr*>(&address), sizeof address), 0);
+    const sockaddr_un address = testing::unix_socket_address(socket_path);
+    ASSERT_EQ(bind(fd.get(), reinterpret_cast<const sockaddr*>(&address), sizeof address), 0);
     testing::Process running({"/bin/cat"}, dir.path() / "running.log", /*stdin_pipe=*/true);
     try {
         testing::wait_until_bus_accepts(running, socket_path, dir.path() / "running.log");

@@ -90,15 +90,20 @@ bool Process::running() {
     return true;
 }
 
-void wait_until_bus_accepts(Process& bus, const std::filesystem::path& socket,
-                            const std::filesystem::path& log) {
+sockaddr_un unix_socket_address(const std::filesystem::path& path) {
     sockaddr_un address{};
     address.sun_family = AF_UNIX;
-    const std::string path = socket.string();
-    if (path.size() >= sizeof address.sun_path) {
-        throw std::runtime_error("the bus socket's path is too long: " + path);
+    const std::string text = path.string();
+    if (text.size() >= sizeof address.sun_path) {
+        throw std::runtime_error("the socket's path is too long: " + text);
     }
-    path.copy(address.sun_path, path.size());
+    text.copy(address.sun_path, text.size());
+    return address;
+}
+
+void wait_until_bus_accepts(Process& bus, const std::filesystem::path& socket,
+                            const std::filesystem::path& log) {
+    const sockaddr_un address = unix_socket_address(socket);
     const auto accepts = [&] {
         const UniqueFd fd(::socket(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0));
         return fd.get() >= 0 && ::connect(fd.get(), reinterpret_cast<const sockaddr*>(&address),

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <sys/types.h>
+#include <sys/un.h>
 
 #include <sdbus-c++/sdbus-c++.h>
 
@@ -44,6 +45,10 @@ class Process {
     int status_ = -1;
     UniqueFd stdin_;
 };
+
+// The address of the Unix socket at `path`; throws std::runtime_error when the path is too long
+// for one.
+sockaddr_un unix_socket_address(const std::filesystem::path& path);
 
 // Waits until the dbus-daemon `bus`, logging to `log`, accepts connections on its Unix socket
 // `socket`; throws with the log if it exits or has not within 5 s. Its socket file appears at
