@@ -8,7 +8,6 @@
 #include <sys/un.h>
 #include <unistd.h>
 
-
 #include <algorithm>
 #include <cmath>
 #include <fstream>
@@ -857,6 +856,15 @@ TEST_F(DaemonWithPolkit, AStoppedPolkitHoldsOnlyTheCallsThatAskedIt) {
         EXPECT_NE(said.find("polkit could not check it for uid 65534"), std::string::npos) << said;
     }
     daemon.polkit().signal(SIGCONT);
+}
+
+// A socket's path fills sun_path but for its terminating NUL; one character more is refused.
+TEST(BusFixture, ASocketAddressTakesTheLongestPathItHoldsAndRefusesOneLonger) {
+    const std::string longest(sizeof(sockaddr_un::sun_path) - 1, 'a');
+    const sockaddr_un address = testing::unix_socket_address(longest);
+    EXPECT_EQ(address.sun_family, AF_UNIX);
+    EXPECT_EQ(std::string(address.sun_path), longest);
+    EXPECT_THROW(testing::unix_socket_address(longest + "a"), std::runtime_error);
 }
 
 // The fixtures' bus is ready when its socket accepts a connection: a socket file bound but not
