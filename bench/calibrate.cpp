@@ -19,6 +19,7 @@
 
 #include "actuator/calibration.hpp"
 #include "actuator/vibration_sensor.hpp"
+#include "bench/actuator_draw.hpp"
 #include "bench/report.hpp"
 
 namespace {
@@ -131,17 +132,7 @@ int main(int argc, char** argv) {
                         sensor.low_pass_order = 2;
                     }
                     sensor.seed = random();
-                    if (kind == Kind::lra) {
-                        truth.resonance_hz = between(150.0, 235.0);
-                        truth.q = 5.0 * std::pow(6.0, unit(random));
-                        nominal.resonance_hz = truth.resonance_hz * between(0.9, 1.1);
-                        nominal.q = truth.q * between(0.7, 1.3);
-                    } else {
-                        truth.spin_up_s = between(0.020, 0.080);
-                        truth.spin_down_s = between(0.040, 0.200);
-                        nominal.spin_up_s = truth.spin_up_s * between(0.7, 1.3);
-                        nominal.spin_down_s = truth.spin_down_s * between(0.7, 1.3);
-                    }
+                    vibscore::bench::draw_actuator(kind, between, truth, nominal);
                     // The drive reaches the actuator a little late; the recorder starts with
                     // the plan.
                     const double delay = between(0.0, max_delay_ms / 1000.0);

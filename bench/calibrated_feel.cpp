@@ -23,6 +23,7 @@
 
 #include "actuator/calibration.hpp"
 #include "actuator/vibration_sensor.hpp"
+#include "bench/actuator_draw.hpp"
 #include "bench/feel_metrics.hpp"
 #include "bench/feel_pieces.hpp"
 #include "bench/report.hpp"
@@ -326,17 +327,7 @@ int main(int argc, char** argv) {
                 Declaration truth =
                     kind == actuator::Kind::lra ? testing::example_lra() : testing::example_erm();
                 Declaration nominal = truth;
-                if (kind == actuator::Kind::lra) {
-                    truth.resonance_hz = between(150.0, 235.0);
-                    truth.q = 5.0 * std::pow(6.0, unit(random));
-                    nominal.resonance_hz = truth.resonance_hz * between(0.9, 1.1);
-                    nominal.q = truth.q * between(0.7, 1.3);
-                } else {
-                    truth.spin_up_s = between(0.020, 0.080);
-                    truth.spin_down_s = between(0.040, 0.200);
-                    nominal.spin_up_s = truth.spin_up_s * between(0.7, 1.3);
-                    nominal.spin_down_s = truth.spin_down_s * between(0.7, 1.3);
-                }
+                bench::draw_actuator(kind, between, truth, nominal);
                 actuator::SensorOptions sensor;
                 sensor.rate_hz = rate * between(0.98, 1.02);
                 sensor.peak_accel = between(4.0, 16.0);
