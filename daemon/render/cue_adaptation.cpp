@@ -45,15 +45,11 @@ class WithoutRepeats final : public Stage {
     std::optional<Cue> kept_;
 };
 
-// Strength as pulse width (CueAdaptation::amplitude). A vibrating stretch runs from a drive
-// above 0 to the next drive of 0 (or the end of the pass); its periods are counted from its
-// start, so rounding never accumulates. Each period needs the drives up to its end read.
-class PulseModulation final : public Stage {
+// A stage that makes its cues a few at a time: step() adds what the input read so far makes to
+// made_, and says false once the input is exhausted.
+class BatchingStage : public Stage {
   public:
-    PulseModulation(Stage& input, double duration_s, const CueAdaptation& adaptation)
-        : input_(input), duration_s_(duration_s), adaptation_(adaptation) {}
-
-    std::optional<Cue> next() override {
+    std::optional<Cue> next() final {
         while (made_.empty()) {
             if (!step()) {
                 return std::nullopt;
@@ -64,6 +60,20 @@ class PulseModulation final : public Stage {
         return cue;
     }
 
+  protected:
+    virtual bool step() = 0;
+
+    std::deque<Cue> made_;
+};
+
+// Strength as pulse width (CueAdaptation::amplitude). A vibrating stretch runs from a drive
+// above 0 to the next drive of 0 (or the end of the pass); its periods are counted from its
+// start, so rounding never accumulates. Each period needs the drives up to its end read.
+class PulseModulation final : public BatchingStage {
+  public:
+    PulseModulation(Stage& input, double duration_s, const CueAdaptation& adaptation)
+        : input_(input), duration_s_(duration_s), adaptation_(adaptation) {}
+
   private:
     bool vibrates(const Cue& cue) const { return cue.amplitude * adaptation_.scale > 0.0; }
     double strength(const Cue& cue) const {
@@ -71,7 +81,7 @@ class PulseModulation final : public Stage {
     }
 
     // Makes the next cues; false when the input is exhausted.
-    bool step() {
+    bool step() override {
         if (!in_stretch_) {
             auto cue = end_drive_ ? std::exchange(end_drive_, std::nullopt) : input_.next();
             if (!cue) {
@@ -131,7 +141,6 @@ class PulseModulation final : public Stage {
     Stage& input_;
     double duration_s_;
     CueAdaptation adaptation_;
-    std::deque<Cue> made_;
     bool in_stretch_ = false;
     double stretch_start_ = 0.0;
     std::size_t periods_ = 0;
@@ -211,7 +220,7 @@ class Envelopes final : public Stage {
 // follows; the planner's drives lie within the segment, so none precedes a position not yet
 // read. Between passes the actuator's state carries over (PassLink); only the last pass drives on
 // past its end, to brake after its last note.
-class ActuatorDrives final : public Stage {
+class ActuatorDrives final : public BatchingStage {
   public:
     ActuatorDrives(Stage& input, double duration_s, const CueAdaptation& adaptation,
                    const PassLink& link)
@@ -226,19 +235,8 @@ class ActuatorDrives final : public Stage {
                     adaptation.uncertainty.value_or(uncertainty_of(*adaptation.actuator))},
                    link.carry ? *link.carry : PlannerCarry{}) {}
 
-    std::optional<Cue> next() override {
-        while (made_.empty()) {
-            if (!step()) {
-                return std::nullopt;
-            }
-        }
-        const Cue cue = made_.front();
-        made_.pop_front();
-        return cue;
-    }
-
   private:
-    bool step() {
+    bool step() override {
         if (done_) {
             return false;
         }
@@ -314,7 +312,6 @@ class ActuatorDrives final : public Stage {
     double scale_;
     PassLink link_;
     DrivePlanner planner_;
-    std::deque<Cue> made_;
     // The input drives read ahead: the next one, and (while a note goes on) as far as the
     // planner looks ahead.
     std::deque<Cue> ahead_;
