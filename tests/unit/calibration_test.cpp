@@ -67,6 +67,23 @@ Declaration erm(double up_s, double down_s) {
     return d;
 }
 
+// Trusted (else what it said was wrong), and the LRA's resonance within the 1 % of the
+// truth and its Q within 15 %.
+void expect_lra_read_right(const Estimate& e, double resonance_hz, double q) {
+    ASSERT_TRUE(e.trusted) << (e.problems.empty() ? "" : e.problems.front());
+    EXPECT_NEAR(*e.resonance_hz, resonance_hz, resonance_hz * 0.01);
+    EXPECT_NEAR(*e.q, q, q * 0.15);
+}
+
+// Trusted (else what it said was wrong), and the ERM's time constants each within `within` of
+// the truth (the 15 % unless said).
+void expect_erm_read_right(const Estimate& e, double spin_up_s, double spin_down_s,
+                           double within = 0.15) {
+    ASSERT_TRUE(e.trusted) << (e.problems.empty() ? "" : e.problems.front());
+    EXPECT_NEAR(*e.spin_up_s, spin_up_s, spin_up_s * within);
+    EXPECT_NEAR(*e.spin_down_s, spin_down_s, spin_down_s * within);
+}
+
 // A motor read by `sensor` (its rate, rotation, imperfections) at jittered instants, the drive
 // reaching it `delay_s` late: for each recording's seed trusted, both time constants within
 // `within` of the truth, and twice each stated doubt reaching it wherever the error is more than
@@ -77,10 +94,9 @@ void expect_jittered_erm_read_right(SensorOptions sensor, double spin_up_s, doub
     sensor.jittered_sampling = true;
     for (const std::uint64_t seed : seeds) {
         sensor.seed = seed;
+        SCOPED_TRACE(seed);
         const Estimate e = measure(erm(spin_up_s, spin_down_s), example_erm(), sensor, delay_s);
-        ASSERT_TRUE(e.trusted) << seed << ": " << (e.problems.empty() ? "" : e.problems.front());
-        EXPECT_NEAR(*e.spin_up_s, spin_up_s, spin_up_s * within) << seed;
-        EXPECT_NEAR(*e.spin_down_s, spin_down_s, spin_down_s * within) << seed;
+        ASSERT_NO_FATAL_FAILURE(expect_erm_read_right(e, spin_up_s, spin_down_s, within));
         constexpr double kExact = 0.005;
         EXPECT_LE(std::abs(*e.spin_up_s / spin_up_s - 1.0),
                   std::max(kExact, 2.0 * *e.spin_up_uncertainty))
@@ -248,9 +264,7 @@ TEST(VibrationSensor, ReadingsFedAsTheyComeAreTheRecordingsReadings) {
 
 TEST(CalibrationEstimate, FindsAnLrasResonanceAndQAt1kHz) {
     const Estimate e = measure(example_lra(168.0, 22.0), example_lra(), at(1000.0));
-    ASSERT_TRUE(e.trusted) << (e.problems.empty() ? "" : e.problems.front());
-    EXPECT_NEAR(*e.resonance_hz, 168.0, 168.0 * 0.01);
-    EXPECT_NEAR(*e.q, 22.0, 22.0 * 0.15);
+    ASSERT_NO_FATAL_FAILURE(expect_lra_read_right(e, 168.0, 22.0));
     EXPECT_NEAR(*e.full_scale_accel, 10.0, 1.5);
     EXPECT_NEAR(e.sample_rate_hz, 1000.0, 5.0);
     EXPECT_GT(e.snr_db, 30.0);
@@ -260,18 +274,14 @@ TEST(CalibrationEstimate, FindsAnLrasResonanceAndQAt1kHz) {
 TEST(CalibrationEstimate, FindsAnLraAboveHalfTheSamplingRateAt400Hz) {
     // 226 Hz sampled at 400 Hz looks like 174 Hz: the tones' strengths tell which it is.
     const Estimate e = measure(example_lra(226.0, 7.0), example_lra(205.0, 10.0), at(400.0, 3));
-    ASSERT_TRUE(e.trusted) << (e.problems.empty() ? "" : e.problems.front());
-    EXPECT_NEAR(*e.resonance_hz, 226.0, 226.0 * 0.01);
-    EXPECT_NEAR(*e.q, 7.0, 7.0 * 0.15);
+    expect_lra_read_right(e, 226.0, 7.0);
 }
 
 TEST(CalibrationEstimate, FindsAHighQLraAt400HzWithSamplesTakenAtJitteredTimes) {
     SensorOptions sensor = at(400.0, 4);
     sensor.jittered_sampling = true;
     const Estimate e = measure(example_lra(152.0, 28.0), example_lra(165.0, 20.0), sensor);
-    ASSERT_TRUE(e.trusted) << (e.problems.empty() ? "" : e.problems.front());
-    EXPECT_NEAR(*e.resonance_hz, 152.0, 152.0 * 0.01);
-    EXPECT_NEAR(*e.q, 28.0, 28.0 * 0.15);
+    expect_lra_read_right(e, 152.0, 28.0);
 }
 
 TEST(CalibrationErmModel, TheSpeedFollowsEachRowFromWhereThePreviousOneLeftIt) {
@@ -316,9 +326,7 @@ TEST(CalibrationErmModel, ReadingsOutOfOrderGetTheSpeedsTheyGetInOrder) {
 
 TEST(CalibrationEstimate, FindsAnErmsTimeConstantsAt1kHz) {
     const Estimate e = measure(erm(0.055, 0.150), example_erm(), at(1000.0, 5));
-    ASSERT_TRUE(e.trusted) << (e.problems.empty() ? "" : e.problems.front());
-    EXPECT_NEAR(*e.spin_up_s, 0.055, 0.055 * 0.15);
-    EXPECT_NEAR(*e.spin_down_s, 0.150, 0.150 * 0.15);
+    ASSERT_NO_FATAL_FAILURE(expect_erm_read_right(e, 0.055, 0.150));
     EXPECT_NEAR(*e.full_scale_accel, 10.0, 2.0);
 }
 
@@ -329,9 +337,7 @@ TEST(CalibrationEstimate, ASlowMotorsCoastIsNotTimedShortByTheHighPassThatTakesG
     SensorOptions sensor = flawless(1000.0, 3);
     sensor.erm_full_speed_hz = 104.0;
     const Estimate e = measure(erm(0.0533, 0.0858), example_erm(), sensor, 0.0);
-    ASSERT_TRUE(e.trusted) << (e.problems.empty() ? "" : e.problems.front());
-    EXPECT_NEAR(*e.spin_down_s, 0.0858, 0.0858 * 0.005);
-    EXPECT_NEAR(*e.spin_up_s, 0.0533, 0.0533 * 0.005);
+    expect_erm_read_right(e, 0.0533, 0.0858, 0.005);
 }
 
 TEST(CalibrationEstimate, FindsAnErmsTimeConstantsAt400HzWithARotatingForce) {
@@ -339,9 +345,7 @@ TEST(CalibrationEstimate, FindsAnErmsTimeConstantsAt400HzWithARotatingForce) {
     sensor.erm_rotating = true;
     sensor.erm_full_speed_hz = 210.0;
     const Estimate e = measure(erm(0.025, 0.060), example_erm(), sensor);
-    ASSERT_TRUE(e.trusted) << (e.problems.empty() ? "" : e.problems.front());
-    EXPECT_NEAR(*e.spin_up_s, 0.025, 0.025 * 0.15);
-    EXPECT_NEAR(*e.spin_down_s, 0.060, 0.060 * 0.15);
+    expect_erm_read_right(e, 0.025, 0.060);
 }
 
 TEST(CalibrationEstimate, FindsAnErmTurningAtHalfTheSamplingRateAlongOneAxisAt400Hz) {
@@ -350,9 +354,7 @@ TEST(CalibrationEstimate, FindsAnErmTurningAtHalfTheSamplingRateAlongOneAxisAt40
     SensorOptions sensor = at(400.0, 8);
     sensor.erm_full_speed_hz = 201.0;
     const Estimate e = measure(erm(0.030, 0.120), example_erm(), sensor);
-    ASSERT_TRUE(e.trusted) << (e.problems.empty() ? "" : e.problems.front());
-    EXPECT_NEAR(*e.spin_up_s, 0.030, 0.030 * 0.15);
-    EXPECT_NEAR(*e.spin_down_s, 0.120, 0.120 * 0.15);
+    expect_erm_read_right(e, 0.030, 0.120);
 }
 
 TEST(CalibrationEstimate, FindsAnErmsTimeConstantsAt400HzWithSamplesTakenAtJitteredTimes) {
@@ -369,9 +371,7 @@ TEST(CalibrationEstimate, FindsAnLrasResonanceThroughTheSensorsOwnLowPassAt400Hz
     SensorOptions sensor = at(400.0, 21);
     sensor.low_pass_hz = 100.0;
     const Estimate e = measure(example_lra(226.0, 12.0), example_lra(210.0, 15.0), sensor);
-    ASSERT_TRUE(e.trusted) << (e.problems.empty() ? "" : e.problems.front());
-    EXPECT_NEAR(*e.resonance_hz, 226.0, 226.0 * 0.01);
-    EXPECT_NEAR(*e.q, 12.0, 12.0 * 0.15);
+    expect_lra_read_right(e, 226.0, 12.0);
 }
 
 TEST(CalibrationEstimate, FindsAnErmsTimeConstantsThroughTheSensorsOwnLowPassAt400Hz) {
@@ -382,9 +382,7 @@ TEST(CalibrationEstimate, FindsAnErmsTimeConstantsThroughTheSensorsOwnLowPassAt4
     sensor.low_pass_hz = 100.0;
     sensor.erm_full_speed_hz = 180.0;
     const Estimate e = measure(erm(0.040, 0.100), example_erm(), sensor);
-    ASSERT_TRUE(e.trusted) << (e.problems.empty() ? "" : e.problems.front());
-    EXPECT_NEAR(*e.spin_up_s, 0.040, 0.040 * 0.15);
-    EXPECT_NEAR(*e.spin_down_s, 0.100, 0.100 * 0.15);
+    expect_erm_read_right(e, 0.040, 0.100);
 }
 
 TEST(VibrationSensor, TakesALowPassOfOrderOneOrTwoAndNoOther) {
@@ -633,11 +631,10 @@ TEST(CalibrationEstimate, AnLraJustBelowHalfTheRateIsTimedOnItsOwnSideNotAtItsMi
     // 202.6 Hz (3.4 % off), trusted: the search had settled between the two and slid to the
     // mirror. Each side of half the rate now gets its own search, and the tones choose.
     for (const std::uint64_t seed : {1u, 2u, 3u}) {
+        SCOPED_TRACE(seed);
         const Estimate e =
             measure(example_lra(195.9, 11.7), example_lra(190.0, 14.0), at(398.4, seed));
-        ASSERT_TRUE(e.trusted) << seed << ": " << (e.problems.empty() ? "" : e.problems.front());
-        EXPECT_NEAR(*e.resonance_hz, 195.9, 195.9 * 0.01) << seed;
-        EXPECT_NEAR(*e.q, 11.7, 11.7 * 0.15) << seed;
+        expect_lra_read_right(e, 195.9, 11.7);
     }
 }
 
@@ -654,17 +651,13 @@ TEST(CalibrationConfidence, AnErmBehindAWeakLowPassIsNeverTrustedBeyondTheTarget
     // 11 % long, and says ±6.6 %: trusted, within the issue's ±15 %, and twice its doubt reaches
     // the truth. Either way never trusted beyond the target.
     const Estimate weak = measure(erm(0.0272, 0.0617), example_erm(), sensor);
-    ASSERT_TRUE(weak.trusted) << (weak.problems.empty() ? "" : weak.problems.front());
-    EXPECT_NEAR(*weak.spin_up_s, 0.0272, 0.0272 * 0.15);
-    EXPECT_NEAR(*weak.spin_down_s, 0.0617, 0.0617 * 0.15);
+    ASSERT_NO_FATAL_FAILURE(expect_erm_read_right(weak, 0.0272, 0.0617));
     EXPECT_LE(std::abs(std::log(*weak.spin_up_s / 0.0272)), 2.0 * *weak.spin_up_uncertainty);
     EXPECT_LE(std::abs(std::log(*weak.spin_down_s / 0.0617)), 2.0 * *weak.spin_down_uncertainty);
     // The neighbouring motor turning at 124 Hz: the filter shows, and the estimate is trusted.
     sensor.erm_full_speed_hz = 124.0;
     const Estimate shown = measure(erm(0.0506, 0.1957), example_erm(), sensor);
-    ASSERT_TRUE(shown.trusted) << (shown.problems.empty() ? "" : shown.problems.front());
-    EXPECT_NEAR(*shown.spin_up_s, 0.0506, 0.0506 * 0.15);
-    EXPECT_NEAR(*shown.spin_down_s, 0.1957, 0.1957 * 0.15);
+    expect_erm_read_right(shown, 0.0506, 0.1957);
 }
 
 TEST(CalibrationEstimate, AnErmFarAboveATwoStageLowPassIsTimedWithThatFiltersForm) {
