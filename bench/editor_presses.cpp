@@ -27,6 +27,7 @@
 #include "client/editor/planner/press_planner.hpp"
 #include "score/bundle.hpp"
 #include "score/score_xml.hpp"
+#include "tests/support/editor_support.hpp"
 
 #ifndef VIBSCORE_BENCH_CLEFS
 #define VIBSCORE_BENCH_CLEFS "clefs"
@@ -297,15 +298,7 @@ std::string report_names() {
 // strengths 9, 3, 6, 3 in each, on one string; on a new score, entered note by note, and tapped
 // (the rhythm tapped on Select, then the strengths changed).
 Score experiment_2() {
-    std::string bars;
-    for (int bar = 0; bar < 3; ++bar) {
-        bars += "<Bar clef=\"lra-phone\">";
-        for (const int number : {9, 3, 6, 3}) {
-            bars +=
-                "<Note length=\"quarter\" number=\"" + std::to_string(number) + "\" string=\"3\"/>";
-        }
-        bars += "</Bar>";
-    }
+    const std::string bars = testing::experiment_2_bars();
     return read_score(
                "<VibScore><Title>exp2</Title><Clef id=\"lra-phone\" "
                "href=\"lra-phone.clef.xml\"/>" +

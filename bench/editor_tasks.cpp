@@ -49,16 +49,7 @@ Score one_string_score(const std::string& bars) {
 
 // Thesis Fig. 7.5: three bars of four quarter notes, strengths 9, 3, 6, 3, on string 3.
 Score experiment_2() {
-    std::string bars;
-    for (int bar = 0; bar < 3; ++bar) {
-        bars += "<Bar clef=\"lra-phone\">";
-        for (const int number : {9, 3, 6, 3}) {
-            bars +=
-                "<Note length=\"quarter\" number=\"" + std::to_string(number) + "\" string=\"3\"/>";
-        }
-        bars += "</Bar>";
-    }
-    return one_string_score(bars);
+    return one_string_score(testing::experiment_2_bars());
 }
 
 // A double tap: two strong 16ths a 16th apart.

@@ -129,6 +129,32 @@ class EditorEndToEnd : public ::testing::Test {
   protected:
     DaemonFixture daemon;
     std::unique_ptr<testing::HapticsClient> client = daemon.client();
+
+    // The clefs the daemon lists, by name: the editor's to choose from.
+    std::vector<std::string> clef_names() {
+        std::vector<std::string> names;
+        for (const auto& entry : client->List("clef")) {
+            names.push_back(entry.get<0>());
+        }
+        return names;
+    }
+
+    // A copy of what `vibscore edit NAME` opens for a score not yet written: a new score on
+    // lra-phone, the registry's clefs.
+    editor::Editor new_score_editor(const std::string& name) {
+        return {editor::EditorModel(
+                    editor::EditorModel::blank_score(name, {"lra-phone", "lra-phone.clef.xml"}),
+                    editor::registry_clefs(clef_names())),
+                {}};
+    }
+
+    // `vibscore edit my-clefs`, opened in `pane`, taken to its list of clefs.
+    void open_clef_list(const TmuxPane& pane) {
+        ASSERT_TRUE(pane.wait_for_text("S:new note")) << pane.screen();
+        editor::Editor copy = new_score_editor("my-clefs");
+        send(pane, menu_presses(copy, "edit clefs..."));
+        ASSERT_TRUE(pane.wait_for_text(">lra-phone  sine 0.20 s")) << pane.screen();
+    }
 };
 
 TEST_F(EditorEndToEnd, ComposesATactonWithSixButtonsSavesItAndPlaysIt) {
@@ -145,14 +171,7 @@ TEST_F(EditorEndToEnd, ComposesATactonWithSixButtonsSavesItAndPlaysIt) {
             .score;
 
     // What `vibscore edit my-buzz` starts with: a new score on lra-phone, the registry's clefs.
-    std::vector<std::string> clef_names;
-    for (const auto& entry : client->List("clef")) {
-        clef_names.push_back(entry.get<0>());
-    }
-    editor::Editor copy{editor::EditorModel(editor::EditorModel::blank_score(
-                                                "my-buzz", {"lra-phone", "lra-phone.clef.xml"}),
-                                            editor::registry_clefs(clef_names)),
-                        {}};
+    editor::Editor copy = new_score_editor("my-buzz");
     // ... and proposals learned from every score the daemon lists, as the editor learns them.
     std::vector<editor::NamedScore> registry;
     for (const auto& entry : client->List("score")) {
@@ -222,10 +241,6 @@ TEST_F(EditorEndToEnd, ATwoBarRingtoneFromTheShippedOneIsSavedAsANewNameAndTheSh
 
     // A copy of what `vibscore edit ringtone` opens: the shipped score, the registry's clefs
     // and names, and proposals learned from every other score.
-    std::vector<std::string> clef_names;
-    for (const auto& entry : client->List("clef")) {
-        clef_names.push_back(entry.get<0>());
-    }
     std::vector<std::string> score_names;
     std::vector<editor::NamedScore> registry;
     for (const auto& entry : client->List("score")) {
@@ -234,7 +249,7 @@ TEST_F(EditorEndToEnd, ATwoBarRingtoneFromTheShippedOneIsSavedAsANewNameAndTheSh
         registry.push_back({name, read_score(client->Get("score", name), name).score});
     }
     const Score shipped = read_score(shipped_text, "ringtone").score;
-    editor::Editor copy{editor::EditorModel(shipped, editor::registry_clefs(clef_names)), {}};
+    editor::Editor copy{editor::EditorModel(shipped, editor::registry_clefs(clef_names())), {}};
     copy.model.learn_from(editor::learned_from_others(registry, {"ringtone", shipped}));
     copy.scheme.set_openable(score_names);
     std::vector<editor::TakenName> taken;
@@ -487,15 +502,7 @@ class EditorForAnEvent : public EditorEndToEnd {
 };
 
 TEST_F(EditorForAnEvent, ThePatternComposedIsUsedForIncomingCallAndFbcliPlaysIt) {
-    std::string bars;
-    for (int bar = 0; bar < 3; ++bar) {
-        bars += "<Bar clef=\"lra-phone\">";
-        for (const int number : {9, 3, 6, 3}) {
-            bars +=
-                "<Note length=\"quarter\" number=\"" + std::to_string(number) + "\" string=\"3\"/>";
-        }
-        bars += "</Bar>";
-    }
+    const std::string bars = testing::experiment_2_bars();
     const Score wanted = read_score(
                              "<VibScore><Title>x</Title><Clef id=\"lra-phone\" "
                              "href=\"lra-phone.clef.xml\"/>" +
@@ -506,10 +513,6 @@ TEST_F(EditorForAnEvent, ThePatternComposedIsUsedForIncomingCallAndFbcliPlaysIt)
     // A copy of what `vibscore edit` opens: tacton-1, new, on lra-phone, the registry's clefs and
     // names, proposals learned from its scores, and the theme's events as vibscore-feedback
     // lists them.
-    std::vector<std::string> clef_names;
-    for (const auto& entry : client->List("clef")) {
-        clef_names.push_back(entry.get<0>());
-    }
     std::vector<editor::NamedScore> registry;
     std::vector<editor::TakenName> taken;
     for (const auto& entry : client->List("score")) {
@@ -517,10 +520,7 @@ TEST_F(EditorForAnEvent, ThePatternComposedIsUsedForIncomingCallAndFbcliPlaysIt)
         registry.push_back({name, read_score(client->Get("score", name), name).score});
         taken.push_back({name, editor::TakenName::What::shipped});
     }
-    editor::Editor copy{editor::EditorModel(editor::EditorModel::blank_score(
-                                                "tacton-1", {"lra-phone", "lra-phone.clef.xml"}),
-                                            editor::registry_clefs(clef_names)),
-                        {}};
+    editor::Editor copy = new_score_editor("tacton-1");
     copy.model.learn_from(editor::learned_from_others(registry, {"tacton-1", copy.model.score()}));
     copy.scheme.set_taken(taken);
     copy.scheme.set_destination("tacton-1", true, true);
@@ -607,17 +607,7 @@ TEST_F(EditorForAnEvent, ThePatternComposedIsUsedForIncomingCallAndFbcliPlaysIt)
 
 TEST_F(EditorEndToEnd, AClefEditedIsHeardAsItChangesAndSavedUnderANewNameForTheBar) {
     TmuxPane pane(edit_command("my-clefs"), 40, 12);
-    ASSERT_TRUE(pane.wait_for_text("S:new note")) << pane.screen();
-    const ClefDeclaration lra{"lra-phone", "lra-phone.clef.xml"};
-    std::vector<std::string> clef_names;
-    for (const auto& entry : client->List("clef")) {
-        clef_names.push_back(entry.get<0>());
-    }
-    editor::Editor copy{editor::EditorModel(editor::EditorModel::blank_score("my-clefs", lra),
-                                            editor::registry_clefs(clef_names)),
-                        {}};
-    send(pane, menu_presses(copy, "edit clefs..."));
-    ASSERT_TRUE(pane.wait_for_text(">lra-phone  sine 0.20 s")) << pane.screen();
+    ASSERT_NO_FATAL_FAILURE(open_clef_list(pane));
     send(pane, {Button::select, Button::down, Button::down, Button::down, Button::down});
     ASSERT_TRUE(pane.wait_for_text(">s3 185 Hz")) << pane.screen();
 
@@ -722,17 +712,7 @@ TEST_F(EditorEndToEnd, TheLineNamesSymbolsInWordsAndTheBarBoxCountsTheOneBeingCh
 // string the cursor passed), and a number set above the next one is said.
 TEST_F(EditorEndToEnd, AClefsNumberIsHeardOnTheStringJustEditedAndAnInversionIsSaid) {
     TmuxPane pane(edit_command("my-clefs"), 40, 12);
-    ASSERT_TRUE(pane.wait_for_text("S:new note")) << pane.screen();
-    const ClefDeclaration lra{"lra-phone", "lra-phone.clef.xml"};
-    std::vector<std::string> clef_names;
-    for (const auto& entry : client->List("clef")) {
-        clef_names.push_back(entry.get<0>());
-    }
-    editor::Editor copy{editor::EditorModel(editor::EditorModel::blank_score("my-clefs", lra),
-                                            editor::registry_clefs(clef_names)),
-                        {}};
-    send(pane, menu_presses(copy, "edit clefs..."));
-    ASSERT_TRUE(pane.wait_for_text(">lra-phone  sine 0.20 s")) << pane.screen();
+    ASSERT_NO_FATAL_FAILURE(open_clef_list(pane));
     send(pane, {Button::select, Button::down, Button::down, Button::down, Button::right});
     ASSERT_TRUE(pane.wait_for_text(">s4 205 Hz")) << pane.screen();
     send(pane, std::vector<Button>(8, Button::down));  // s3, s2, s1, n1 .. n5

@@ -54,6 +54,21 @@ inline std::vector<Bar> bars(const std::string& bars_xml) {
     return read_score(text, "expected.xml").score.bars;
 }
 
+// Thesis Fig. 7.5, experiment 2's score task: three bars of four quarter notes, strengths 9, 3,
+// 6, 3, on string 3 of clef "lra-phone", as XML.
+inline std::string experiment_2_bars() {
+    std::string bars;
+    for (int bar = 0; bar < 3; ++bar) {
+        bars += "<Bar clef=\"lra-phone\">";
+        for (const int number : {9, 3, 6, 3}) {
+            bars +=
+                "<Note length=\"quarter\" number=\"" + std::to_string(number) + "\" string=\"3\"/>";
+        }
+        bars += "</Bar>";
+    }
+    return bars;
+}
+
 // A score (no title, no clefs declared) of bars written as XML, all on clef "lra".
 inline Score score_of(const std::string& bars_xml) {
     Score score;
