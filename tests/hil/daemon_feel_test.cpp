@@ -30,27 +30,53 @@ using namespace std::chrono_literals;
 using testing::DaemonFixture;
 using Clock = std::chrono::steady_clock;
 
-// A slow ERM: rated at half of full scale, so overdrive doubles the drive; full scale reaches
-// strength 1 after 200 ms x ln 2 = 139 ms; braking backwards stops it after 200 ms x ln 1.5 =
-// 81 ms.
-const char* const kSlowErm =
-    "\n[actuator]\nkind = erm\nrated-drive = 0.5\nspin-up-ms = 200\nspin-down-ms = 400\n"
-    "brake = reverse\n";
-
 // Strength 1 for a whole note (0.8 s) on the shipped phone clef.
 std::string whole_note(const std::string& string = "1") {
     return one_bar_score("lra-phone.clef.xml",
                          "<Note length=\"whole\" number=\"9\" string=\"" + string + "\"/>");
 }
 
-actuator::Declaration slow_erm() {
-    actuator::Declaration d;
-    d.kind = actuator::Kind::erm;
-    d.rated_drive = 0.5;
-    d.spin_up_s = 0.2;
-    d.spin_down_s = 0.4;
-    d.brake = actuator::Brake::reverse;
-    return d;
+// An actuator braked in reverse, as the daemon's [actuator] section declares it and as the
+// planner is given it: from the same numbers, so that the two cannot differ.
+struct Declared {
+    std::string section;
+    actuator::Declaration declaration;
+};
+
+// A slow ERM: rated at half of full scale, so overdrive doubles the drive; full scale reaches
+// strength 1 after 200 ms x ln 2 = 139 ms; braking backwards stops it after 200 ms x ln 1.5 =
+// 81 ms.
+Declared slow_erm() {
+    Declared erm;
+    erm.declaration.kind = actuator::Kind::erm;
+    erm.declaration.rated_drive = 0.5;
+    erm.declaration.spin_up_s = 0.2;
+    erm.declaration.spin_down_s = 0.4;
+    erm.declaration.brake = actuator::Brake::reverse;
+    std::ostringstream section;
+    section << "\n[actuator]\nkind = erm\nrated-drive = " << erm.declaration.rated_drive
+            << "\nspin-up-ms = " << erm.declaration.spin_up_s * 1000.0
+            << "\nspin-down-ms = " << erm.declaration.spin_down_s * 1000.0 << "\nbrake = reverse\n";
+    erm.section = section.str();
+    return erm;
+}
+
+// An LRA declared exact (tolerances 0): the plan whose brake length the kernel path must keep.
+Declared exact_lra(double rated_drive, double resonance_hz, double q) {
+    Declared lra;
+    std::ostringstream section;
+    section << "\n[actuator]\nkind = lra\nrated-drive = " << rated_drive
+            << "\nresonance-hz = " << resonance_hz << "\nq = " << q
+            << "\nbrake = reverse\nresonance-tolerance-percent = 0\nq-tolerance-percent = 0\n";
+    lra.section = section.str();
+    lra.declaration.kind = actuator::Kind::lra;
+    lra.declaration.rated_drive = rated_drive;
+    lra.declaration.resonance_hz = resonance_hz;
+    lra.declaration.q = q;
+    lra.declaration.brake = actuator::Brake::reverse;
+    lra.declaration.resonance_tolerance = 0.0;
+    lra.declaration.q_tolerance = 0.0;
+    return lra;
 }
 
 std::vector<render::Cue> planned(const std::string& score, const actuator::Declaration& declared,
@@ -113,10 +139,10 @@ TEST(DaemonFeel, GpioErmOverdrivesTheNotesStartAndDrivesItsEndBackwards) {
     DaemonFixture daemon(driver_config("gpio-erm", "chip = " + sim.chip_name() +
                                                        "\nline = 0\ndirection-line = 1\n"
                                                        "carrier-hz = 100") +
-                         kSlowErm);
+                         slow_erm().section);
     GpioLinesSampler sampler(sim, {0, 1});  // motor, direction
     const auto score = whole_note();
-    const auto drives = planned(score, slow_erm(), false);
+    const auto drives = planned(score, slow_erm().declaration, false);
     ASSERT_EQ(drives.size(), 4u);
     EXPECT_EQ(drives[0].amplitude, 1.0);   // overdrive: the motor line steadily high
     EXPECT_EQ(drives[1].amplitude, 0.5);   // the rated drive: half of each 10 ms period
@@ -162,27 +188,18 @@ TEST(DaemonFeel, GpioLraBrakesInAntiPhaseWithItsBridgeSwapped) {
     GpioSimChip sim({2});
     // An LRA at 50 Hz with Q 10: its envelope's time constant is 64 ms, and braking at full
     // anti-phase stops it after 64 ms x ln 2 = 44 ms, two periods of 20 ms.
+    const Declared lra = exact_lra(1.0, 50.0, 10.0);
     DaemonFixture daemon(
         driver_config("gpio-lra",
                       "chip = " + sim.chip_name() + "\nline-a = 0\nline-b = 1\nresonance-hz = 50") +
-        // Tolerances 0: the exact plan, whose brake length the kernel path must keep.
-        "\n[actuator]\nkind = lra\nrated-drive = 1\nresonance-hz = 50\nq = 10\nbrake = reverse\n"
-        "resonance-tolerance-percent = 0\nq-tolerance-percent = 0\n");
+        lra.section);
     GpioLinesSampler sampler(sim, {0, 1});
     auto client = daemon.client();
     const std::string clef = testing::sine_clef(0.3, {50.0}, {0.5, 1.0});
     client->Compose("hil-feel", clef);
     const auto score =
         one_bar_score("hil-feel.clef.xml", "<Note length=\"half\" number=\"2\" string=\"1\"/>");
-    actuator::Declaration lra;
-    lra.kind = actuator::Kind::lra;
-    lra.rated_drive = 1.0;
-    lra.resonance_hz = 50.0;
-    lra.q = 10.0;
-    lra.brake = actuator::Brake::reverse;
-    lra.resonance_tolerance = 0.0;
-    lra.q_tolerance = 0.0;
-    const auto drives = planned(score, lra, true, {{"hil-feel.clef.xml", clef}});
+    const auto drives = planned(score, lra.declaration, true, {{"hil-feel.clef.xml", clef}});
     ASSERT_EQ(drives.size(), 3u);
     EXPECT_EQ(drives[0].amplitude, 1.0);
     EXPECT_EQ(drives[1].amplitude, -1.0);
@@ -251,11 +268,11 @@ TEST(DaemonFeel, SysfsPwmOverdrivesThenReversesWithItsDirectionLine) {
                                                         "\nchannel = 0\nmode = erm\n"
                                                         "direction-chip = " +
                                                         sim.chip_name() + "\ndirection-line = 0") +
-                         kSlowErm);
+                         slow_erm().section);
     GpioLinesSampler direction(sim, {0});
     pwm.clear_log();
     const auto score = whole_note();
-    const auto drives = planned(score, slow_erm(), false);
+    const auto drives = planned(score, slow_erm().declaration, false);
     ASSERT_EQ(drives.size(), 4u);
     const auto played = play_to_the_end(daemon, score);
     ASSERT_TRUE(played.completed);
@@ -313,21 +330,12 @@ TEST(DaemonFeel, EvdevOverdrivesWithFullMagnitudeAndBrakesWithANegativeOne) {
     // An LRA at 200 Hz (a 5 ms period, exact in the kernel's milliseconds) with Q 40: 64 ms
     // envelope; rated at half of full scale, so the overdrive lasts 64 ms x ln 2 = 44 ms and the
     // brake 64 ms x ln 1.5 = 26 ms.
+    const Declared lra = exact_lra(0.5, 200.0, 40.0);
     DaemonFixture daemon(driver_config("evdev", "device = " + vibrator.event_node().string() +
                                                     "\nanti-phase = true") +
-                         "\n[actuator]\nkind = lra\nrated-drive = 0.5\nresonance-hz = 200\nq = "
-                         "40\nbrake = reverse\nresonance-tolerance-percent = 0\n"
-                         "q-tolerance-percent = 0\n");
-    actuator::Declaration lra;
-    lra.kind = actuator::Kind::lra;
-    lra.rated_drive = 0.5;
-    lra.resonance_hz = 200.0;
-    lra.q = 40.0;
-    lra.brake = actuator::Brake::reverse;
-    lra.resonance_tolerance = 0.0;
-    lra.q_tolerance = 0.0;
+                         lra.section);
     const auto score = whole_note("4");  // 200 Hz
-    const auto drives = planned(score, lra, true);
+    const auto drives = planned(score, lra.declaration, true);
     ASSERT_EQ(drives.size(), 4u);
     const auto played = play_to_the_end(daemon, score);
     ASSERT_TRUE(played.completed);
