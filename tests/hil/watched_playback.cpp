@@ -19,6 +19,7 @@ WatchedPlayback play_to_the_end(testing::DaemonFixture& daemon, const std::strin
         return played;
     }
     played.onset_tolerance_s = onset_tolerance_s(stalls);
+    played.stalls = stalls.stalls();
     played.completed = reason == "completed";
     if (!played.completed) {
         ADD_FAILURE() << "the playback finished with " << reason << "\n" << daemon.daemon_log();
