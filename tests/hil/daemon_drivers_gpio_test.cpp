@@ -151,8 +151,7 @@ TEST(DaemonGpio, ErmDrivesItsLineAtTheNotesStrengthAsDutyCycleWithTheEnableLine)
     // timeslices, and a guest on a busy host stalls in any of them: the bound grows by every
     // stall between the call and the edge, not only by the longest.
     const double stalled = played.stalled_s(played.asked, motor.first_rise);
-    EXPECT_LT(seconds_between(played.asked, motor.first_rise),
-              0.25 + kOnsetTolerance_s + stalled)
+    EXPECT_LT(seconds_between(played.asked, motor.first_rise), 0.25 + kOnsetTolerance_s + stalled)
         << "the Play call to the first edge; the guest was stopped for " << stalled * 1000
         << " ms of it, in " << played.stalls.size() << " stalls while the score played";
     // On for the note, within a carrier period and the onset tolerance.
