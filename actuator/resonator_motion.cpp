@@ -159,6 +159,11 @@ struct ResonatorMotion::Brake::Seen {
         return std::abs(std::abs(first) - std::abs(second)) - std::abs(ringing);
     }
     double most() const { return std::abs(first) + std::abs(second) + std::abs(ringing); }
+    // The root mean square over every phase (the three turn apart, so their cross terms average
+    // out).
+    double typical() const {
+        return std::sqrt(std::norm(first) + std::norm(second) + std::norm(ringing));
+    }
     std::complex<double> first, second, ringing;
 };
 
@@ -285,6 +290,14 @@ double ResonatorMotion::Brake::rebound_left() const {
 double ResonatorMotion::Brake::rebound_until(double length) {
     look(length);
     return std::max(rebound_, rebound_left());
+}
+
+double ResonatorMotion::Brake::typical_left() const {
+    return Seen(resting_, whole_, 0.0).typical();
+}
+
+double ResonatorMotion::Brake::typical_at_start() const {
+    return Seen(resting_, start_, 0.0).typical();
 }
 
 bool ResonatorMotion::Brake::louder_than_coasting() const {

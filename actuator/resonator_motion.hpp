@@ -105,6 +105,13 @@ class ResonatorMotion {
         // Whether some phase has already risen again (or past its ceiling), wherever the brake
         // ends: longer looks cannot take that back.
         bool has_rebounded() const { return rebound_ > 0.0; }
+        // How loud the whole motion typically is, left to ring at the LRA's own frequency, over
+        // the phases its vibrations may have started at (the root mean square over them): from
+        // the last look, and where the brake started. Which phase the backend started at is not
+        // known, so a brake that leaves no phase rebounding is chosen by what it typically
+        // leaves; the worst phase is the rebound's to judge.
+        double typical_left() const;
+        double typical_at_start() const;
 
       private:
         friend class ResonatorMotion;

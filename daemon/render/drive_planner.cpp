@@ -204,14 +204,10 @@ std::optional<DrivePlanner::Step> DrivePlanner::robust_brake(double at, double u
     const double level = kStopped * Physics::strength(state_);
     const double tau = physics_.time_constant_s({});
     const auto& d = physics_.declaration();
-    // Where each member starts, and how long coasting takes it below `level` (a brake is
-    // measured against that: the declared actuator's).
-    std::vector<double> start, coast;
+    // Where each member starts.
+    std::vector<double> start;
     for (const auto& [physics, state] : all) {
         start.push_back(Physics::strength(state));
-        coast.push_back(start.back() > level
-                            ? physics->time_constant_s({}) * std::log(start.back() / level)
-                            : 0.0);
     }
     // The frequencies: around the resonance as far as the members' bands reach, and the note's.
     std::vector<double> frequencies{frequency_hz > 0.0 ? frequency_hz : d.resonance_hz};
@@ -219,6 +215,11 @@ std::optional<DrivePlanner::Step> DrivePlanner::robust_brake(double at, double u
     for (int k = -kFrequencies; k <= kFrequencies; ++k) {
         frequencies.push_back(d.resonance_hz + reach * k / kFrequencies);
     }
+    // When the declared one, `loudness` at `t`, is below `level` coasting on (a brake is measured
+    // against coasting from its start).
+    const auto stop_after = [&](double t, double loudness) {
+        return loudness > level ? t + tau * std::log(loudness / level) : t;
+    };
     double best = 1.0;  // coasting
     std::optional<Step> chosen;
     std::vector<double> lowest(all.size());
@@ -226,34 +227,39 @@ std::optional<DrivePlanner::Step> DrivePlanner::robust_brake(double at, double u
         for (const double f : frequencies) {
             const Drive brake{-amplitude, f};
             auto watch = motion_.braking(physics_, at, drive_, brake, quiet_level());
+            // An LRA's stop by its whole motion (ResonatorMotion), as loud as it typically is:
+            // the envelope leaves out the part that turns at the LRA's own frequency, and that is
+            // what is left where it says a brake has stopped it, so its quickest brake was often
+            // not the actuator's (a 0.5 note at a 170 Hz Q-15 LRA's resonance, calibrate's
+            // margins: the envelope's pick fell below a tenth 20.7 ms after the end on
+            // bench/feel's plant, this one's 8.4 ms).
+            const bool whole = physics_.is_lra() && watch.typical_at_start() > level;
+            const double coasting = stop_after(0.0, whole ? watch.typical_at_start() : start[0]);
             lowest = start;
             for (int k = 1; k <= kLooks; ++k) {
                 // (Longer than till `until` is that brake cut there: looked at once.)
                 const double t = std::min(1.5 * tau * k / kLooks, until - at);
-                double nominal = 0.0;
+                watch.look(t);
                 bool pushed_back = false;
                 for (std::size_t i = 0; i < all.size(); ++i) {
                     const auto& [physics, state] = all[i];
                     const double left = Physics::strength(physics->advance(state, brake, t));
                     lowest[i] = std::min(lowest[i], left);
                     pushed_back = pushed_back || left > lowest[i] + kPushBack * start[i];
-                    if (i == 0) {
-                        // The declared actuator's stop, against its coasting.
-                        const double stop =
-                            left > level ? t + physics->time_constant_s({}) * std::log(left / level)
-                                         : t;
-                        nominal = coast[i] > 1e-4 ? stop / coast[i] : (left > level ? 2.0 : 1.0);
-                    }
                 }
                 if (pushed_back) {
                     break;  // longer at this frequency only pushes further
                 }
-                // The declared one, by its whole motion (ResonatorMotion), once quiet stays so
-                // (where it does not, longer may yet: the brake's own ringing at its end can
-                // cancel). A brake must be better by more than rounding: of two that stop it
-                // alike, the first found (the strongest, the note's frequency first, the shorter
-                // first) is kept, whatever the build's last bit.
-                watch.look(t);
+                // The declared one's stop, against its coasting.
+                const double left = whole ? watch.typical_left()
+                                          : Physics::strength(physics_.advance(state_, brake, t));
+                const double nominal =
+                    coasting > 1e-4 ? stop_after(t, left) / coasting : (left > level ? 2.0 : 1.0);
+                // Once quiet it stays so by the whole motion at every phase (where it does not,
+                // longer may yet: the brake's own ringing at its end can cancel). A brake must be
+                // better by more than rounding: of two that stop it alike, the first found (the
+                // strongest, the note's frequency first, the shorter first) is kept, whatever the
+                // build's last bit.
                 if (watch.rebound() <= 0.0 && nominal < best - kBetter &&
                     watch.rebound_left() <= 0.0 && !rebounds(at, brake, t)) {
                     best = nominal;

@@ -208,6 +208,32 @@ TEST(ResonatorMotion, ABrakeLeavingItLouderThanCoastingWouldHasDrivenItOnUnlessB
     EXPECT_TRUE(louder({0.5 * note.amplitude, 175.0}, to_rest));
 }
 
+TEST(ResonatorMotion, WhatABrakeTypicallyLeavesIsTheMotionsRootMeanSquareOverPhasesAndCoastsAway) {
+    // Settled at resonance, every phase of the start rings alike: typically as strong as the
+    // steady state. Left alone (a brake of nothing), that rings down at the time constant;
+    // braked in anti-phase for as long as the envelope takes to rest, next to nothing is left
+    // (the little the envelope leaves out).
+    const Physics physics(example_lra(175.0, 15.0));
+    const Drive note{0.5, 175.0};
+    const double settled = 20.0 * physics.time_constant_s(note);
+    const double strength = physics.steady_strength(note);
+    const double tau = physics.time_constant_s({});
+    ResonatorMotion motion;
+    motion.change(physics, 0.0, {}, note);
+    auto coasting = motion.braking(physics, settled, note, {0.0, 175.0}, 0.1 * strength);
+    EXPECT_NEAR(coasting.typical_at_start(), strength, 1e-3 * strength);
+    for (const double length : {0.5 * tau, tau, 2.0 * tau}) {
+        coasting.look(length);
+        EXPECT_NEAR(coasting.typical_left(), strength * std::exp(-length / tau), 2e-3 * strength)
+            << length;
+        EXPECT_NEAR(coasting.typical_at_start(), strength, 1e-3 * strength);
+    }
+    const double to_rest = tau * std::log(1.0 + strength * physics.declaration().rated_drive);
+    auto braked = motion.braking(physics, settled, note, {-1.0, 175.0}, 0.1 * strength);
+    braked.look(to_rest);
+    EXPECT_LT(braked.typical_left(), 0.05 * strength);
+}
+
 TEST(ResonatorMotion, AnErmHasNoneOfIt) {
     const Physics physics(example_erm());
     ResonatorMotion motion;
