@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <utility>
+#include <vector>
 
 #include "actuator/physics.hpp"
 #include "actuator/resonator_motion.hpp"
@@ -232,6 +233,43 @@ TEST(ResonatorMotion, WhatABrakeTypicallyLeavesIsTheMotionsRootMeanSquareOverPha
     auto braked = motion.braking(physics, settled, note, {-1.0, 175.0}, 0.1 * strength);
     braked.look(to_rest);
     EXPECT_LT(braked.typical_left(), 0.05 * strength);
+}
+
+TEST(ResonatorMotion, WhereThePhasesLeaveItUnlikeWhatItTypicallyLeavesIsNotTheWorstPhase) {
+    // A note a quarter of a cycle long, far below resonance, leaves a motion that depends on where
+    // in the carrier's cycle it started: what the drive forced and the LRA's own ringing add up
+    // at some phases and cancel at others. Started at 32 phases on bench/feel's plant (its
+    // carrier is at phase 0 at time 0 and goes on through a silence at the note's frequency, so
+    // a note after one starts at the phase the silence left) and left to coast: the typical
+    // loudness is the root mean square over those phases, and the loudest of them over a third
+    // above it (the worst phase would have judged it so).
+    const Declaration lra = example_lra(175.0, 8.0);
+    const Physics physics(lra);
+    const double f = 120.0, length = 0.002;
+    const Drive note{0.8, f};
+    ResonatorMotion motion;
+    motion.change(physics, 0.0, {}, note);
+    auto coasting = motion.braking(physics, length, note, {0.0, 175.0}, 0.01);
+    constexpr int kStarts = 32;
+    const double rate = 1e6;
+    for (const double left_for : {0.001, 0.003, 0.008}) {
+        coasting.look(left_for);
+        double squares = 0.0, loudest = 0.0;
+        for (int k = 0; k < kStarts; ++k) {
+            const double delay = static_cast<double>(k) / kStarts / f;
+            const std::vector<render::Cue> cues{render::drive_at(0.0, 0.0, f),
+                                                render::drive_at(delay, note.amplitude, f),
+                                                render::drive_at(delay + length, 0.0, 175.0)};
+            const auto plant = bench::Plant(lra).respond(
+                cues, rate,
+                static_cast<std::size_t>(std::round((delay + length + left_for) * rate)) + 1);
+            squares += plant.back() * plant.back();
+            loudest = std::max(loudest, plant.back());
+        }
+        const double typical = std::sqrt(squares / kStarts);
+        EXPECT_NEAR(coasting.typical_left(), typical, 2e-3 * typical) << left_for << " s";
+        EXPECT_GT(loudest, 1.3 * coasting.typical_left()) << left_for << " s";
+    }
 }
 
 TEST(ResonatorMotion, AnErmHasNoneOfIt) {
