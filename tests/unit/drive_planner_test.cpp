@@ -11,6 +11,7 @@
 
 #include "actuator/physics.hpp"
 #include "bench/feel_plant.hpp"
+#include "bench/note_phrases.hpp"
 #include "daemon/render/actuator_response.hpp"
 #include "daemon/render/cue_adaptation.hpp"
 #include "daemon/render/drive_planner.hpp"
@@ -213,58 +214,14 @@ TEST(DrivePlanner, AnLraIsBrakedInAntiPhaseAtItsOwnFrequency) {
 // Judged by bench/feel's plant (bench/feel_plant: the resonator's differential equation
 // integrated step by step), not by the closed forms the planner plans with.
 
-// The drives for notes of `strength` at `frequency`, each `length` long and followed by as much
-// silence, and the plant's strength under them at 10 kHz.
-struct Played {
-    std::vector<Cue> drives;
-    std::vector<double> strength;
-};
-constexpr double kPlantRate = 10000.0;
-Played play_notes(const Declaration& declared, const Declaration& truth,
-                  const PlannerOptions& options,
-                  const std::vector<std::pair<double, double>>& notes, double length) {
-    DrivePlanner planner(declared, options);
-    Played played;
-    double at = 0.0;
-    for (std::size_t i = 0; i < notes.size(); ++i) {
-        planner.segment(at, at + length, notes[i].first, notes[i].second, true, played.drives);
-        const bool last = i + 1 == notes.size();
-        planner.segment(at + length, last ? INFINITY : at + 2.0 * length, 0.0, 0.0, false,
-                        played.drives);
-        at += 2.0 * length;
-    }
-    played.strength = bench::Plant(truth).respond(
-        played.drives, kPlantRate, static_cast<std::size_t>((at + 0.2) * kPlantRate));
-    return played;
-}
-
-// Per note (each `length` from 2 x length x i): the most above its strength while it sounds, and
-// the most it is again, after its end, once it has fallen below 10 % of its strength.
-struct Artefacts {
-    double overshoot = 0.0, rebound = 0.0;
-};
-Artefacts artefacts(const Played& played, const std::vector<std::pair<double, double>>& notes,
-                    double length) {
-    Artefacts worst;
-    for (std::size_t i = 0; i < notes.size(); ++i) {
-        const double strength = notes[i].first;
-        const auto from = static_cast<std::size_t>(2.0 * length * i * kPlantRate);
-        const auto end = static_cast<std::size_t>((2.0 * i + 1.0) * length * kPlantRate);
-        const auto next = std::min(played.strength.size(),
-                                   static_cast<std::size_t>((2.0 * i + 2.0) * length * kPlantRate));
-        for (std::size_t k = from; k < end; ++k) {
-            worst.overshoot = std::max(worst.overshoot, played.strength[k] / strength - 1.0);
-        }
-        std::size_t k = end;
-        while (k < next && played.strength[k] >= 0.1 * strength) {
-            ++k;
-        }
-        for (; k < next; ++k) {
-            worst.rebound = std::max(worst.rebound, played.strength[k] / strength);
-        }
-    }
-    return worst;
-}
+// Notes (strength, frequency), each `length` long and followed by as much silence, and the
+// plant's strength under their drives (bench/note_phrases, which bench/planner_search draws
+// phrases of at random).
+using bench::Artefacts;
+using bench::artefacts;
+using bench::play_notes;
+using bench::Played;
+constexpr double kPlantRate = bench::kPhraseRate;
 
 TEST(DrivePlanner, WithTheDeclarationRightNoNoteOvershootsOrRisesAgainAfterItsEnd) {
     // An LRA's notes across its band, to its edges (f0 -+ f0 / 2Q, where it gives 1/sqrt 2 of its
