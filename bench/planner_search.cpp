@@ -3,7 +3,7 @@
 // margins and with a calibration's, and played on bench/feel's plant of the declared LRA: the
 // most any note goes above its strength and rises again after its end, against issue 32's bounds
 // (5 %, 10 %). The draws beyond a bound are printed whole, to become the drive planner's tests
-// (docs/performance.md, "Feel").
+// (docs/performance.md, "Compensation against a wrong declaration").
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <chrono>
