@@ -57,7 +57,7 @@ int main(int argc, char** argv) {
     int draws = 50;
     std::uint64_t seed = 20261202;
     app.add_option("--draws", draws, "phrases per LRA (each planned three ways)")
-        ->check(CLI::Range(1, 100000));
+        ->check(CLI::PositiveNumber);
     app.add_option("--seed", seed, "the phrases' seed");
     CLI11_PARSE(app, argc, argv);
 
